@@ -1,0 +1,86 @@
+// PARC for VTK: small fixed-size vector and matrix helpers of the core.
+#ifndef parcMath_h
+#define parcMath_h
+
+#include <array>
+#include <cmath>
+
+namespace parc
+{
+
+/// A 3-vector of doubles: world coordinates, voxel-index coordinates or directions.
+struct Vec3
+{
+  double X = 0.0, Y = 0.0, Z = 0.0;
+
+  constexpr Vec3() = default;
+  constexpr Vec3(double x, double y, double z)
+    : X(x)
+    , Y(y)
+    , Z(z)
+  {
+  }
+  double operator[](int i) const { return i == 0 ? X : (i == 1 ? Y : Z); }
+  double& operator[](int i) { return i == 0 ? X : (i == 1 ? Y : Z); }
+};
+
+inline Vec3 operator+(const Vec3& a, const Vec3& b) { return { a.X + b.X, a.Y + b.Y, a.Z + b.Z }; }
+inline Vec3 operator-(const Vec3& a, const Vec3& b) { return { a.X - b.X, a.Y - b.Y, a.Z - b.Z }; }
+inline Vec3 operator-(const Vec3& a) { return { -a.X, -a.Y, -a.Z }; }
+inline Vec3 operator*(double s, const Vec3& a) { return { s * a.X, s * a.Y, s * a.Z }; }
+inline double Dot(const Vec3& a, const Vec3& b) { return a.X * b.X + a.Y * b.Y + a.Z * b.Z; }
+inline Vec3 Cross(const Vec3& a, const Vec3& b)
+{
+  return { a.Y * b.Z - a.Z * b.Y, a.Z * b.X - a.X * b.Z, a.X * b.Y - a.Y * b.X };
+}
+inline double Length(const Vec3& a) { return std::sqrt(Dot(a, a)); }
+/// The unit vector along a; the zero vector stays zero.
+inline Vec3 Normalized(const Vec3& a)
+{
+  const double len = Length(a);
+  return len > 0.0 ? (1.0 / len) * a : a;
+}
+
+/// A 4x4 row-major matrix of doubles acting on column vectors (VTK's convention).
+struct Matrix4
+{
+  std::array<double, 16> M{ 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1 };
+
+  double operator()(int r, int c) const { return M[4 * r + c]; }
+  double& operator()(int r, int c) { return M[4 * r + c]; }
+
+  /// Affine point transform (no perspective division).
+  Vec3 TransformPoint(const Vec3& p) const
+  {
+    return { M[0] * p.X + M[1] * p.Y + M[2] * p.Z + M[3],
+      M[4] * p.X + M[5] * p.Y + M[6] * p.Z + M[7], M[8] * p.X + M[9] * p.Y + M[10] * p.Z + M[11] };
+  }
+  /// Projective point transform with division by w.
+  Vec3 TransformHomogeneous(const Vec3& p) const
+  {
+    const double w = M[12] * p.X + M[13] * p.Y + M[14] * p.Z + M[15];
+    const Vec3 q = TransformPoint(p);
+    return (1.0 / w) * q;
+  }
+  /// The linear part applied to a direction.
+  Vec3 TransformVector(const Vec3& v) const
+  {
+    return { M[0] * v.X + M[1] * v.Y + M[2] * v.Z, M[4] * v.X + M[5] * v.Y + M[6] * v.Z,
+      M[8] * v.X + M[9] * v.Y + M[10] * v.Z };
+  }
+  /// The transpose of the linear part applied to a vector (gradients go this way).
+  Vec3 TransposeTransformVector(const Vec3& v) const
+  {
+    return { M[0] * v.X + M[4] * v.Y + M[8] * v.Z, M[1] * v.X + M[5] * v.Y + M[9] * v.Z,
+      M[2] * v.X + M[6] * v.Y + M[10] * v.Z };
+  }
+};
+
+/// The inverse of m; returns false (and leaves out untouched) when m is singular.
+bool Invert(const Matrix4& m, Matrix4& out);
+/// a * b.
+Matrix4 Multiply(const Matrix4& a, const Matrix4& b);
+
+} // namespace parc
+
+#endif

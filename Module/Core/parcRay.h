@@ -1,0 +1,72 @@
+// PARC for VTK: rays, the global sample lattice and ray segments.
+//
+// A ray is x(t) = Origin + t * Direction in world coordinates, Direction of unit length, so
+// t is a world distance. Its samples lie on the *global lattice* t_k = k * dt (DESIGN.md
+// section 2): t_0 = 0 is the eye (perspective) or the plane through the camera position
+// normal to the view direction (parallel), and the lattice never depends on the segment
+// being cast. That is what makes every segment source give bit-identical images.
+#ifndef parcRay_h
+#define parcRay_h
+
+#include "parcMath.h"
+
+#include <vector>
+
+namespace parc
+{
+
+struct Ray
+{
+  Vec3 Origin;    ///< world coordinates
+  Vec3 Direction; ///< world, unit length
+  double TMin = 0.0;    ///< ray parameter where the ray may start (near clipping plane)
+  double TMax = 0.0;    ///< ray parameter where it must end (far plane or opaque geometry)
+};
+
+/// A ray-parameter interval [TNear, TFar] that may hold contributing samples.
+struct Segment
+{
+  double TNear;
+  double TFar;
+};
+
+/// An inclusive range of lattice indices [First, Last].
+struct LatticeRange
+{
+  long First;
+  long Last;
+};
+
+/// Clips the line o + t d (any coordinates) to the box [lo, hi]; [t0, t1] is narrowed in
+/// place. Returns false when nothing is left.
+bool ClipToBox(const Vec3& o, const Vec3& d, const Vec3& lo, const Vec3& hi, double& t0,
+  double& t1);
+
+/// The lattice indices to visit for segments already clipped to [tEnter, tExit]: each
+/// segment [a, b] becomes [floor(a/dt) - 1, ceil(b/dt) + 1] (one lattice step of slack on
+/// each side, so a crossing between the last sample before a segment and its first sample
+/// is never missed), clamped to [ceil(tEnter/dt), floor(tExit/dt)], sorted and merged.
+void SegmentsToLatticeRanges(const std::vector<Segment>& segments, double tEnter, double tExit,
+  double dt, std::vector<LatticeRange>& ranges);
+
+/// A source of ray segments: the one interface between acceleration (depth buffers, bit
+/// planes, the segment oracle) and the caster. Unaccelerated casting is the one-segment
+/// source. Implementations must be safe to call from several threads at once.
+class SegmentSource
+{
+public:
+  virtual ~SegmentSource() = default;
+  /// Appends to out the segments of the ray through ray-image pixel (px, py).
+  virtual void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const = 0;
+};
+
+/// Unaccelerated casting: the whole ray is one segment.
+class WholeRaySource : public SegmentSource
+{
+public:
+  void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const override;
+};
+
+} // namespace parc
+
+#endif

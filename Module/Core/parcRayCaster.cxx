@@ -1,0 +1,628 @@
+#include "parcRayCaster.h"
+
+#include <vtkSMPThreadLocal.h>
+#include <vtkSMPTools.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace parc
+{
+
+namespace
+{
+constexpr int TileSize = 16;        ///< ray-image pixels per tile edge
+constexpr int TileRowsPerBand = 4;  ///< tile rows cast between two progress reports
+constexpr int RegulaFalsiSteps = 2; ///< isosurface refinement steps
+constexpr std::size_t MaxIsoValues = 64;
+}
+
+CastStatistics& CastStatistics::operator+=(const CastStatistics& o)
+{
+  this->Rays += o.Rays;
+  this->Segments += o.Segments;
+  this->Samples += o.Samples;
+  this->ContributingSamples += o.ContributingSamples;
+  this->GradientEvaluations += o.GradientEvaluations;
+  return *this;
+}
+
+Ray ViewGeometry::MakeRay(int px, int py) const
+{
+  const double x = (2.0 * px + 1.0) / this->Width - 1.0;
+  const double y = (2.0 * py + 1.0) / this->Height - 1.0;
+  const Vec3 nearPoint = this->NDCToWorld.TransformHomogeneous({ x, y, -1.0 });
+  const Vec3 farPoint = this->NDCToWorld.TransformHomogeneous({ x, y, 1.0 });
+  Ray ray;
+  ray.Direction = Normalized(farPoint - nearPoint);
+  if (this->Parallel)
+  {
+    // The lattice starts on the plane through the camera position normal to the rays.
+    ray.Origin = nearPoint - Dot(nearPoint - this->Eye, ray.Direction) * ray.Direction;
+  }
+  else
+  {
+    ray.Origin = this->Eye;
+  }
+  ray.TMin = Dot(nearPoint - ray.Origin, ray.Direction);
+  ray.TMax = Dot(farPoint - ray.Origin, ray.Direction);
+  return ray;
+}
+
+double ViewGeometry::DepthToParameter(const Ray& ray, int px, int py, double z) const
+{
+  const double x = (2.0 * px + 1.0) / this->Width - 1.0;
+  const double y = (2.0 * py + 1.0) / this->Height - 1.0;
+  const Vec3 p = this->NDCToWorld.TransformHomogeneous({ x, y, 2.0 * z - 1.0 });
+  return Dot(p - ray.Origin, ray.Direction);
+}
+
+bool RayCaster::Prepare(const ScalarField* field, const CastParameters* parameters)
+{
+  this->Field = field;
+  this->Params = parameters;
+  if (!field || !parameters || !(parameters->SampleDistance > 0.0) ||
+    !(parameters->OpacityUnitDistance > 0.0))
+  {
+    return false;
+  }
+  const int* dims = field->GetDimensions();
+  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
+  {
+    return false;
+  }
+  this->OpacityExponent = parameters->SampleDistance / parameters->OpacityUnitDistance;
+  this->GradientNeeded = parameters->Shade || parameters->UseGradientOpacity;
+  this->SortedIsoValues = parameters->IsoValues;
+  std::sort(this->SortedIsoValues.begin(), this->SortedIsoValues.end());
+  if (this->SortedIsoValues.size() > MaxIsoValues)
+  {
+    this->SortedIsoValues.resize(MaxIsoValues);
+  }
+  return true;
+}
+
+bool RayCaster::ClipRay(const Ray& ray, double& tEnter, double& tExit) const
+{
+  const int* dims = this->Field->GetDimensions();
+  const Matrix4& w2i = this->Params->WorldToIndex;
+  const Vec3 o = w2i.TransformPoint(ray.Origin);
+  const Vec3 d = w2i.TransformVector(ray.Direction);
+  tEnter = ray.TMin;
+  tExit = ray.TMax;
+  return ClipToBox(o, d, { 0.0, 0.0, 0.0 },
+    { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 }, tEnter, tExit);
+}
+
+namespace
+{
+
+/// Per-ray constants shared by the ray functions.
+struct RayContext
+{
+  const ScalarField& Field;
+  const CastParameters& P;
+  const Ray& WorldRay;
+  Vec3 IndexOrigin;
+  Vec3 IndexDirection;
+  double Dt;
+  double OpacityExponent;
+  bool GradientNeeded;
+  CastStatistics& Stats;
+
+  Vec3 IndexPosition(double t) const { return this->IndexOrigin + t * this->IndexDirection; }
+  float SampleAt(double t) const
+  {
+    ++this->Stats.Samples;
+    return this->Field.Sample(this->IndexPosition(t), this->P.Interp);
+  }
+  /// The world-space gradient at ray parameter t.
+  Vec3 WorldGradient(double t) const
+  {
+    ++this->Stats.GradientEvaluations;
+    const Vec3 g = this->Field.Gradient(this->IndexPosition(t), this->P.Interp);
+    return this->P.WorldToIndex.TransposeTransformVector(g);
+  }
+  float CorrectOpacity(float a) const
+  {
+    if (this->OpacityExponent == 1.0 || a >= 1.f)
+    {
+      return a;
+    }
+    return static_cast<float>(1.0 - std::pow(1.0 - a, this->OpacityExponent));
+  }
+  /// Shades rgb in place at ray parameter t with world gradient g (Blinn-Phong, two-sided).
+  void Shade(float rgb[3], double t, const Vec3& g) const;
+};
+
+void RayContext::Shade(float rgb[3], double t, const Vec3& g) const
+{
+  const double len = Length(g);
+  double diffuse[3] = { 0.0, 0.0, 0.0 };
+  double specular[3] = { 0.0, 0.0, 0.0 };
+  if (len > 0.0)
+  {
+    const Vec3 toEye = -this->WorldRay.Direction;
+    Vec3 n = (-1.0 / len) * g;
+    if (Dot(n, toEye) < 0.0)
+    {
+      n = -n;
+    }
+    const Vec3 x = this->WorldRay.Origin + t * this->WorldRay.Direction;
+    for (const Light& light : this->P.Lights)
+    {
+      Vec3 l;
+      double attenuation = 1.0;
+      if (light.Positional)
+      {
+        const Vec3 toLight = light.Position - x;
+        const double dist = Length(toLight);
+        l = Normalized(toLight);
+        const double denom = light.Attenuation.X + dist * (light.Attenuation.Y +
+          dist * light.Attenuation.Z);
+        attenuation = denom > 0.0 ? 1.0 / denom : 1.0;
+        if (light.ConeAngle < 90.0)
+        {
+          const Vec3 spot = Normalized(light.FocalPoint - light.Position);
+          const double c = Dot(-l, spot);
+          attenuation *= (c < std::cos(light.ConeAngle * (M_PI / 180.0)))
+            ? 0.0 : std::pow(std::max(c, 0.0), light.Exponent);
+        }
+      }
+      else
+      {
+        l = Normalized(light.Position - light.FocalPoint);
+      }
+      const double ndl = Dot(n, l);
+      if (ndl <= 0.0 || attenuation == 0.0)
+      {
+        continue;
+      }
+      const double ndh = Dot(n, Normalized(l + toEye));
+      const double spec = ndh > 0.0 ? std::pow(ndh, this->P.SpecularPower) : 0.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        diffuse[c] += attenuation * light.Color[c] * ndl;
+        specular[c] += attenuation * light.Color[c] * spec;
+      }
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    const double v =
+      rgb[c] * (this->P.Ambient + this->P.Diffuse * diffuse[c]) + this->P.Specular * specular[c];
+    rgb[c] = static_cast<float>(std::min(v, 1.0));
+  }
+}
+
+/// Writes colour * opacity, or exact zeros when the opacity is zero.
+void Premultiply(const float rgb[3], float a, float rgba[4])
+{
+  if (!(a > 0.f))
+  {
+    rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0.f;
+    return;
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    rgba[c] = rgb[c] * a;
+  }
+  rgba[3] = a;
+}
+
+// Each ray function: bool operator()(long k, bool previousSampled) visits lattice sample
+// k (false stops the ray) and Finish(rgba) writes the result.
+
+struct CompositeFunction
+{
+  const RayContext& C;
+  float Rgb[3] = { 0.f, 0.f, 0.f };
+  float Alpha = 0.f;
+
+  bool operator()(long k, bool)
+  {
+    const double t = k * this->C.Dt;
+    const float s = this->C.SampleAt(t);
+    float a = this->C.P.Opacity.Evaluate(s);
+    if (a == 0.f)
+    {
+      return true;
+    }
+    Vec3 g;
+    if (this->C.GradientNeeded)
+    {
+      g = this->C.WorldGradient(t);
+      if (this->C.P.UseGradientOpacity)
+      {
+        a *= this->C.P.GradientOpacity.Evaluate(Length(g));
+        if (a == 0.f)
+        {
+          return true;
+        }
+      }
+    }
+    a = this->C.CorrectOpacity(a);
+    ++this->C.Stats.ContributingSamples;
+    float rgb[3];
+    this->C.P.Color.Lookup(s, rgb);
+    if (this->C.P.Shade)
+    {
+      this->C.Shade(rgb, t, g);
+    }
+    const float w = (1.f - this->Alpha) * a;
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Rgb[c] += w * rgb[c];
+    }
+    this->Alpha += w;
+    return this->Alpha < this->C.P.TerminationOpacity;
+  }
+  void Finish(float rgba[4]) const
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      rgba[c] = this->Rgb[c];
+    }
+    rgba[3] = this->Alpha;
+  }
+};
+
+/// Maximum (Sign = 1) or minimum (Sign = -1) intensity.
+template <int Sign>
+struct ExtremeFunction
+{
+  const RayContext& C;
+  float Extreme = 0.f;
+  bool Found = false;
+
+  bool operator()(long k, bool)
+  {
+    const float s = this->C.SampleAt(k * this->C.Dt);
+    if (!this->Found || Sign * s > Sign * this->Extreme)
+    {
+      this->Extreme = s;
+      this->Found = true;
+    }
+    return true;
+  }
+  void Finish(float rgba[4]) const
+  {
+    float rgb[3] = { 0.f, 0.f, 0.f };
+    float a = 0.f;
+    if (this->Found)
+    {
+      a = this->C.P.Opacity.Evaluate(this->Extreme);
+      this->C.P.Color.Lookup(this->Extreme, rgb);
+      this->C.Stats.ContributingSamples += (a > 0.f) ? 1 : 0;
+    }
+    Premultiply(rgb, a, rgba);
+  }
+};
+
+struct AverageFunction
+{
+  const RayContext& C;
+  double Sum = 0.0;
+  std::uint64_t Count = 0;
+
+  bool operator()(long k, bool)
+  {
+    const float s = this->C.SampleAt(k * this->C.Dt);
+    if (s >= this->C.P.AverageRange[0] && s <= this->C.P.AverageRange[1])
+    {
+      this->Sum += s;
+      ++this->Count;
+      ++this->C.Stats.ContributingSamples;
+    }
+    return true;
+  }
+  void Finish(float rgba[4]) const
+  {
+    float rgb[3] = { 0.f, 0.f, 0.f };
+    float a = 0.f;
+    if (this->Count > 0)
+    {
+      const double mean = this->Sum / static_cast<double>(this->Count);
+      a = this->C.P.Opacity.Evaluate(mean);
+      this->C.P.Color.Lookup(mean, rgb);
+    }
+    Premultiply(rgb, a, rgba);
+  }
+};
+
+struct AdditiveFunction
+{
+  const RayContext& C;
+  float Rgb[3] = { 0.f, 0.f, 0.f };
+  float Alpha = 0.f;
+
+  bool operator()(long k, bool)
+  {
+    const float s = this->C.SampleAt(k * this->C.Dt);
+    float a = this->C.P.Opacity.Evaluate(s);
+    if (a == 0.f)
+    {
+      return true;
+    }
+    if (this->C.P.UseGradientOpacity)
+    {
+      a *= this->C.P.GradientOpacity.Evaluate(Length(this->C.WorldGradient(k * this->C.Dt)));
+      if (a == 0.f)
+      {
+        return true;
+      }
+    }
+    a = this->C.CorrectOpacity(a);
+    ++this->C.Stats.ContributingSamples;
+    float rgb[3];
+    this->C.P.Color.Lookup(s, rgb);
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Rgb[c] += a * rgb[c];
+    }
+    this->Alpha += a;
+    return true;
+  }
+  void Finish(float rgba[4]) const
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      rgba[c] = std::min(this->Rgb[c], 1.f);
+    }
+    rgba[3] = std::min(this->Alpha, 1.f);
+  }
+};
+
+struct IsoSurfaceFunction
+{
+  const RayContext& C;
+  const std::vector<double>& IsoValues; // sorted
+  float Rgb[3] = { 0.f, 0.f, 0.f };
+  float Alpha = 0.f;
+  float Previous = 0.f;
+
+  /// The ray parameter in [t0, t1] where the field crosses v, given s0 = f(t0), s1 = f(t1).
+  double Refine(double t0, double s0, double t1, double s1, double v) const
+  {
+    double t = t0 + (v - s0) / (s1 - s0) * (t1 - t0);
+    for (int i = 0; i < RegulaFalsiSteps; ++i)
+    {
+      const double s = this->C.Field.Sample(this->C.IndexPosition(t), this->C.P.Interp);
+      if ((s < v) == (s0 < v))
+      {
+        t0 = t;
+        s0 = s;
+      }
+      else
+      {
+        t1 = t;
+        s1 = s;
+      }
+      if (s1 == s0)
+      {
+        break;
+      }
+      t = t0 + (v - s0) / (s1 - s0) * (t1 - t0);
+    }
+    return t;
+  }
+
+  bool Composite(double t, double v)
+  {
+    float a = this->C.P.Opacity.Evaluate(v);
+    ++this->C.Stats.ContributingSamples;
+    if (a == 0.f)
+    {
+      return true;
+    }
+    float rgb[3];
+    this->C.P.Color.Lookup(v, rgb);
+    if (this->C.P.Shade)
+    {
+      this->C.Shade(rgb, t, this->C.WorldGradient(t));
+    }
+    const float w = (1.f - this->Alpha) * a;
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Rgb[c] += w * rgb[c];
+    }
+    this->Alpha += w;
+    return this->Alpha < this->C.P.TerminationOpacity;
+  }
+
+  bool operator()(long k, bool previousSampled)
+  {
+    const double t1 = k * this->C.Dt;
+    const float s1 = this->C.SampleAt(t1);
+    const float s0 = this->Previous;
+    this->Previous = s1;
+    if (!previousSampled || s0 == s1)
+    {
+      return true;
+    }
+    // Crossed values lie between s0 and s1; visit them in ray order.
+    const double lo = std::min(s0, s1), hi = std::max(s0, s1);
+    const auto first = std::lower_bound(this->IsoValues.begin(), this->IsoValues.end(), lo);
+    const auto last = std::upper_bound(this->IsoValues.begin(), this->IsoValues.end(), hi);
+    const double t0 = t1 - this->C.Dt;
+    const bool rising = s1 > s0;
+    const long n = last - first;
+    for (long i = 0; i < n; ++i)
+    {
+      const double v = rising ? *(first + i) : *(last - 1 - i);
+      if ((s0 < v) == (s1 < v))
+      {
+        continue;
+      }
+      if (!this->Composite(this->Refine(t0, s0, t1, s1, v), v))
+      {
+        return false;
+      }
+    }
+    return true;
+  }
+  void Finish(float rgba[4]) const
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      rgba[c] = this->Rgb[c];
+    }
+    rgba[3] = this->Alpha;
+  }
+};
+
+template <class Function>
+void Walk(const std::vector<LatticeRange>& ranges, Function& fn)
+{
+  long previous = std::numeric_limits<long>::min();
+  for (const LatticeRange& r : ranges)
+  {
+    for (long k = std::max(r.First, previous + 1); k <= r.Last; ++k)
+    {
+      const bool follows = (k == previous + 1);
+      previous = k;
+      if (!fn(k, follows))
+      {
+        return;
+      }
+    }
+  }
+}
+
+template <class Function>
+void Run(Function&& fn, const std::vector<LatticeRange>& ranges, float rgba[4])
+{
+  Walk(ranges, fn);
+  fn.Finish(rgba);
+}
+
+} // namespace
+
+void RayCaster::CastRay(const Ray& ray, int px, int py, const SegmentSource& source,
+  std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
+  CastStatistics& stats) const
+{
+  rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0.f;
+  double tEnter, tExit;
+  if (!this->ClipRay(ray, tEnter, tExit))
+  {
+    return;
+  }
+  ++stats.Rays;
+  segments.clear();
+  source.GetSegments(px, py, ray, segments);
+  stats.Segments += segments.size();
+  const double dt = this->Params->SampleDistance;
+  SegmentsToLatticeRanges(segments, tEnter, tExit, dt, ranges);
+  if (ranges.empty())
+  {
+    return;
+  }
+  const Matrix4& w2i = this->Params->WorldToIndex;
+  const RayContext context{ *this->Field, *this->Params, ray, w2i.TransformPoint(ray.Origin),
+    w2i.TransformVector(ray.Direction), dt, this->OpacityExponent, this->GradientNeeded, stats };
+  switch (this->Params->Blend)
+  {
+    case BlendMode::Composite:
+      Run(CompositeFunction{ context }, ranges, rgba);
+      break;
+    case BlendMode::MaximumIntensity:
+      Run(ExtremeFunction<1>{ context }, ranges, rgba);
+      break;
+    case BlendMode::MinimumIntensity:
+      Run(ExtremeFunction<-1>{ context }, ranges, rgba);
+      break;
+    case BlendMode::AverageIntensity:
+      Run(AverageFunction{ context }, ranges, rgba);
+      break;
+    case BlendMode::Additive:
+      Run(AdditiveFunction{ context }, ranges, rgba);
+      break;
+    case BlendMode::IsoSurface:
+      Run(IsoSurfaceFunction{ context, this->SortedIsoValues }, ranges, rgba);
+      break;
+  }
+}
+
+namespace
+{
+/// Casts the tiles of one band of rows; vtkSMPTools functor.
+struct TileCaster
+{
+  const RayCaster& Caster;
+  const ViewGeometry& View;
+  const float* Depth;
+  const SegmentSource& Source;
+  float* Image;
+  int TilesX;
+  int FirstTileRow;
+
+  struct Scratch
+  {
+    std::vector<Segment> Segments;
+    std::vector<LatticeRange> Ranges;
+    CastStatistics Stats;
+  };
+  vtkSMPThreadLocal<Scratch> Local;
+
+  void Initialize() {}
+  void operator()(vtkIdType begin, vtkIdType end)
+  {
+    Scratch& scratch = this->Local.Local();
+    for (vtkIdType tile = begin; tile < end; ++tile)
+    {
+      const int tx = static_cast<int>(tile % this->TilesX);
+      const int ty = this->FirstTileRow + static_cast<int>(tile / this->TilesX);
+      const int x1 = std::min((tx + 1) * TileSize, this->View.Width);
+      const int y1 = std::min((ty + 1) * TileSize, this->View.Height);
+      for (int py = ty * TileSize; py < y1; ++py)
+      {
+        for (int px = tx * TileSize; px < x1; ++px)
+        {
+          const std::size_t pixel = static_cast<std::size_t>(py) * this->View.Width + px;
+          Ray ray = this->View.MakeRay(px, py);
+          if (this->Depth && this->Depth[pixel] < 1.f)
+          {
+            ray.TMax =
+              std::min(ray.TMax, this->View.DepthToParameter(ray, px, py, this->Depth[pixel]));
+          }
+          this->Caster.CastRay(ray, px, py, this->Source, scratch.Segments, scratch.Ranges,
+            this->Image + 4 * pixel, scratch.Stats);
+        }
+      }
+    }
+  }
+  void Reduce() {}
+};
+}
+
+bool RayCaster::CastImage(const ViewGeometry& view, const float* depth,
+  const SegmentSource& source, float* rgba, CastStatistics& stats,
+  const std::function<bool(double)>& progress) const
+{
+  const std::size_t pixels = static_cast<std::size_t>(view.Width) * view.Height;
+  std::fill(rgba, rgba + 4 * pixels, 0.f);
+  const int tilesX = (view.Width + TileSize - 1) / TileSize;
+  const int tilesY = (view.Height + TileSize - 1) / TileSize;
+  bool completed = true;
+  TileCaster caster{ *this, view, depth, source, rgba, tilesX, 0, {} };
+  for (int row = 0; row < tilesY; row += TileRowsPerBand)
+  {
+    const int rows = std::min(TileRowsPerBand, tilesY - row);
+    caster.FirstTileRow = row;
+    vtkSMPTools::For(0, static_cast<vtkIdType>(tilesX) * rows, 1, caster);
+    if (progress && !progress(static_cast<double>(row + rows) / tilesY))
+    {
+      completed = false;
+      break;
+    }
+  }
+  for (auto& scratch : caster.Local)
+  {
+    stats += scratch.Stats;
+  }
+  return completed;
+}
+
+} // namespace parc

@@ -1,0 +1,165 @@
+#include "parcTransferFunction.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace parc
+{
+
+void PiecewiseLinearFunction::SetNodes(std::vector<double> x, std::vector<double> y, bool clamp)
+{
+  this->X = std::move(x);
+  this->Y = std::move(y);
+  this->Clamp = clamp;
+  this->Slope.assign(this->X.size(), 0.0);
+  for (size_t i = 0; i + 1 < this->X.size(); ++i)
+  {
+    const double dx = this->X[i + 1] - this->X[i];
+    this->Slope[i] = dx > 0.0 ? (this->Y[i + 1] - this->Y[i]) / dx : 0.0;
+  }
+}
+
+void PiecewiseLinearFunction::SetConstant(double value)
+{
+  this->X.clear();
+  this->Y.clear();
+  this->Slope.clear();
+  this->Constant = value;
+}
+
+float PiecewiseLinearFunction::Evaluate(double s) const
+{
+  if (this->X.empty())
+  {
+    return static_cast<float>(this->Constant);
+  }
+  if (!(s >= this->X.front())) // also NaN: treated as below the range
+  {
+    return static_cast<float>(this->LeftValue());
+  }
+  if (s > this->X.back())
+  {
+    return static_cast<float>(this->RightValue());
+  }
+  // The last node with x <= s.
+  const size_t i = static_cast<size_t>(
+    std::upper_bound(this->X.begin(), this->X.end(), s) - this->X.begin() - 1);
+  const double v = this->Y[i] + (s - this->X[i]) * this->Slope[i];
+  return static_cast<float>(std::max(v, 0.0));
+}
+
+bool PiecewiseLinearFunction::IsNonZeroOn(double lo, double hi) const
+{
+  if (this->X.empty())
+  {
+    return this->Constant > 0.0;
+  }
+  if (lo > hi)
+  {
+    return false;
+  }
+  const size_t n = this->X.size();
+  if (lo < this->X.front() && this->LeftValue() > 0.0)
+  {
+    return true;
+  }
+  if (hi > this->X.back() && this->RightValue() > 0.0)
+  {
+    return true;
+  }
+  for (size_t i = 0; i < n; ++i)
+  {
+    // A node inside [lo, hi].
+    if (this->X[i] >= lo && this->X[i] <= hi && this->Y[i] > 0.0)
+    {
+      return true;
+    }
+    // The open interval (x_i, x_i+1) meets [lo, hi]: the linear piece is positive on all of it
+    // when one of its ends is.
+    if (i + 1 < n && lo < this->X[i + 1] && hi > this->X[i] && this->X[i] < this->X[i + 1] &&
+      std::max(this->Y[i], this->Y[i + 1]) > 0.0)
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+double PiecewiseLinearFunction::FirstNonZero() const
+{
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  if (this->X.empty())
+  {
+    return this->Constant > 0.0 ? -inf : inf;
+  }
+  if (this->LeftValue() > 0.0)
+  {
+    return -inf;
+  }
+  for (size_t i = 0; i < this->X.size(); ++i)
+  {
+    if (this->Y[i] > 0.0)
+    {
+      // Positive from the previous node on (exclusive), or at this node.
+      return i > 0 ? this->X[i - 1] : this->X[i];
+    }
+  }
+  return this->RightValue() > 0.0 ? this->X.back() : inf;
+}
+
+double PiecewiseLinearFunction::LastNonZero() const
+{
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  if (this->X.empty())
+  {
+    return this->Constant > 0.0 ? inf : -inf;
+  }
+  if (this->RightValue() > 0.0)
+  {
+    return inf;
+  }
+  for (size_t i = this->X.size(); i-- > 0;)
+  {
+    if (this->Y[i] > 0.0)
+    {
+      return i + 1 < this->X.size() ? this->X[i + 1] : this->X[i];
+    }
+  }
+  return this->LeftValue() > 0.0 ? this->X.front() : -inf;
+}
+
+void ColorTable::SetTable(double lo, double hi, std::vector<float> rgb)
+{
+  this->Count = static_cast<int>(rgb.size() / 3);
+  this->RGB = std::move(rgb);
+  this->Lo = lo;
+  this->Hi = hi > lo ? hi : lo;
+  this->Scale = (this->Hi > this->Lo) ? (this->Count - 1) / (this->Hi - this->Lo) : 0.0;
+}
+
+void ColorTable::Lookup(double s, float rgb[3]) const
+{
+  double u = (s - this->Lo) * this->Scale;
+  if (!(u > 0.0)) // also NaN
+  {
+    u = 0.0;
+  }
+  const double last = this->Count - 1;
+  if (u >= last)
+  {
+    u = last;
+  }
+  int i = static_cast<int>(u);
+  if (i >= this->Count - 1)
+  {
+    i = this->Count - 2;
+  }
+  const float f = static_cast<float>(u - i);
+  const float* a = &this->RGB[3 * i];
+  for (int c = 0; c < 3; ++c)
+  {
+    rgb[c] = a[c] + f * (a[c + 3] - a[c]);
+  }
+}
+
+} // namespace parc

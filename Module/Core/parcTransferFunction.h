@@ -1,0 +1,65 @@
+// PARC for VTK: transfer functions of the core.
+//
+// PiecewiseLinearFunction is evaluated exactly from its nodes (no lookup table), so the
+// classification can decide *exactly* whether it is non-zero anywhere on a scalar interval
+// (DESIGN.md section 2): the caster and the classifier use the same function.
+// ColorTable is a sampled colour function; colour never decides what is skipped.
+#ifndef parcTransferFunction_h
+#define parcTransferFunction_h
+
+#include <limits>
+#include <vector>
+
+namespace parc
+{
+
+class PiecewiseLinearFunction
+{
+public:
+  /// Nodes must be sorted by x (equal x allowed: a step). clamp: outside [x0, xn] the end
+  /// values hold (vtkPiecewiseFunction's Clamping on); otherwise the function is 0 there.
+  void SetNodes(std::vector<double> x, std::vector<double> y, bool clamp);
+  /// A constant function (no nodes).
+  void SetConstant(double value);
+
+  /// f(s) >= 0 for opacity functions; evaluated in double and returned as float.
+  float Evaluate(double s) const;
+
+  /// True when f is non-zero somewhere on [lo, hi] (exact for the function as evaluated by
+  /// Evaluate: never false where Evaluate gives a non-zero value).
+  bool IsNonZeroOn(double lo, double hi) const;
+  /// The smallest s with f(s) != 0 (-inf if f is non-zero far left, +inf if f is zero).
+  double FirstNonZero() const;
+  /// The largest s with f(s) != 0 (+inf if non-zero far right, -inf if f is zero).
+  double LastNonZero() const;
+
+  bool IsEmpty() const { return this->X.empty(); }
+  const std::vector<double>& GetX() const { return this->X; }
+  const std::vector<double>& GetY() const { return this->Y; }
+
+private:
+  double LeftValue() const { return this->Clamp ? this->Y.front() : 0.0; }
+  double RightValue() const { return this->Clamp ? this->Y.back() : 0.0; }
+
+  std::vector<double> X, Y, Slope;
+  bool Clamp = true;
+  double Constant = 0.0;
+};
+
+/// An RGB function sampled into a table over [Lo, Hi], linearly interpolated, clamped.
+class ColorTable
+{
+public:
+  /// rgb holds 3 * n values for n >= 2 evenly spaced scalars from lo to hi.
+  void SetTable(double lo, double hi, std::vector<float> rgb);
+  void Lookup(double s, float rgb[3]) const;
+
+private:
+  std::vector<float> RGB{ 1.f, 1.f, 1.f, 1.f, 1.f, 1.f };
+  double Lo = 0.0, Hi = 1.0, Scale = 1.0;
+  int Count = 2;
+};
+
+} // namespace parc
+
+#endif

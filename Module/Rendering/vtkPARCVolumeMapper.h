@@ -1,0 +1,184 @@
+/**
+ * @class   vtkPARCVolumeMapper
+ * @brief   Exact CPU volume ray casting, accelerated by Polygon Assisted Ray Casting (PARC).
+ *
+ * vtkPARCVolumeMapper renders a vtkImageData with one scalar component by casting one ray
+ * per ray-image pixel on the CPU (in parallel with vtkSMPTools over image tiles) and
+ * composites the result over the renderer's image. It follows Sobierajski & Avila, "A
+ * Hardware Acceleration Method for Volumetric Ray Tracing" (1995): OpenGL passes project a
+ * polygon model of the possibly contributing cells so that each ray samples only where
+ * something can show (section 3: depth buffers, section 4: colour bit planes).
+ *
+ * Exactness contract: every acceleration mode gives a ray-cast image (see
+ * GetLastRayCastImage) that is bit-identical, as float RGBA, to the one with acceleration
+ * off. Rays sample a global lattice t_k = k * SampleDistance from the eye (perspective) or
+ * from the plane through the camera position (parallel), whatever part of the ray is cast.
+ *
+ * Supported: scalar types (unsigned) char, short, int, float and double (point data; the
+ * first component of a multi-component array is used, with a warning); any origin, spacing
+ * (non-zero), direction matrix and vtkVolume transform; scalar colour (gray or RGB) and
+ * scalar opacity functions, opacity unit distance, gradient opacity, nearest and linear
+ * interpolation (cubic is cast as linear), shading with the renderer's lights; blend modes
+ * composite, maximum, minimum and average intensity, additive and isosurface (the iso values
+ * of the property); parallel and perspective cameras with the eye anywhere; opaque geometry
+ * of the same renderer (rays end at its depth).
+ *
+ * Documented results and limits:
+ * - NaN scalars count as the smallest finite value, -inf as the smallest and +inf as the
+ *   largest (a warning gives the number replaced). double and 32-bit integers are cast
+ *   through float (24-bit mantissa).
+ * - An image with fewer than 2 samples along an axis, zero spacing, no scalars or an
+ *   unsupported type draws nothing and reports an error.
+ * - The colour function is sampled into a 1024-entry table over the data range; opacity
+ *   functions are evaluated exactly from their nodes (segments with a non-default midpoint
+ *   or sharpness are subdivided into 32 linear pieces).
+ * - Additive blending sums opacity-weighted colours and opacities (no attenuation) and clamps
+ *   them to 1. Slice blending and cropping are not supported (nothing is drawn, with an
+ *   error / cropping is ignored with a warning).
+ * - Positional lights use their attenuation and spot cone; shading is Blinn-Phong, two-sided.
+ *
+ * Thread safety: like every VTK mapper, use it from the rendering thread; it parallelizes
+ * internally and the image is the same for any number of threads.
+ *
+ * @sa vtkFixedPointVolumeRayCastMapper vtkVolumeProperty
+ */
+#ifndef vtkPARCVolumeMapper_h
+#define vtkPARCVolumeMapper_h
+
+#include "PARCRenderingModule.h" // For export macro
+#include "vtkVolumeMapper.h"
+
+#include <memory> // For std::unique_ptr
+
+class vtkImageData;
+
+class PARCRENDERING_EXPORT vtkPARCVolumeMapper : public vtkVolumeMapper
+{
+public:
+  static vtkPARCVolumeMapper* New();
+  vtkTypeMacro(vtkPARCVolumeMapper, vtkVolumeMapper);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  enum AccelerationModes
+  {
+    ACCELERATION_NONE = 0,
+    ACCELERATION_DEPTH_BUFFER = 1,
+    ACCELERATION_COLOR_BUFFER = 2,
+    ACCELERATION_AUTO = 3
+  };
+
+  ///@{
+  /**
+   * How rays are told where to sample. None casts each ray through the whole volume;
+   * DepthBuffer and ColorBuffer use PARC passes; Auto picks per volume and ray function.
+   * Modes not built yet fall back to None with a warning. Default: Auto.
+   */
+  vtkSetClampMacro(AccelerationMode, int, ACCELERATION_NONE, ACCELERATION_AUTO);
+  vtkGetMacro(AccelerationMode, int);
+  void SetAccelerationModeToNone() { this->SetAccelerationMode(ACCELERATION_NONE); }
+  void SetAccelerationModeToDepthBuffer() { this->SetAccelerationMode(ACCELERATION_DEPTH_BUFFER); }
+  void SetAccelerationModeToColorBuffer() { this->SetAccelerationMode(ACCELERATION_COLOR_BUFFER); }
+  void SetAccelerationModeToAuto() { this->SetAccelerationMode(ACCELERATION_AUTO); }
+  static const char* GetAccelerationModeAsString(int mode);
+  ///@}
+
+  ///@{
+  /**
+   * Distance between samples along a ray, in world units. A value <= 0 (the default) means
+   * half the smallest voxel edge in world units (spacing times the volume's scale).
+   */
+  vtkSetMacro(SampleDistance, double);
+  vtkGetMacro(SampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Screen pixels per ray along each image axis (1 = one ray per pixel, the default; 2 = a
+   * ray every second pixel, the image magnified with linear filtering).
+   */
+  vtkSetClampMacro(ImageSampleDistance, double, 1.0, 64.0);
+  vtkGetMacro(ImageSampleDistance, double);
+  ///@}
+
+  ///@{
+  /**
+   * Accumulated opacity at which composite and isosurface rays stop (early ray
+   * termination). 1 disables it in practice. Default 0.99.
+   */
+  vtkSetClampMacro(TerminationOpacity, double, 0.0, 1.0);
+  vtkGetMacro(TerminationOpacity, double);
+  ///@}
+
+  ///@{
+  /**
+   * Whether rays end at the opaque geometry already drawn by the renderer (its depth
+   * buffer is read once per render when the renderer holds any visible non-volume prop).
+   * Default on.
+   */
+  vtkSetMacro(IntermixIntersectingGeometry, vtkTypeBool);
+  vtkGetMacro(IntermixIntersectingGeometry, vtkTypeBool);
+  vtkBooleanMacro(IntermixIntersectingGeometry, vtkTypeBool);
+  ///@}
+
+  /**
+   * The sample distance of the last render in world units (SampleDistance, or the value
+   * derived from the spacing when SampleDistance <= 0).
+   */
+  vtkGetMacro(LastSampleDistance, double);
+
+  /**
+   * Copies the ray-cast image of the last render into image: a float RGBA point array
+   * "RGBA" of premultiplied colours, one point per ray, x to the right and y up.
+   */
+  void GetLastRayCastImage(vtkImageData* image);
+
+  ///@{
+  /**
+   * Statistics of the last render. Samples are scalar samples on the lattice; contributing
+   * samples had non-zero opacity (or were isosurface crossings). Times are in seconds:
+   * casting (rays only), projection (PARC passes) and the whole Render call.
+   */
+  vtkIdType GetLastSampleCount();
+  vtkIdType GetLastContributingSampleCount();
+  vtkIdType GetLastRayCount();
+  vtkIdType GetLastGradientCount();
+  double GetLastCastingTime();
+  double GetLastProjectionTime();
+  double GetLastRenderTime();
+  /** The acceleration mode the last render used (after any fallback). */
+  int GetLastAccelerationMode();
+  void PrintStatistics(ostream& os);
+  ///@}
+
+  void Render(vtkRenderer* ren, vtkVolume* vol) override;
+  void ReleaseGraphicsResources(vtkWindow* window) override;
+
+protected:
+  vtkPARCVolumeMapper();
+  ~vtkPARCVolumeMapper() override;
+
+  /** Updates the input and converts its scalars when they changed; false on bad input. */
+  bool PrepareField();
+  /** Converts the property, transform and lights into the caster's parameters. */
+  bool PrepareParameters(vtkRenderer* ren, vtkVolume* vol);
+  /** Casts the ray image for the renderer's camera (statistics and times included). */
+  void CastImage(vtkRenderer* ren);
+  /** Composites the ray image over the renderer's viewport. */
+  void DisplayImage(vtkRenderer* ren, vtkVolume* vol);
+
+  int AccelerationMode = ACCELERATION_AUTO;
+  double SampleDistance = 0.0;
+  double ImageSampleDistance = 1.0;
+  double TerminationOpacity = 0.99;
+  vtkTypeBool IntermixIntersectingGeometry = 1;
+  double LastSampleDistance = 0.0;
+
+private:
+  vtkPARCVolumeMapper(const vtkPARCVolumeMapper&) = delete;
+  void operator=(const vtkPARCVolumeMapper&) = delete;
+
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+};
+
+#endif
