@@ -1,0 +1,336 @@
+// parc-render: renders a volume file with vtkPARCVolumeMapper to a PNG file and prints
+// the statistics of the render (optionally as JSON, optionally side by side with
+// vtkFixedPointVolumeRayCastMapper at the same sample distance).
+#include "parcVolumeIO.h"
+#include "vtkPARCVolumeMapper.h"
+
+#include <vtkCamera.h>
+#include <vtkContourValues.h>
+#include <vtkPiecewiseFunction.h>
+#include <vtkFixedPointVolumeRayCastMapper.h>
+#include <vtkImageData.h>
+#include <vtkNew.h>
+#include <vtkPNGWriter.h>
+#include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkTimerLog.h>
+#include <vtkVolume.h>
+#include <vtkVolumeProperty.h>
+#include <vtkWindowToImageFilter.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace
+{
+const char* Usage = R"(usage: parc-render VOLUME [options]
+  VOLUME                .vti .mha .mhd .nii .nii.gz .nrrd .nhdr .vtk .slc or NAME_XxYxZ_TYPE.raw
+  --output FILE.png     image to write (default: parc.png)
+  --blend MODE          composite (default), mip, minip, average, additive, iso
+  --tf NAME|FILE        transfer function: ramp, mri, ct-skin-bone, ct-bone, mip (default:
+                        ramp, mip for mip/minip) or a file of "scalar opacity r g b" lines
+  --iso VALUE           iso value for --blend iso (default: middle of the scalar range)
+  --shade               shade with the headlight (on by default for iso)
+  --size N | WxH        image size in pixels (default 300)
+  --azimuth DEG --elevation DEG --zoom F     camera around the volume (after a reset)
+  --camera-position X,Y,Z [--focal-point X,Y,Z]   explicit camera
+  --parallel            parallel projection (default perspective)
+  --sample-distance D   world units (default: half the smallest spacing)
+  --acceleration MODE   none, depth, color, auto (default)
+  --repeat N            timed renders after one warm-up render (default 1)
+  --compare-fixed-point also render with vtkFixedPointVolumeRayCastMapper
+  --json                print statistics as JSON
+  --help
+)";
+
+struct Options
+{
+  std::string Volume, Output = "parc.png", Blend = "composite", TF, Acceleration = "auto";
+  double Iso = 0.0, Azimuth = 30.0, Elevation = 20.0, Zoom = 1.0, SampleDistance = 0.0;
+  bool HasIso = false, Shade = false, Parallel = false, Compare = false, Json = false;
+  bool HasPosition = false, HasFocal = false;
+  double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
+  int Width = 300, Height = 300, Repeat = 1;
+};
+
+[[noreturn]] void Fail(const std::string& message)
+{
+  std::cerr << "parc-render: " << message << std::endl;
+  std::exit(2);
+}
+
+double ToNumber(const std::string& option, const std::string& text)
+{
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v))
+  {
+    Fail("option " + option + " needs a number, got '" + text + "'");
+  }
+  return v;
+}
+
+void ToTriple(const std::string& option, const std::string& text, double out[3])
+{
+  std::stringstream in(text);
+  std::string part;
+  for (int i = 0; i < 3; ++i)
+  {
+    if (!std::getline(in, part, ','))
+    {
+      Fail("option " + option + " needs X,Y,Z, got '" + text + "'");
+    }
+    out[i] = ToNumber(option, part);
+  }
+}
+
+Options Parse(int argc, char* argv[])
+{
+  Options o;
+  for (int i = 1; i < argc; ++i)
+  {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc)
+      {
+        Fail("option " + a + " needs a value");
+      }
+      return argv[++i];
+    };
+    if (a == "--help" || a == "-h")
+    {
+      std::cout << Usage;
+      std::exit(0);
+    }
+    else if (a == "--output") { o.Output = value(); }
+    else if (a == "--blend") { o.Blend = value(); }
+    else if (a == "--tf") { o.TF = value(); }
+    else if (a == "--iso") { o.Iso = ToNumber(a, value()); o.HasIso = true; }
+    else if (a == "--shade") { o.Shade = true; }
+    else if (a == "--azimuth") { o.Azimuth = ToNumber(a, value()); }
+    else if (a == "--elevation") { o.Elevation = ToNumber(a, value()); }
+    else if (a == "--zoom") { o.Zoom = ToNumber(a, value()); }
+    else if (a == "--camera-position") { ToTriple(a, value(), o.Position); o.HasPosition = true; }
+    else if (a == "--focal-point") { ToTriple(a, value(), o.Focal); o.HasFocal = true; }
+    else if (a == "--parallel") { o.Parallel = true; }
+    else if (a == "--sample-distance") { o.SampleDistance = ToNumber(a, value()); }
+    else if (a == "--acceleration") { o.Acceleration = value(); }
+    else if (a == "--repeat") { o.Repeat = static_cast<int>(ToNumber(a, value())); }
+    else if (a == "--compare-fixed-point") { o.Compare = true; }
+    else if (a == "--json") { o.Json = true; }
+    else if (a == "--size")
+    {
+      const std::string v = value();
+      const auto x = v.find('x');
+      o.Width = static_cast<int>(ToNumber(a, v.substr(0, x)));
+      o.Height = x == std::string::npos ? o.Width : static_cast<int>(ToNumber(a, v.substr(x + 1)));
+    }
+    else if (!a.empty() && a[0] == '-') { Fail("unknown option " + a + " (see --help)"); }
+    else if (o.Volume.empty()) { o.Volume = a; }
+    else { Fail("more than one volume given: " + a); }
+  }
+  if (o.Volume.empty())
+  {
+    Fail("no volume file given (see --help)");
+  }
+  if (o.Width < 1 || o.Height < 1 || o.Width > 8192 || o.Height > 8192)
+  {
+    Fail("--size must be between 1 and 8192");
+  }
+  if (o.Repeat < 1 || o.Zoom <= 0.0 || o.SampleDistance < 0.0)
+  {
+    Fail("--repeat must be >= 1, --zoom and --sample-distance > 0");
+  }
+  return o;
+}
+
+int BlendMode(const std::string& name)
+{
+  static const std::map<std::string, int> modes = {
+    { "composite", vtkVolumeMapper::COMPOSITE_BLEND },
+    { "mip", vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND },
+    { "minip", vtkVolumeMapper::MINIMUM_INTENSITY_BLEND },
+    { "average", vtkVolumeMapper::AVERAGE_INTENSITY_BLEND },
+    { "additive", vtkVolumeMapper::ADDITIVE_BLEND }, { "iso", vtkVolumeMapper::ISOSURFACE_BLEND }
+  };
+  const auto it = modes.find(name);
+  if (it == modes.end())
+  {
+    Fail("unknown blend mode " + name + " (composite, mip, minip, average, additive, iso)");
+  }
+  return it->second;
+}
+
+int AccelerationMode(const std::string& name)
+{
+  static const std::map<std::string, int> modes = {
+    { "none", vtkPARCVolumeMapper::ACCELERATION_NONE },
+    { "depth", vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER },
+    { "color", vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER },
+    { "auto", vtkPARCVolumeMapper::ACCELERATION_AUTO }
+  };
+  const auto it = modes.find(name);
+  if (it == modes.end())
+  {
+    Fail("unknown acceleration mode " + name + " (none, depth, color, auto)");
+  }
+  return it->second;
+}
+
+/// Wall time of one renWin->Render().
+double TimedRender(vtkRenderWindow* window)
+{
+  const double start = vtkTimerLog::GetUniversalTime();
+  window->Render();
+  return vtkTimerLog::GetUniversalTime() - start;
+}
+}
+
+int main(int argc, char* argv[])
+{
+  const Options o = Parse(argc, argv);
+  vtkNew<vtkImageData> image;
+  std::string error;
+  if (!parcio::ReadVolume(o.Volume, image, error))
+  {
+    Fail(error);
+  }
+  double range[2];
+  image->GetScalarRange(range);
+  const int blend = BlendMode(o.Blend);
+  const bool extreme = blend == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
+    blend == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
+
+  vtkNew<vtkVolumeProperty> property;
+  if (!parcio::LoadTransferFunction(o.TF.empty() ? (extreme ? "mip" : "ramp") : o.TF, range,
+        property, error))
+  {
+    Fail(error);
+  }
+  property->SetInterpolationTypeToLinear();
+  const double iso = o.HasIso ? o.Iso : 0.5 * (range[0] + range[1]);
+  if (blend == vtkVolumeMapper::ISOSURFACE_BLEND)
+  {
+    property->GetIsoSurfaceValues()->SetValue(0, iso);
+    property->GetScalarOpacity()->AddPoint(iso, 1.0);
+  }
+  property->SetShade(o.Shade || blend == vtkVolumeMapper::ISOSURFACE_BLEND);
+
+  vtkNew<vtkPARCVolumeMapper> mapper;
+  mapper->SetInputData(image);
+  mapper->SetBlendMode(blend);
+  mapper->SetAccelerationMode(AccelerationMode(o.Acceleration));
+  mapper->SetSampleDistance(o.SampleDistance);
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+
+  vtkNew<vtkRenderer> renderer;
+  renderer->AddVolume(volume);
+  renderer->SetBackground(0.0, 0.0, 0.0);
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetSize(o.Width, o.Height);
+  window->AddRenderer(renderer);
+
+  vtkCamera* camera = renderer->GetActiveCamera();
+  camera->SetParallelProjection(o.Parallel ? 1 : 0);
+  renderer->ResetCamera();
+  if (o.HasPosition)
+  {
+    camera->SetPosition(o.Position);
+    if (o.HasFocal)
+    {
+      camera->SetFocalPoint(o.Focal);
+    }
+  }
+  else
+  {
+    camera->Azimuth(o.Azimuth);
+    camera->Elevation(o.Elevation);
+    camera->OrthogonalizeViewUp();
+  }
+  camera->Zoom(o.Zoom);
+  renderer->ResetCameraClippingRange();
+
+  window->Render(); // warm-up: data conversion and GL set-up
+  double wall = 0.0, casting = 0.0, total = 0.0;
+  for (int r = 0; r < o.Repeat; ++r)
+  {
+    wall += TimedRender(window);
+    casting += mapper->GetLastCastingTime();
+    total += mapper->GetLastRenderTime();
+  }
+  wall /= o.Repeat;
+  casting /= o.Repeat;
+  total /= o.Repeat;
+
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->Update();
+  vtkNew<vtkPNGWriter> writer;
+  writer->SetFileName(o.Output.c_str());
+  writer->SetInputConnection(grab->GetOutputPort());
+  writer->Write();
+
+  double fixedWall = -1.0;
+  if (o.Compare)
+  {
+    vtkNew<vtkFixedPointVolumeRayCastMapper> fixed;
+    fixed->SetInputData(image);
+    fixed->SetBlendMode(blend);
+    fixed->SetAutoAdjustSampleDistances(0);
+    fixed->SetLockSampleDistanceToInputSpacing(0);
+    fixed->SetSampleDistance(mapper->GetLastSampleDistance());
+    fixed->SetImageSampleDistance(1.0);
+    volume->SetMapper(fixed);
+    window->Render();
+    fixedWall = 0.0;
+    for (int r = 0; r < o.Repeat; ++r)
+    {
+      fixedWall += TimedRender(window);
+    }
+    fixedWall /= o.Repeat;
+  }
+
+  const char* accel =
+    vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode());
+  if (o.Json)
+  {
+    std::cout << "{\n  \"volume\": \"" << o.Volume << "\",\n  \"image\": [" << o.Width << ", "
+              << o.Height << "],\n  \"blend\": \"" << o.Blend << "\",\n  \"acceleration\": \""
+              << accel << "\",\n  \"sample_distance\": " << mapper->GetLastSampleDistance()
+              << ",\n  \"samples\": " << mapper->GetLastSampleCount()
+              << ",\n  \"contributing_samples\": " << mapper->GetLastContributingSampleCount()
+              << ",\n  \"rays\": " << mapper->GetLastRayCount()
+              << ",\n  \"casting_time\": " << casting
+              << ",\n  \"projection_time\": " << mapper->GetLastProjectionTime()
+              << ",\n  \"render_time\": " << total << ",\n  \"wall_time\": " << wall;
+    if (o.Compare)
+    {
+      std::cout << ",\n  \"fixed_point_wall_time\": " << fixedWall;
+    }
+    std::cout << "\n}" << std::endl;
+    return 0;
+  }
+  std::printf("%-12s %-9s %-10s %-12s %12s %10s %10s %10s\n", "mapper", "image", "blend",
+    "acceleration", "samples", "cast (s)", "total (s)", "wall (s)");
+  char size[32];
+  std::snprintf(size, sizeof(size), "%dx%d", o.Width, o.Height);
+  std::printf("%-12s %-9s %-10s %-12s %12lld %10.3f %10.3f %10.3f\n", "PARC", size,
+    o.Blend.c_str(), accel, static_cast<long long>(mapper->GetLastSampleCount()), casting, total,
+    wall);
+  if (o.Compare)
+  {
+    std::printf("%-12s %-9s %-10s %-12s %12s %10s %10s %10.3f\n", "FixedPoint", size,
+      o.Blend.c_str(), "-", "-", "-", "-", fixedWall);
+  }
+  std::printf("sample distance %.4g world units, %s projection, image written to %s\n",
+    mapper->GetLastSampleDistance(), o.Parallel ? "parallel" : "perspective", o.Output.c_str());
+  return 0;
+}

@@ -1,0 +1,276 @@
+#include "parcVolumeIO.h"
+
+#include <vtkColorTransferFunction.h>
+#include <vtkImageData.h>
+#include <vtkImageReader2.h>
+#include <vtkMetaImageReader.h>
+#include <vtkNIFTIImageReader.h>
+#include <vtkNew.h>
+#include <vtkNrrdReader.h>
+#include <vtkPiecewiseFunction.h>
+#include <vtkAlgorithm.h>
+#include <vtkPointData.h>
+#include <vtkSmartPointer.h>
+#include <vtkSLCReader.h>
+#include <vtkStructuredPoints.h>
+#include <vtkStructuredPointsReader.h>
+#include <vtkVolumeProperty.h>
+#include <vtkXMLImageDataReader.h>
+
+#include <algorithm>
+#include <cctype>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <sys/stat.h>
+#include <vector>
+
+namespace parcio
+{
+namespace
+{
+bool EndsWith(const std::string& s, const std::string& suffix)
+{
+  if (s.size() < suffix.size())
+  {
+    return false;
+  }
+  std::string tail = s.substr(s.size() - suffix.size());
+  std::transform(tail.begin(), tail.end(), tail.begin(), ::tolower);
+  return tail == suffix;
+}
+
+bool FileExists(const std::string& path)
+{
+  struct stat st;
+  return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+long long FileSize(const std::string& path)
+{
+  struct stat st;
+  return stat(path.c_str(), &st) == 0 ? static_cast<long long>(st.st_size) : -1;
+}
+
+bool ReadRaw(const std::string& path, vtkImageData* out, std::string& error)
+{
+  static const std::regex pattern(
+    R"(_(\d+)x(\d+)x(\d+)_(u?int8|u?int16(le|be)?|u?int32(le|be)?|float32|float64)\.raw$)",
+    std::regex::icase);
+  std::smatch m;
+  if (!std::regex_search(path, m, pattern))
+  {
+    error = "raw file names must end in _XxYxZ_TYPE.raw (TYPE uint8, int16le, float32, ...): " +
+      path;
+    return false;
+  }
+  const int dims[3] = { std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3]) };
+  std::string type = m[4];
+  std::transform(type.begin(), type.end(), type.begin(), ::tolower);
+  const bool bigEndian = EndsWith(type, "be");
+  int vtkType = VTK_UNSIGNED_CHAR, bytes = 1;
+  if (type == "int8") { vtkType = VTK_SIGNED_CHAR; }
+  else if (type.rfind("uint16", 0) == 0) { vtkType = VTK_UNSIGNED_SHORT; bytes = 2; }
+  else if (type.rfind("int16", 0) == 0) { vtkType = VTK_SHORT; bytes = 2; }
+  else if (type.rfind("uint32", 0) == 0) { vtkType = VTK_UNSIGNED_INT; bytes = 4; }
+  else if (type.rfind("int32", 0) == 0) { vtkType = VTK_INT; bytes = 4; }
+  else if (type == "float32") { vtkType = VTK_FLOAT; bytes = 4; }
+  else if (type == "float64") { vtkType = VTK_DOUBLE; bytes = 8; }
+  const long long expected = static_cast<long long>(dims[0]) * dims[1] * dims[2] * bytes;
+  if (FileSize(path) != expected)
+  {
+    error = "raw file " + path + " has " + std::to_string(FileSize(path)) + " bytes, expected " +
+      std::to_string(expected) + " for its name's dimensions and type";
+    return false;
+  }
+  vtkNew<vtkImageReader2> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetFileDimensionality(3);
+  reader->SetDataExtent(0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1);
+  reader->SetDataScalarType(vtkType);
+  reader->SetNumberOfScalarComponents(1);
+  if (bigEndian)
+  {
+    reader->SetDataByteOrderToBigEndian();
+  }
+  else
+  {
+    reader->SetDataByteOrderToLittleEndian();
+  }
+  reader->Update();
+  out->ShallowCopy(reader->GetOutput());
+  return true;
+}
+}
+
+bool ReadVolume(const std::string& path, vtkImageData* out, std::string& error)
+{
+  if (!FileExists(path))
+  {
+    error = "no such file: " + path;
+    return false;
+  }
+  vtkSmartPointer<vtkAlgorithm> reader;
+  if (EndsWith(path, ".raw"))
+  {
+    return ReadRaw(path, out, error);
+  }
+  else if (EndsWith(path, ".vti"))
+  {
+    auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (EndsWith(path, ".mha") || EndsWith(path, ".mhd"))
+  {
+    auto r = vtkSmartPointer<vtkMetaImageReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (EndsWith(path, ".nii") || EndsWith(path, ".nii.gz"))
+  {
+    auto r = vtkSmartPointer<vtkNIFTIImageReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (EndsWith(path, ".nrrd") || EndsWith(path, ".nhdr"))
+  {
+    auto r = vtkSmartPointer<vtkNrrdReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (EndsWith(path, ".slc"))
+  {
+    auto r = vtkSmartPointer<vtkSLCReader>::New();
+    r->SetFileName(path.c_str());
+    reader = r;
+  }
+  else if (EndsWith(path, ".vtk"))
+  {
+    vtkNew<vtkStructuredPointsReader> r;
+    r->SetFileName(path.c_str());
+    r->Update();
+    if (!r->GetOutput() || r->GetOutput()->GetNumberOfPoints() == 0)
+    {
+      error = "could not read a structured-points volume from " + path;
+      return false;
+    }
+    out->ShallowCopy(r->GetOutput());
+    return true;
+  }
+  else
+  {
+    error = "unknown volume file type: " + path +
+      " (use .vti, .mha, .mhd, .nii, .nii.gz, .nrrd, .nhdr, .vtk, .slc or _XxYxZ_TYPE.raw)";
+    return false;
+  }
+  reader->Update();
+  vtkImageData* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+  if (!image || image->GetNumberOfPoints() == 0 || !image->GetPointData()->GetScalars())
+  {
+    error = "could not read a volume with scalars from " + path;
+    return false;
+  }
+  out->ShallowCopy(image);
+  return true;
+}
+
+namespace
+{
+struct Node
+{
+  double X, Opacity, R, G, B;
+};
+
+/// Presets in fractions of the scalar range.
+bool Preset(const std::string& name, std::vector<Node>& nodes)
+{
+  if (name == "ramp")
+  {
+    nodes = { { 0.0, 0.0, 0.0, 0.0, 0.0 }, { 0.15, 0.0, 0.3, 0.3, 0.3 },
+      { 1.0, 0.6, 1.0, 1.0, 1.0 } };
+  }
+  else if (name == "mri")
+  {
+    nodes = { { 0.0, 0.0, 0.0, 0.0, 0.0 }, { 0.15, 0.0, 0.55, 0.25, 0.15 },
+      { 0.35, 0.04, 0.85, 0.55, 0.45 }, { 0.6, 0.12, 0.95, 0.85, 0.75 },
+      { 1.0, 0.5, 1.0, 1.0, 0.95 } };
+  }
+  else if (name == "ct-skin-bone")
+  {
+    nodes = { { 0.0, 0.0, 0.0, 0.0, 0.0 }, { 0.2, 0.0, 0.8, 0.5, 0.4 },
+      { 0.28, 0.06, 0.9, 0.6, 0.45 }, { 0.45, 0.0, 0.9, 0.7, 0.6 },
+      { 0.6, 0.0, 1.0, 1.0, 0.9 }, { 0.75, 0.7, 1.0, 1.0, 0.95 }, { 1.0, 0.9, 1.0, 1.0, 1.0 } };
+  }
+  else if (name == "ct-bone")
+  {
+    nodes = { { 0.0, 0.0, 0.0, 0.0, 0.0 }, { 0.5, 0.0, 0.9, 0.8, 0.7 },
+      { 0.7, 0.6, 1.0, 1.0, 0.9 }, { 1.0, 0.9, 1.0, 1.0, 1.0 } };
+  }
+  else if (name == "mip")
+  {
+    nodes = { { 0.0, 0.0, 0.0, 0.0, 0.0 }, { 0.1, 0.0, 0.0, 0.0, 0.0 },
+      { 0.5, 0.5, 0.9, 0.4, 0.1 }, { 1.0, 1.0, 1.0, 1.0, 0.8 } };
+  }
+  else
+  {
+    return false;
+  }
+  return true;
+}
+}
+
+bool LoadTransferFunction(const std::string& nameOrFile, const double range[2],
+  vtkVolumeProperty* property, std::string& error)
+{
+  std::vector<Node> nodes;
+  bool relative = true;
+  if (!Preset(nameOrFile, nodes))
+  {
+    std::ifstream in(nameOrFile);
+    if (!in)
+    {
+      error = "unknown transfer function preset or file: " + nameOrFile +
+        " (presets: ramp, mri, ct-skin-bone, ct-bone, mip)";
+      return false;
+    }
+    relative = false;
+    std::string line;
+    int lineNumber = 0;
+    while (std::getline(in, line))
+    {
+      ++lineNumber;
+      line = line.substr(0, line.find('#'));
+      if (line.find_first_not_of(" \t\r") == std::string::npos)
+      {
+        continue;
+      }
+      std::istringstream fields(line);
+      Node n;
+      if (!(fields >> n.X >> n.Opacity >> n.R >> n.G >> n.B))
+      {
+        error = nameOrFile + ":" + std::to_string(lineNumber) +
+          ": expected 'scalar opacity red green blue'";
+        return false;
+      }
+      nodes.push_back(n);
+    }
+    if (nodes.empty())
+    {
+      error = "transfer function file has no nodes: " + nameOrFile;
+      return false;
+    }
+  }
+  vtkNew<vtkPiecewiseFunction> opacity;
+  vtkNew<vtkColorTransferFunction> color;
+  for (const Node& n : nodes)
+  {
+    const double x = relative ? range[0] + n.X * (range[1] - range[0]) : n.X;
+    opacity->AddPoint(x, n.Opacity);
+    color->AddRGBPoint(x, n.R, n.G, n.B);
+  }
+  property->SetScalarOpacity(opacity);
+  property->SetColor(color);
+  return true;
+}
+}
