@@ -110,6 +110,15 @@ struct RayContext
   double OpacityExponent;
   bool GradientNeeded;
   CastStatistics& Stats;
+  double FirstHit = std::numeric_limits<double>::infinity();
+
+  void RecordHit(double t)
+  {
+    if (t < this->FirstHit)
+    {
+      this->FirstHit = t;
+    }
+  }
 
   Vec3 IndexPosition(double t) const { return this->IndexOrigin + t * this->IndexDirection; }
   float SampleAt(double t) const
@@ -216,7 +225,7 @@ void Premultiply(const float rgb[3], float a, float rgba[4])
 
 struct CompositeFunction
 {
-  const RayContext& C;
+  RayContext& C;
   float Rgb[3] = { 0.f, 0.f, 0.f };
   float Alpha = 0.f;
 
@@ -244,6 +253,7 @@ struct CompositeFunction
     }
     a = this->C.CorrectOpacity(a);
     ++this->C.Stats.ContributingSamples;
+    this->C.RecordHit(t);
     float rgb[3];
     this->C.P.Color.Lookup(s, rgb);
     if (this->C.P.Shade)
@@ -333,7 +343,7 @@ struct AverageFunction
 
 struct AdditiveFunction
 {
-  const RayContext& C;
+  RayContext& C;
   float Rgb[3] = { 0.f, 0.f, 0.f };
   float Alpha = 0.f;
 
@@ -355,6 +365,7 @@ struct AdditiveFunction
     }
     a = this->C.CorrectOpacity(a);
     ++this->C.Stats.ContributingSamples;
+    this->C.RecordHit(k * this->C.Dt);
     float rgb[3];
     this->C.P.Color.Lookup(s, rgb);
     for (int c = 0; c < 3; ++c)
@@ -376,7 +387,7 @@ struct AdditiveFunction
 
 struct IsoSurfaceFunction
 {
-  const RayContext& C;
+  RayContext& C;
   const std::vector<double>& IsoValues; // sorted
   float Rgb[3] = { 0.f, 0.f, 0.f };
   float Alpha = 0.f;
@@ -412,6 +423,7 @@ struct IsoSurfaceFunction
   {
     float a = this->C.P.Opacity.Evaluate(v);
     ++this->C.Stats.ContributingSamples;
+    this->C.RecordHit(t);
     if (a == 0.f)
     {
       return true;
@@ -501,9 +513,13 @@ void Run(Function&& fn, const std::vector<LatticeRange>& ranges, float rgba[4])
 
 void RayCaster::CastRay(const Ray& ray, int px, int py, const SegmentSource& source,
   std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
-  CastStatistics& stats) const
+  CastStatistics& stats, double* firstHit) const
 {
   rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0.f;
+  if (firstHit)
+  {
+    *firstHit = std::numeric_limits<double>::infinity();
+  }
   double tEnter, tExit;
   if (!this->ClipRay(ray, tEnter, tExit))
   {
@@ -520,7 +536,7 @@ void RayCaster::CastRay(const Ray& ray, int px, int py, const SegmentSource& sou
     return;
   }
   const Matrix4& w2i = this->Params->WorldToIndex;
-  const RayContext context{ *this->Field, *this->Params, ray, w2i.TransformPoint(ray.Origin),
+  RayContext context{ *this->Field, *this->Params, ray, w2i.TransformPoint(ray.Origin),
     w2i.TransformVector(ray.Direction), dt, this->OpacityExponent, this->GradientNeeded, stats };
   switch (this->Params->Blend)
   {
@@ -542,6 +558,10 @@ void RayCaster::CastRay(const Ray& ray, int px, int py, const SegmentSource& sou
     case BlendMode::IsoSurface:
       Run(IsoSurfaceFunction{ context, this->SortedIsoValues }, ranges, rgba);
       break;
+  }
+  if (firstHit)
+  {
+    *firstHit = context.FirstHit;
   }
 }
 

@@ -111,9 +111,11 @@ public:
   bool Prepare(const ScalarField* field, const CastParameters* parameters);
 
   /// One ray: the premultiplied RGBA result. Scratch vectors are reused by the caller.
+  /// firstHit (optional) receives the ray parameter of the first contributing composite or
+  /// additive sample or the first isosurface crossing (+inf if none or other blend modes).
   void CastRay(const Ray& ray, int px, int py, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
-    CastStatistics& stats) const;
+    CastStatistics& stats, double* firstHit = nullptr) const;
 
   /// A whole image into rgba (4 floats a pixel, rows bottom to top), in parallel over
   /// tiles with vtkSMPTools; depth (may be null) holds each pixel's window depth of the

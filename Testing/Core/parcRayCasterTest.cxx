@@ -1,0 +1,435 @@
+// The ray caster: analytic ground truths, each ray function, shading, lattice invariance and
+// thread invariance.
+#include "parcTestUtilities.h"
+
+#include <vtkSMPTools.h>
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <random>
+
+using parc::BlendMode;
+using parc::CastParameters;
+using parc::Vec3;
+using parctest::CastOne;
+using parctest::MakeRay;
+
+namespace
+{
+const int SlabDims[3] = { 4, 4, 101 };
+
+parc::ScalarField ConstantSlab(float value)
+{
+  return parctest::MakeField(SlabDims, [value](int, int, int) { return value; });
+}
+
+/// Random uint8-like values in an 8^3 volume (fixed seed).
+parc::ScalarField RandomCube(unsigned seed)
+{
+  std::mt19937 rng(seed);
+  const int n[3] = { 8, 8, 8 };
+  return parctest::MakeField(n, [&](int, int, int) { return static_cast<float>(rng() % 256); });
+}
+}
+
+// Beer-Lambert: a constant opacity a per unit length over a slab of length L gives
+// 1 - exp(-sigma L) with sigma = -ln(1 - a). Sampling every dt adds at most one extra
+// sample (dt of extra length): tolerance 2e-3 (sigma dt = 1.3e-3, plus float accumulation).
+TEST(RayCaster, ConstantSlabFollowsBeerLambert)
+{
+  const parc::ScalarField field = ConstantSlab(100.f);
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.01, 0.01 });
+  p.SampleDistance = 0.125;
+  p.TerminationOpacity = 1.0;
+  const auto r = CastOne(field, p, MakeRay({ 1.5, 1.5, -10.0 }, { 0, 0, 1 }));
+  const double sigma = -std::log(1.0 - 0.01);
+  const double expected = 1.0 - std::exp(-sigma * 100.0);
+  EXPECT_NEAR(r.RGBA[3], expected, 2e-3);
+  EXPECT_EQ(r.Stats.Samples, 801u) << "samples at z = 0, 0.125, ..., 100";
+  EXPECT_NEAR(r.FirstHit, 10.0, 1e-12);
+}
+
+TEST(RayCaster, OpacityUnitDistanceScalesTheOpacity)
+{
+  const parc::ScalarField field = ConstantSlab(100.f);
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.01, 0.01 });
+  p.SampleDistance = 0.125;
+  p.TerminationOpacity = 1.0;
+  p.OpacityUnitDistance = 2.0; // half the density
+  const auto r = CastOne(field, p, MakeRay({ 1.5, 1.5, -10.0 }, { 0, 0, 1 }));
+  EXPECT_NEAR(r.RGBA[3], 1.0 - std::exp(std::log(0.99) * 50.0), 2e-3);
+}
+
+TEST(RayCaster, EarlyTerminationStopsAtTheThreshold)
+{
+  const parc::ScalarField field = ConstantSlab(100.f);
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.2, 0.2 });
+  p.SampleDistance = 0.125;
+  p.TerminationOpacity = 0.5;
+  const auto r = CastOne(field, p, MakeRay({ 1.5, 1.5, -10.0 }, { 0, 0, 1 }));
+  EXPECT_GE(r.RGBA[3], 0.5f);
+  EXPECT_LT(r.RGBA[3], 0.53f);
+  EXPECT_LT(r.Stats.Samples, 40u);
+}
+
+// A sphere of radius R in a distance field: the isosurface crossing found between lattice
+// samples (linear interpolation, then two regula-falsi steps on the trilinear field) lies
+// within 0.03 voxel of the true sphere (trilinear interpolation of |p| errs by about
+// h^2 / (8 R) per axis).
+TEST(RayCaster, IsosurfaceOfASphereDistanceField)
+{
+  const int n[3] = { 65, 65, 65 };
+  const Vec3 c{ 32.0, 32.0, 32.0 };
+  const double radius = 20.0;
+  const parc::ScalarField field = parctest::MakeField(n, [&](int i, int j, int k) {
+    return static_cast<float>(Length(Vec3(i, j, k) - c));
+  });
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 100.0 }, { 1.0, 1.0 });
+  p.Blend = BlendMode::IsoSurface;
+  p.IsoValues = { radius };
+  p.SampleDistance = 0.5;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (int trial = 0; trial < 200; ++trial)
+  {
+    const Vec3 from = c + 60.0 * parc::Normalized({ u(rng), u(rng), u(rng) });
+    const Vec3 target = c + 8.0 * Vec3(u(rng), u(rng), u(rng));
+    const parc::Ray ray = MakeRay(from, target - from);
+    const auto r = CastOne(field, p, ray);
+    ASSERT_TRUE(std::isfinite(r.FirstHit)) << "trial " << trial;
+    const Vec3 hit = ray.Origin + r.FirstHit * ray.Direction;
+    EXPECT_NEAR(Length(hit - c), radius, 0.03) << "trial " << trial;
+    EXPECT_FLOAT_EQ(r.RGBA[3], 1.f);
+  }
+}
+
+TEST(RayCaster, IsosurfaceMissedRayIsTransparent)
+{
+  const int n[3] = { 33, 33, 33 };
+  const parc::ScalarField field = parctest::MakeField(n, [](int i, int j, int k) {
+    return static_cast<float>(Length(Vec3(i - 16.0, j - 16.0, k - 16.0)));
+  });
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 100.0 }, { 1.0, 1.0 });
+  p.Blend = BlendMode::IsoSurface;
+  p.IsoValues = { 5.0 };
+  const auto r = CastOne(field, p, MakeRay({ -10.0, 28.0, 16.0 }, { 1, 0, 0 }));
+  EXPECT_EQ(r.RGBA[3], 0.f);
+  EXPECT_TRUE(std::isinf(r.FirstHit));
+}
+
+TEST(RayCaster, MaximumAndMinimumIntensityAlongAGridLine)
+{
+  const parc::ScalarField field = RandomCube(11);
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.0, 1.0 });
+  p.Interp = parc::Interpolation::Nearest;
+  p.SampleDistance = 0.25;
+  float hi = 0.f, lo = 255.f;
+  for (int i = 0; i < 8; ++i)
+  {
+    hi = std::max(hi, field.GetValue(i, 3, 5));
+    lo = std::min(lo, field.GetValue(i, 3, 5));
+  }
+  p.Blend = BlendMode::MaximumIntensity;
+  auto r = CastOne(field, p, MakeRay({ -3.0, 3.0, 5.0 }, { 1, 0, 0 }));
+  EXPECT_FLOAT_EQ(r.RGBA[3], hi / 255.f);
+  EXPECT_FLOAT_EQ(r.RGBA[0], hi / 255.f) << "white, premultiplied";
+  p.Blend = BlendMode::MinimumIntensity;
+  r = CastOne(field, p, MakeRay({ -3.0, 3.0, 5.0 }, { 1, 0, 0 }));
+  EXPECT_FLOAT_EQ(r.RGBA[3], lo / 255.f);
+}
+
+TEST(RayCaster, AverageIntensityCountsOnlyItsRange)
+{
+  const parc::ScalarField field = RandomCube(12);
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.0, 1.0 });
+  p.Interp = parc::Interpolation::Nearest;
+  p.SampleDistance = 1.0; // samples exactly on the voxels x = 0..7
+  p.Blend = BlendMode::AverageIntensity;
+  p.AverageRange[0] = 100.0;
+  p.AverageRange[1] = 255.0;
+  double sum = 0.0;
+  int count = 0;
+  for (int i = 0; i < 8; ++i)
+  {
+    const float v = field.GetValue(i, 2, 6);
+    if (v >= 100.f)
+    {
+      sum += v;
+      ++count;
+    }
+  }
+  ASSERT_GT(count, 0);
+  const auto r = CastOne(field, p, MakeRay({ -3.0, 2.0, 6.0 }, { 1, 0, 0 }));
+  EXPECT_FLOAT_EQ(r.RGBA[3], static_cast<float>(sum / count / 255.0));
+  EXPECT_EQ(r.Stats.ContributingSamples, static_cast<unsigned>(count));
+}
+
+TEST(RayCaster, AdditiveSumsCorrectedOpacities)
+{
+  const parc::ScalarField field = ConstantSlab(100.f);
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.001, 0.001 });
+  p.SampleDistance = 0.125;
+  p.Blend = BlendMode::Additive;
+  const auto r = CastOne(field, p, MakeRay({ 1.5, 1.5, -10.0 }, { 0, 0, 1 }));
+  const double perSample = 1.0 - std::pow(1.0 - 0.001, 0.125);
+  EXPECT_NEAR(r.RGBA[3], 801 * perSample, 1e-4);
+}
+
+TEST(RayCaster, CompositingIsFrontToBack)
+{
+  // Value 1 (red) for z < 50, value 2 (blue) beyond: each side sees its own colour first.
+  const parc::ScalarField field =
+    parctest::MakeField(SlabDims, [](int, int, int k) { return k < 50 ? 1.f : 2.f; });
+  CastParameters p;
+  p.Opacity.SetNodes({ 0.0, 3.0 }, { 0.5, 0.5 }, true);
+  p.Color.SetTable(1.0, 2.0, { 1.f, 0.f, 0.f, 0.f, 0.f, 1.f });
+  p.SampleDistance = 0.25;
+  p.TerminationOpacity = 1.0;
+  const auto front = CastOne(field, p, MakeRay({ 1.5, 1.5, -10.0 }, { 0, 0, 1 }));
+  const auto back = CastOne(field, p, MakeRay({ 1.5, 1.5, 110.0 }, { 0, 0, -1 }));
+  EXPECT_GT(front.RGBA[0], 0.99f * front.RGBA[3]);
+  EXPECT_LT(front.RGBA[2], 0.01f);
+  EXPECT_GT(back.RGBA[2], 0.99f * back.RGBA[3]);
+  EXPECT_LT(back.RGBA[0], 0.01f);
+}
+
+TEST(RayCaster, ShadingFollowsTheLight)
+{
+  // s = x: the isosurface x = 5 has its normal along x.
+  const int n[3] = { 11, 5, 5 };
+  const parc::ScalarField field =
+    parctest::MakeField(n, [](int i, int, int) { return static_cast<float>(i); });
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 10.0 }, { 1.0, 1.0 });
+  p.Blend = BlendMode::IsoSurface;
+  p.IsoValues = { 5.0 };
+  p.Shade = true;
+  p.Ambient = 0.2;
+  p.Diffuse = 0.3;
+  p.Specular = 0.1;
+  parc::Light light;
+  light.Position = { 100.0, 2.0, 2.0 };
+  light.FocalPoint = { 0.0, 2.0, 2.0 };
+  p.Lights = { light };
+  const parc::Ray ray = MakeRay({ 20.0, 2.0, 2.0 }, { -1, 0, 0 });
+  auto r = CastOne(field, p, ray);
+  EXPECT_NEAR(r.RGBA[0], 0.6f, 1e-5) << "facing the light: ambient + diffuse + specular";
+  EXPECT_NEAR(r.FirstHit, 15.0, 1e-6);
+  p.Lights[0].Position = { 5.0, 100.0, 2.0 };
+  p.Lights[0].FocalPoint = { 5.0, 0.0, 2.0 };
+  r = CastOne(field, p, ray);
+  EXPECT_NEAR(r.RGBA[0], 0.2f, 1e-5) << "light along the surface: ambient only";
+  p.Lights.clear();
+  p.Shade = false;
+  r = CastOne(field, p, ray);
+  EXPECT_EQ(r.Stats.GradientEvaluations, 0u) << "no gradient without shading";
+}
+
+TEST(RayCaster, GradientOpacityUsesTheWorldGradient)
+{
+  const int n[3] = { 11, 5, 5 };
+  const parc::ScalarField field =
+    parctest::MakeField(n, [](int i, int, int) { return static_cast<float>(3 * i); });
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 30.0 }, { 0.5, 0.5 });
+  p.UseGradientOpacity = true;
+  p.GradientOpacity.SetNodes({ 0.0, 1.0, 2.0 }, { 0.0, 0.0, 1.0 }, true);
+  const auto plain = CastOne(field, p, MakeRay({ -5.0, 2.0, 2.0 }, { 1, 0, 0 }));
+  EXPECT_GT(plain.RGBA[3], 0.f) << "|grad| = 3 per unit: opacity kept";
+  p.WorldToIndex(0, 0) = 0.25; // voxels 4 world units apart: |grad| = 0.75, opacity 0
+  const auto stretched = CastOne(field, p, MakeRay({ -5.0, 2.0, 2.0 }, { 1, 0, 0 }));
+  EXPECT_EQ(stretched.RGBA[3], 0.f);
+  EXPECT_GT(stretched.Stats.GradientEvaluations, 0u);
+}
+
+namespace
+{
+/// Cuts [tEnter, tExit] of each ray into random pieces, leaving out stretches whose lattice
+/// samples all have zero opacity: a segment source that leaves out only samples that
+/// cannot change the image.
+class SparseSource : public parc::SegmentSource
+{
+public:
+  SparseSource(const parc::RayCaster& caster, unsigned seed)
+    : Caster(caster)
+    , Seed(seed)
+  {
+  }
+  void GetSegments(int px, int py, const parc::Ray& ray, std::vector<parc::Segment>& out) const override
+  {
+    double t0, t1;
+    if (!this->Caster.ClipRay(ray, t0, t1))
+    {
+      return;
+    }
+    std::mt19937 rng(this->Seed + 7919u * px + 104729u * py);
+    const CastParameters& p = *this->Caster.GetParameters();
+    const Matrix4Ref m = p.WorldToIndex;
+    const double dt = p.SampleDistance;
+    for (long k = static_cast<long>(std::ceil(t0 / dt)); k * dt <= t1; ++k)
+    {
+      const double t = k * dt;
+      const Vec3 x = m.TransformPoint(ray.Origin + t * ray.Direction);
+      if (p.Opacity.Evaluate(this->Caster.GetField()->Sample(x, p.Interp)) > 0.f)
+      {
+        // A random piece around the sample, never reaching its neighbours' centres.
+        const double before = 0.9 * dt * std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+        const double after = 0.9 * dt * std::uniform_real_distribution<double>(0.0, 1.0)(rng);
+        out.push_back({ t - before, t + after });
+      }
+    }
+    std::shuffle(out.begin(), out.end(), rng);
+  }
+
+private:
+  using Matrix4Ref = const parc::Matrix4&;
+  const parc::RayCaster& Caster;
+  unsigned Seed;
+};
+
+parc::ViewGeometry ParallelView(int w, int h, double angle)
+{
+  // Parallel rays along (sin a, 0, -cos a) over a 40 x 40 window around (16, 16, 16).
+  parc::ViewGeometry v;
+  v.Width = w;
+  v.Height = h;
+  v.Parallel = true;
+  const double c = std::cos(angle), s = std::sin(angle);
+  // NDC (x, y, z) -> centre + 20 x right + 20 y up + 60 z forward, forward = (s, 0, -c).
+  const Vec3 right{ c, 0, s }, up{ 0, 1, 0 }, forward{ s, 0, -c };
+  parc::Matrix4& m = v.NDCToWorld;
+  for (int r = 0; r < 3; ++r)
+  {
+    m(r, 0) = 20.0 * right[r];
+    m(r, 1) = 20.0 * up[r];
+    m(r, 2) = 60.0 * forward[r];
+    m(r, 3) = 16.0 + 0.0;
+  }
+  v.Eye = Vec3{ 16, 16, 16 } - 80.0 * forward;
+  return v;
+}
+
+parc::ScalarField Blobs()
+{
+  const int n[3] = { 33, 30, 28 };
+  return parctest::MakeField(n, [](int i, int j, int k) {
+    const double a = std::exp(-0.02 * ((i - 10) * (i - 10) + (j - 12) * (j - 12) + (k - 9) * (k - 9)));
+    const double b = std::exp(-0.03 * ((i - 22) * (i - 22) + (j - 18) * (j - 18) + (k - 18) * (k - 18)));
+    return static_cast<float>(255.0 * std::max(a, b));
+  });
+}
+}
+
+// The lattice does not depend on the segments: a source that leaves out only zero-opacity
+// samples, in shuffled random pieces, gives bit-identical pixels for the blend modes where
+// zero-opacity samples change nothing.
+TEST(RayCaster, SparseSegmentsGiveBitIdenticalImages)
+{
+  const parc::ScalarField field = Blobs();
+  for (BlendMode mode : { BlendMode::Composite, BlendMode::Additive })
+  {
+    for (bool shade : { false, true })
+    {
+      CastParameters p;
+      p.Opacity.SetNodes({ 0.0, 60.0, 90.0, 140.0, 200.0 }, { 0.0, 0.0, 0.3, 0.0, 0.8 }, true);
+      p.Color.SetTable(0.0, 255.0, { 1.f, 0.f, 0.f, 0.f, 1.f, 0.5f });
+      p.Blend = mode;
+      p.Shade = shade;
+      p.SampleDistance = 0.37;
+      parc::Light light;
+      light.Position = { 0.0, 50.0, 50.0 };
+      p.Lights = { light };
+      parc::RayCaster caster;
+      ASSERT_TRUE(caster.Prepare(&field, &p));
+      const parc::ViewGeometry view = ParallelView(48, 40, 0.4);
+      std::vector<float> whole(4 * 48 * 40), sparse(4 * 48 * 40);
+      parc::CastStatistics s1, s2;
+      caster.CastImage(view, nullptr, parc::WholeRaySource(), whole.data(), s1);
+      caster.CastImage(view, nullptr, SparseSource(caster, 5), sparse.data(), s2);
+      EXPECT_EQ(0, std::memcmp(whole.data(), sparse.data(), whole.size() * sizeof(float)))
+        << "mode " << static_cast<int>(mode) << " shade " << shade;
+      EXPECT_LT(s2.Samples, s1.Samples);
+      EXPECT_EQ(s1.ContributingSamples, s2.ContributingSamples);
+      EXPECT_GT(s1.ContributingSamples, 0u);
+    }
+  }
+}
+
+TEST(RayCaster, ImageIsTheSameForOneAndManyThreads)
+{
+  const parc::ScalarField field = Blobs();
+  CastParameters p;
+  p.Opacity.SetNodes({ 0.0, 60.0, 200.0 }, { 0.0, 0.0, 0.5 }, true);
+  p.Color.SetTable(0.0, 255.0, { 1.f, 0.5f, 0.f, 0.f, 0.5f, 1.f });
+  p.SampleDistance = 0.5;
+  parc::RayCaster caster;
+  ASSERT_TRUE(caster.Prepare(&field, &p));
+  const parc::ViewGeometry view = ParallelView(64, 64, 0.3);
+  std::vector<float> one(4 * 64 * 64), many(4 * 64 * 64);
+  parc::CastStatistics s1, s2;
+  vtkSMPTools::Initialize(1);
+  caster.CastImage(view, nullptr, parc::WholeRaySource(), one.data(), s1);
+  vtkSMPTools::Initialize(4);
+  caster.CastImage(view, nullptr, parc::WholeRaySource(), many.data(), s2);
+  EXPECT_EQ(0, std::memcmp(one.data(), many.data(), one.size() * sizeof(float)));
+  EXPECT_EQ(s1.Samples, s2.Samples);
+}
+
+TEST(RayCaster, ProgressCanAbortTheImage)
+{
+  const parc::ScalarField field = Blobs();
+  CastParameters p;
+  p.Opacity.SetNodes({ 0.0, 255.0 }, { 0.1, 0.1 }, true);
+  parc::RayCaster caster;
+  ASSERT_TRUE(caster.Prepare(&field, &p));
+  const parc::ViewGeometry view = ParallelView(64, 256, 0.0);
+  std::vector<float> image(4 * 64 * 256);
+  parc::CastStatistics s;
+  std::vector<double> reported;
+  const bool done = caster.CastImage(view, nullptr, parc::WholeRaySource(), image.data(), s,
+    [&](double f) {
+      reported.push_back(f);
+      return reported.size() < 2;
+    });
+  EXPECT_FALSE(done);
+  EXPECT_EQ(reported.size(), 2u);
+  EXPECT_GT(reported[1], reported[0]);
+  EXPECT_EQ(image[4 * (64 * 255) + 3], 0.f) << "the last row was never cast";
+}
+
+TEST(RayCaster, RejectsUnusableParameters)
+{
+  const parc::ScalarField field = Blobs();
+  CastParameters p;
+  parc::RayCaster caster;
+  p.SampleDistance = 0.0;
+  EXPECT_FALSE(caster.Prepare(&field, &p));
+  p.SampleDistance = 1.0;
+  p.OpacityUnitDistance = -1.0;
+  EXPECT_FALSE(caster.Prepare(&field, &p));
+  const int flat[3] = { 5, 5, 1 };
+  const parc::ScalarField slice = parctest::MakeField(flat, [](int, int, int) { return 1.f; });
+  p.OpacityUnitDistance = 1.0;
+  EXPECT_FALSE(caster.Prepare(&slice, &p)) << "one slice has no cells";
+}
+
+TEST(ViewGeometry, PerspectiveRaysStartAtTheEyeAndParallelRaysOnTheCameraPlane)
+{
+  const parc::ViewGeometry v = ParallelView(10, 10, 0.0);
+  const parc::Ray a = v.MakeRay(0, 0), b = v.MakeRay(9, 9);
+  EXPECT_NEAR(a.Direction.Z, -1.0, 1e-12);
+  EXPECT_NEAR(a.Origin.Z, b.Origin.Z, 1e-12) << "one camera plane";
+  EXPECT_NEAR(a.Origin.Z, 96.0, 1e-12);
+  EXPECT_NEAR(v.DepthToParameter(a, 0, 0, 0.5), 80.0, 1e-9) << "window depth 0.5 is NDC 0";
+}

@@ -1,0 +1,84 @@
+// Sampling, gradients and conversion of the scalar field.
+#include "parcTestUtilities.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+
+TEST(ScalarField, TrilinearReproducesLinearFieldsAndVoxelValues)
+{
+  const int n[3] = { 5, 6, 7 };
+  auto linear = [](double x, double y, double z) { return 2.0 * x - 3.0 * y + 0.5 * z + 4.0; };
+  const parc::ScalarField field =
+    parctest::MakeField(n, [&](int i, int j, int k) { return static_cast<float>(linear(i, j, k)); });
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int s = 0; s < 500; ++s)
+  {
+    const parc::Vec3 p{ 4.0 * u(rng), 5.0 * u(rng), 6.0 * u(rng) };
+    EXPECT_NEAR(field.SampleLinear(p), linear(p.X, p.Y, p.Z), 1e-4) << p.X << " " << p.Y << " " << p.Z;
+    const parc::Vec3 g = field.Gradient(p, parc::Interpolation::Linear);
+    EXPECT_NEAR(g.X, 2.0, 1e-4);
+    EXPECT_NEAR(g.Y, -3.0, 1e-4);
+    EXPECT_NEAR(g.Z, 0.5, 1e-4);
+  }
+  EXPECT_EQ(field.SampleLinear({ 2, 3, 4 }), field.GetValue(2, 3, 4));
+  EXPECT_EQ(field.SampleLinear({ 4, 5, 6 }), field.GetValue(4, 5, 6)) << "the far corner";
+}
+
+TEST(ScalarField, NearestRoundsAndOutsideIsClamped)
+{
+  const int n[3] = { 3, 3, 3 };
+  const parc::ScalarField field =
+    parctest::MakeField(n, [](int i, int j, int k) { return static_cast<float>(i + 10 * j + 100 * k); });
+  EXPECT_EQ(field.SampleNearest({ 0.49, 1.51, 2.0 }), 0 + 20 + 200);
+  EXPECT_EQ(field.SampleNearest({ 0.5, 0.0, 0.0 }), 1) << "ties round up";
+  EXPECT_EQ(field.SampleLinear({ -5.0, 1.0, 1.0 }), field.GetValue(0, 1, 1));
+  EXPECT_EQ(field.SampleLinear({ 9.0, 9.0, 9.0 }), field.GetValue(2, 2, 2));
+}
+
+TEST(ScalarField, TrilinearStaysWithinTheCellRange)
+{
+  // The classification relies on samples lying in [cell min, cell max] (up to rounding).
+  std::mt19937 rng(99);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const int n[3] = { 2, 2, 2 };
+  for (int trial = 0; trial < 2000; ++trial)
+  {
+    float v[8];
+    for (float& x : v)
+    {
+      x = static_cast<float>(1000.0 * u(rng) - 500.0);
+    }
+    parc::ScalarField field;
+    field.Assign(v, n);
+    const float lo = *std::min_element(v, v + 8), hi = *std::max_element(v, v + 8);
+    const float s = field.SampleLinear({ u(rng), u(rng), u(rng) });
+    const float slack = 64.f * std::numeric_limits<float>::epsilon() * std::max(std::fabs(lo), std::fabs(hi));
+    EXPECT_GE(s, lo - slack);
+    EXPECT_LE(s, hi + slack);
+  }
+}
+
+TEST(ScalarField, ConvertsTypesAndReplacesNonFiniteValues)
+{
+  const int n[3] = { 2, 2, 1 };
+  const double in[4] = { std::nan(""), 3.0, -std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity() };
+  parc::ScalarField field;
+  EXPECT_EQ(field.Assign(in, n), 3u);
+  EXPECT_EQ(field.GetValues()[0], 3.f) << "NaN becomes the smallest finite value";
+  EXPECT_EQ(field.GetValues()[2], 3.f);
+  EXPECT_EQ(field.GetValues()[3], 3.f);
+  const std::uint16_t u16[4] = { 0, 65535, 7, 8 };
+  EXPECT_EQ(field.Assign(u16, n), 0u);
+  EXPECT_EQ(field.GetValues()[1], 65535.f);
+  EXPECT_EQ(field.GetRange()[1], 65535.0);
+  const std::int8_t s8[8] = { -128, 0, 1, 2, 3, 4, 5, 127 };
+  EXPECT_EQ(field.Assign(s8, n, 2), 0u) << "every second value of a 2-component array";
+  EXPECT_EQ(field.GetValues()[1], 1.f);
+  EXPECT_EQ(field.GetValues()[3], 5.f);
+}

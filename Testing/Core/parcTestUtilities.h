@@ -1,0 +1,73 @@
+// Helpers shared by the core unit tests.
+#ifndef parcTestUtilities_h
+#define parcTestUtilities_h
+
+#include "parcRayCaster.h"
+
+#include <functional>
+#include <vector>
+
+namespace parctest
+{
+/// A field of n[0] x n[1] x n[2] voxels with values f(i, j, k).
+inline parc::ScalarField MakeField(const int n[3], const std::function<float(int, int, int)>& f)
+{
+  std::vector<float> v(static_cast<size_t>(n[0]) * n[1] * n[2]);
+  size_t idx = 0;
+  for (int k = 0; k < n[2]; ++k)
+  {
+    for (int j = 0; j < n[1]; ++j)
+    {
+      for (int i = 0; i < n[0]; ++i)
+      {
+        v[idx++] = f(i, j, k);
+      }
+    }
+  }
+  parc::ScalarField field;
+  field.Assign(v.data(), n);
+  return field;
+}
+
+/// A white colour table and an opacity function from (x, y) nodes.
+inline void SetOpacity(parc::CastParameters& p, std::vector<double> x, std::vector<double> y,
+  bool clamp = true)
+{
+  p.Opacity.SetNodes(std::move(x), std::move(y), clamp);
+  p.Color.SetTable(0.0, 1.0, { 1.f, 1.f, 1.f, 1.f, 1.f, 1.f });
+}
+
+/// A ray from origin along direction (normalized) with a long parameter range.
+inline parc::Ray MakeRay(const parc::Vec3& origin, const parc::Vec3& direction)
+{
+  parc::Ray r;
+  r.Origin = origin;
+  r.Direction = parc::Normalized(direction);
+  r.TMin = 0.0;
+  r.TMax = 1e6;
+  return r;
+}
+
+/// Casts one ray through the whole volume; returns its RGBA.
+struct CastResult
+{
+  float RGBA[4];
+  double FirstHit;
+  parc::CastStatistics Stats;
+};
+inline CastResult CastOne(const parc::ScalarField& field, const parc::CastParameters& p,
+  const parc::Ray& ray, const parc::SegmentSource* source = nullptr)
+{
+  parc::RayCaster caster;
+  caster.Prepare(&field, &p);
+  parc::WholeRaySource whole;
+  std::vector<parc::Segment> segments;
+  std::vector<parc::LatticeRange> ranges;
+  CastResult r;
+  caster.CastRay(ray, 0, 0, source ? *source : whole, segments, ranges, r.RGBA, r.Stats,
+    &r.FirstHit);
+  return r;
+}
+}
+
+#endif

@@ -1,0 +1,117 @@
+// The exact piecewise-linear transfer function and its interval test.
+#include "parcTransferFunction.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+using parc::PiecewiseLinearFunction;
+
+TEST(PiecewiseLinear, InterpolatesBetweenNodesAndHitsNodesExactly)
+{
+  PiecewiseLinearFunction f;
+  f.SetNodes({ 0.0, 10.0, 20.0 }, { 0.0, 1.0, 0.5 }, true);
+  EXPECT_FLOAT_EQ(f.Evaluate(0.0), 0.f);
+  EXPECT_FLOAT_EQ(f.Evaluate(5.0), 0.5f);
+  EXPECT_FLOAT_EQ(f.Evaluate(10.0), 1.f);
+  EXPECT_FLOAT_EQ(f.Evaluate(15.0), 0.75f);
+  EXPECT_FLOAT_EQ(f.Evaluate(20.0), 0.5f);
+}
+
+TEST(PiecewiseLinear, ClampingDecidesTheValueOutsideTheRange)
+{
+  PiecewiseLinearFunction clamped, unclamped;
+  clamped.SetNodes({ 0.0, 1.0 }, { 0.2, 0.7 }, true);
+  unclamped.SetNodes({ 0.0, 1.0 }, { 0.2, 0.7 }, false);
+  EXPECT_FLOAT_EQ(clamped.Evaluate(-5.0), 0.2f);
+  EXPECT_FLOAT_EQ(clamped.Evaluate(5.0), 0.7f);
+  EXPECT_FLOAT_EQ(unclamped.Evaluate(-5.0), 0.f);
+  EXPECT_FLOAT_EQ(unclamped.Evaluate(5.0), 0.f);
+  EXPECT_TRUE(clamped.IsNonZeroOn(-10.0, -9.0));
+  EXPECT_FALSE(unclamped.IsNonZeroOn(-10.0, -9.0));
+}
+
+TEST(PiecewiseLinear, ZeroAtATouchingNodeIsNotNonZero)
+{
+  PiecewiseLinearFunction f; // zero up to 10, then rising
+  f.SetNodes({ 0.0, 10.0, 20.0 }, { 0.0, 0.0, 1.0 }, true);
+  EXPECT_FALSE(f.IsNonZeroOn(2.0, 10.0)) << "only the node at 10 (value 0) is touched";
+  EXPECT_TRUE(f.IsNonZeroOn(2.0, 10.000001));
+  EXPECT_EQ(f.FirstNonZero(), 10.0);
+  EXPECT_EQ(f.LastNonZero(), std::numeric_limits<double>::infinity());
+}
+
+TEST(PiecewiseLinear, ThresholdsOfABump)
+{
+  PiecewiseLinearFunction f;
+  f.SetNodes({ 0.0, 10.0, 20.0, 30.0 }, { 0.0, 0.0, 1.0, 0.0 }, true);
+  EXPECT_EQ(f.FirstNonZero(), 10.0);
+  EXPECT_EQ(f.LastNonZero(), 30.0);
+  PiecewiseLinearFunction zero;
+  zero.SetNodes({ 0.0, 1.0 }, { 0.0, 0.0 }, true);
+  EXPECT_TRUE(std::isinf(zero.FirstNonZero()) && zero.FirstNonZero() > 0);
+  EXPECT_FALSE(zero.IsNonZeroOn(-1e9, 1e9));
+}
+
+// Property: on random functions and intervals, IsNonZeroOn is never false where a dense
+// evaluation finds a non-zero value, and never true where the exact function is zero on the
+// whole interval (checked at the nodes and interval ends, where a piecewise-linear maximum
+// is).
+TEST(PiecewiseLinear, IntervalTestAgreesWithBruteForce)
+{
+  std::mt19937 rng(12345);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  for (int trial = 0; trial < 2000; ++trial)
+  {
+    std::vector<double> x, y;
+    const int n = 1 + static_cast<int>(u(rng) * 6);
+    double pos = -1.0 + u(rng);
+    for (int i = 0; i < n; ++i)
+    {
+      pos += (u(rng) < 0.1) ? 0.0 : u(rng); // some steps (equal x)
+      x.push_back(pos);
+      y.push_back(u(rng) < 0.5 ? 0.0 : u(rng));
+    }
+    const bool clamp = u(rng) < 0.5;
+    PiecewiseLinearFunction f;
+    f.SetNodes(x, y, clamp);
+    double lo = -2.0 + 6.0 * u(rng), hi = lo + 2.0 * u(rng) * u(rng);
+    if (u(rng) < 0.1 && !x.empty())
+    {
+      lo = hi = x[static_cast<size_t>(u(rng) * n) % n]; // a single point on a node
+    }
+    bool dense = false;
+    for (int s = 0; s <= 2000; ++s)
+    {
+      dense = dense || f.Evaluate(lo + (hi - lo) * s / 2000.0) > 0.f;
+    }
+    bool exact = f.Evaluate(lo) > 0.f || f.Evaluate(hi) > 0.f;
+    for (size_t i = 0; i < x.size(); ++i)
+    {
+      // A positive node value in [lo, hi] (a limit value at a step counts), or a positive
+      // piece next to a node strictly inside.
+      const bool positiveNear =
+        (i + 1 < x.size() && y[i + 1] > 0.0) || (i > 0 && y[i - 1] > 0.0);
+      exact = exact || (x[i] >= lo && x[i] <= hi && y[i] > 0.0) ||
+        (x[i] > lo && x[i] < hi && positiveNear);
+    }
+    const bool claimed = f.IsNonZeroOn(lo, hi);
+    EXPECT_TRUE(!dense || claimed) << "trial " << trial << " [" << lo << ", " << hi << "]";
+    EXPECT_TRUE(!claimed || exact) << "trial " << trial << " [" << lo << ", " << hi << "]";
+  }
+}
+
+TEST(ColorTable, InterpolatesAndClamps)
+{
+  parc::ColorTable t;
+  t.SetTable(0.0, 2.0, { 0.f, 0.f, 0.f, 1.f, 0.5f, 0.f, 1.f, 1.f, 1.f });
+  float rgb[3];
+  t.Lookup(0.5, rgb);
+  EXPECT_FLOAT_EQ(rgb[0], 0.5f);
+  EXPECT_FLOAT_EQ(rgb[1], 0.25f);
+  t.Lookup(-3.0, rgb);
+  EXPECT_FLOAT_EQ(rgb[0], 0.f);
+  t.Lookup(9.0, rgb);
+  EXPECT_FLOAT_EQ(rgb[2], 1.f);
+}
