@@ -1,0 +1,131 @@
+// Bad input gives a clear error (or a documented result) and never a crash, a hang or a
+// stale image: no input, an empty image, one voxel, one slice, zero spacing, cell scalars,
+// an unsupported scalar type, NaN/Inf scalars, no transfer function set.
+#include "parcTestScene.h"
+
+#include <vtkCellData.h>
+#include <vtkDoubleArray.h>
+#include <vtkStringArray.h>
+#include <vtkTestErrorObserver.h>
+
+#include <iostream>
+#include <limits>
+#include <string>
+
+namespace
+{
+struct Harness
+{
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkRenderer> Renderer;
+  vtkNew<vtkPARCVolumeMapper> Mapper;
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkTest::ErrorObserver> Observer;
+
+  Harness()
+  {
+    this->Window->SetSize(40, 40);
+    this->Window->SetOffScreenRendering(1);
+    this->Window->AddRenderer(this->Renderer);
+    this->Volume->SetMapper(this->Mapper);
+    this->Renderer->AddVolume(this->Volume);
+    this->Mapper->AddObserver(vtkCommand::ErrorEvent, this->Observer);
+    this->Mapper->AddObserver(vtkCommand::WarningEvent, this->Observer);
+  }
+
+  /// Renders image; true when an error containing `expected` was reported and nothing cast.
+  bool ExpectError(vtkImageData* image, const std::string& expected, const char* what)
+  {
+    this->Observer->Clear();
+    this->Mapper->SetInputData(image);
+    this->Renderer->ResetCamera();
+    this->Window->Render();
+    const bool ok = this->Observer->GetError() &&
+      this->Observer->GetErrorMessage().find(expected) != std::string::npos &&
+      this->Mapper->GetLastSampleCount() == 0 && this->Mapper->GetLastRayCount() == 0;
+    std::cout << what << ": " << (ok ? "error as expected" : "UNEXPECTED") << " ("
+              << this->Observer->GetErrorMessage().substr(0, 120) << ")\n";
+    return ok;
+  }
+};
+
+vtkSmartPointer<vtkImageData> Image(int nx, int ny, int nz)
+{
+  auto image = vtkSmartPointer<vtkImageData>::New();
+  image->SetDimensions(nx, ny, nz);
+  image->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
+  auto* p = static_cast<unsigned char*>(image->GetScalarPointer());
+  for (vtkIdType i = 0; i < image->GetNumberOfPoints(); ++i)
+  {
+    p[i] = static_cast<unsigned char>(i * 7);
+  }
+  return image;
+}
+}
+
+int TestPARCBadInput(int, char*[])
+{
+  Harness h;
+  bool ok = true;
+
+  // No input: the pipeline reports the missing connection; nothing is cast.
+  h.Window->Render();
+  ok &= h.Mapper->GetLastSampleCount() == 0;
+
+  vtkNew<vtkImageData> empty;
+  ok &= h.ExpectError(empty, "at least 2 samples", "empty image");
+  ok &= h.ExpectError(Image(1, 1, 1), "at least 2 samples", "one voxel");
+  ok &= h.ExpectError(Image(10, 10, 1), "at least 2 samples", "one slice");
+
+  auto flat = Image(4, 4, 4);
+  flat->SetSpacing(1.0, 0.0, 1.0);
+  ok &= h.ExpectError(flat, "non-zero", "zero spacing");
+
+  auto cells = vtkSmartPointer<vtkImageData>::New();
+  cells->SetDimensions(4, 4, 4);
+  vtkNew<vtkDoubleArray> cellScalars;
+  cellScalars->SetNumberOfTuples(27);
+  cellScalars->Fill(1.0);
+  cells->GetCellData()->SetScalars(cellScalars);
+  ok &= h.ExpectError(cells, "Cell scalars are not supported", "cell scalars only");
+
+  auto wide = vtkSmartPointer<vtkImageData>::New();
+  wide->SetDimensions(4, 4, 4);
+  wide->AllocateScalars(VTK_LONG_LONG, 1);
+  ok &= h.ExpectError(wide, "Unsupported scalar type", "64-bit integers");
+
+  // NaN and Inf: a warning, then a finite image (documented replacement).
+  auto nan = vtkSmartPointer<vtkImageData>::New();
+  nan->SetDimensions(8, 8, 8);
+  nan->AllocateScalars(VTK_FLOAT, 1);
+  auto* v = static_cast<float*>(nan->GetScalarPointer());
+  for (int i = 0; i < 512; ++i)
+  {
+    v[i] = (i % 5 == 0) ? std::numeric_limits<float>::quiet_NaN()
+                        : (i % 7 == 0 ? std::numeric_limits<float>::infinity() : 0.5f * (i % 9));
+  }
+  h.Observer->Clear();
+  h.Mapper->SetInputData(nan);
+  h.Renderer->ResetCamera();
+  h.Window->Render();
+  const bool nanOk = !h.Observer->GetError() && h.Observer->GetWarning() &&
+    h.Observer->GetWarningMessage().find("non-finite") != std::string::npos &&
+    h.Mapper->GetLastSampleCount() > 0 && parctest::MaxAlpha(h.Mapper) >= 0.0 &&
+    parctest::MaxAlpha(h.Mapper) <= 1.0;
+  std::cout << "NaN/Inf scalars: " << (nanOk ? "replaced, image finite" : "UNEXPECTED") << "\n";
+  ok &= nanOk;
+
+  // No transfer function set: the property's defaults render without error.
+  h.Observer->Clear();
+  h.Mapper->SetInputData(parctest::MakeBlobs(16));
+  h.Renderer->ResetCamera();
+  h.Window->Render();
+  const bool defaultsOk = !h.Observer->GetError() && h.Mapper->GetLastSampleCount() > 0;
+  std::cout << "default property: " << (defaultsOk ? "rendered" : "UNEXPECTED") << "\n";
+  ok &= defaultsOk;
+
+  // Slice blending is not supported: an error, nothing drawn.
+  h.Mapper->SetBlendMode(vtkVolumeMapper::SLICE_BLEND);
+  ok &= h.ExpectError(parctest::MakeBlobs(16), "not supported", "slice blend mode");
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+}
