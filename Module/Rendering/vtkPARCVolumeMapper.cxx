@@ -219,6 +219,7 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& in = *this->Internals;
   const double renderStart = vtkTimerLog::GetUniversalTime();
+  this->SetAbortExecute(0); // like an algorithm's execution, each render starts un-aborted
   in.Stats = parc::CastStatistics();
   in.CastingTime = in.ProjectionTime = 0.0;
   in.ImageSize[0] = in.ImageSize[1] = 0;
