@@ -19,7 +19,7 @@ done
 ct="$here/../shared/data/tooth_103x94x161_uint8.raw"
 if [ -f "$ct" ]; then
   echo "== CT tooth $ct"
-  render "$ct" --blend composite --tf ct-skin-bone --elevation -70 --size 300 \
+  render "$ct" --blend composite --tf ct-bone --elevation -70 --size 300 \
     --output "$out/tooth_composite.png"
 else
   echo "== CT volume not found at $ct: skipped"
