@@ -194,6 +194,8 @@ double TimedRender(vtkRenderWindow* window)
 int main(int argc, char* argv[])
 {
   const Options o = Parse(argc, argv);
+  const int blend = BlendMode(o.Blend);
+  const int acceleration = AccelerationMode(o.Acceleration);
   vtkNew<vtkImageData> image;
   std::string error;
   if (!parcio::ReadVolume(o.Volume, image, error))
@@ -202,7 +204,6 @@ int main(int argc, char* argv[])
   }
   double range[2];
   image->GetScalarRange(range);
-  const int blend = BlendMode(o.Blend);
   const bool extreme = blend == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
     blend == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
 
@@ -224,7 +225,7 @@ int main(int argc, char* argv[])
   vtkNew<vtkPARCVolumeMapper> mapper;
   mapper->SetInputData(image);
   mapper->SetBlendMode(blend);
-  mapper->SetAccelerationMode(AccelerationMode(o.Acceleration));
+  mapper->SetAccelerationMode(acceleration);
   mapper->SetSampleDistance(o.SampleDistance);
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);

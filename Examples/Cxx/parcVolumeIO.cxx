@@ -103,6 +103,14 @@ bool ReadRaw(const std::string& path, vtkImageData* out, std::string& error)
 }
 }
 
+template <class Reader>
+vtkSmartPointer<vtkAlgorithm> MakeReader(const std::string& path)
+{
+  auto reader = vtkSmartPointer<Reader>::New();
+  reader->SetFileName(path.c_str());
+  return reader;
+}
+
 bool ReadVolume(const std::string& path, vtkImageData* out, std::string& error)
 {
   if (!FileExists(path))
@@ -117,33 +125,23 @@ bool ReadVolume(const std::string& path, vtkImageData* out, std::string& error)
   }
   else if (EndsWith(path, ".vti"))
   {
-    auto r = vtkSmartPointer<vtkXMLImageDataReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
+    reader = MakeReader<vtkXMLImageDataReader>(path);
   }
   else if (EndsWith(path, ".mha") || EndsWith(path, ".mhd"))
   {
-    auto r = vtkSmartPointer<vtkMetaImageReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
+    reader = MakeReader<vtkMetaImageReader>(path);
   }
   else if (EndsWith(path, ".nii") || EndsWith(path, ".nii.gz"))
   {
-    auto r = vtkSmartPointer<vtkNIFTIImageReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
+    reader = MakeReader<vtkNIFTIImageReader>(path);
   }
   else if (EndsWith(path, ".nrrd") || EndsWith(path, ".nhdr"))
   {
-    auto r = vtkSmartPointer<vtkNrrdReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
+    reader = MakeReader<vtkNrrdReader>(path);
   }
   else if (EndsWith(path, ".slc"))
   {
-    auto r = vtkSmartPointer<vtkSLCReader>::New();
-    r->SetFileName(path.c_str());
-    reader = r;
+    reader = MakeReader<vtkSLCReader>(path);
   }
   else if (EndsWith(path, ".vtk"))
   {

@@ -26,6 +26,22 @@ parc::ScalarField ConstantSlab(float value)
   return parctest::MakeField(SlabDims, [value](int, int, int) { return value; });
 }
 
+/// Constant opacity a per unit distance, white, dt = 1/8, no early termination.
+CastParameters SlabParameters(double a)
+{
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 255.0 }, { a, a });
+  p.SampleDistance = 0.125;
+  p.TerminationOpacity = 1.0;
+  return p;
+}
+
+/// The ray along +z through the middle of the slab, entering it at t = 10.
+parc::Ray SlabRay()
+{
+  return MakeRay({ 1.5, 1.5, -10.0 }, { 0, 0, 1 });
+}
+
 /// Random uint8-like values in an 8^3 volume (fixed seed).
 parc::ScalarField RandomCube(unsigned seed)
 {
@@ -41,11 +57,7 @@ parc::ScalarField RandomCube(unsigned seed)
 TEST(RayCaster, ConstantSlabFollowsBeerLambert)
 {
   const parc::ScalarField field = ConstantSlab(100.f);
-  CastParameters p;
-  parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.01, 0.01 });
-  p.SampleDistance = 0.125;
-  p.TerminationOpacity = 1.0;
-  const auto r = CastOne(field, p, MakeRay({ 1.5, 1.5, -10.0 }, { 0, 0, 1 }));
+  const auto r = CastOne(field, SlabParameters(0.01), SlabRay());
   const double sigma = -std::log(1.0 - 0.01);
   const double expected = 1.0 - std::exp(-sigma * 100.0);
   EXPECT_NEAR(r.RGBA[3], expected, 2e-3);
@@ -56,23 +68,18 @@ TEST(RayCaster, ConstantSlabFollowsBeerLambert)
 TEST(RayCaster, OpacityUnitDistanceScalesTheOpacity)
 {
   const parc::ScalarField field = ConstantSlab(100.f);
-  CastParameters p;
-  parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.01, 0.01 });
-  p.SampleDistance = 0.125;
-  p.TerminationOpacity = 1.0;
+  CastParameters p = SlabParameters(0.01);
   p.OpacityUnitDistance = 2.0; // half the density
-  const auto r = CastOne(field, p, MakeRay({ 1.5, 1.5, -10.0 }, { 0, 0, 1 }));
+  const auto r = CastOne(field, p, SlabRay());
   EXPECT_NEAR(r.RGBA[3], 1.0 - std::exp(std::log(0.99) * 50.0), 2e-3);
 }
 
 TEST(RayCaster, EarlyTerminationStopsAtTheThreshold)
 {
   const parc::ScalarField field = ConstantSlab(100.f);
-  CastParameters p;
-  parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.2, 0.2 });
-  p.SampleDistance = 0.125;
+  CastParameters p = SlabParameters(0.2);
   p.TerminationOpacity = 0.5;
-  const auto r = CastOne(field, p, MakeRay({ 1.5, 1.5, -10.0 }, { 0, 0, 1 }));
+  const auto r = CastOne(field, p, SlabRay());
   EXPECT_GE(r.RGBA[3], 0.5f);
   EXPECT_LT(r.RGBA[3], 0.53f);
   EXPECT_LT(r.Stats.Samples, 40u);
@@ -177,11 +184,9 @@ TEST(RayCaster, AverageIntensityCountsOnlyItsRange)
 TEST(RayCaster, AdditiveSumsCorrectedOpacities)
 {
   const parc::ScalarField field = ConstantSlab(100.f);
-  CastParameters p;
-  parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.001, 0.001 });
-  p.SampleDistance = 0.125;
+  CastParameters p = SlabParameters(0.001);
   p.Blend = BlendMode::Additive;
-  const auto r = CastOne(field, p, MakeRay({ 1.5, 1.5, -10.0 }, { 0, 0, 1 }));
+  const auto r = CastOne(field, p, SlabRay());
   const double perSample = 1.0 - std::pow(1.0 - 0.001, 0.125);
   EXPECT_NEAR(r.RGBA[3], 801 * perSample, 1e-4);
 }
