@@ -65,6 +65,19 @@ TEST(RayCaster, ConstantSlabFollowsBeerLambert)
   EXPECT_NEAR(r.FirstHit, 10.0, 1e-12);
 }
 
+// The eye on the volume's boundary and inside it: rays start at the eye (t = 0).
+TEST(RayCaster, EyeOnTheBoundaryAndInside)
+{
+  const parc::ScalarField field = ConstantSlab(100.f);
+  const CastParameters p = SlabParameters(0.01);
+  const auto onFace = CastOne(field, p, MakeRay({ 1.5, 1.5, 0.0 }, { 0, 0, 1 }));
+  EXPECT_EQ(onFace.Stats.Samples, 801u) << "samples at t = 0, 0.125, ..., 100";
+  EXPECT_EQ(onFace.FirstHit, 0.0);
+  const auto inside = CastOne(field, p, MakeRay({ 1.5, 1.5, 50.0 }, { 0, 0, 1 }));
+  EXPECT_EQ(inside.Stats.Samples, 401u) << "samples from the eye at z = 50 to z = 100";
+  EXPECT_NEAR(inside.RGBA[3], 1.0 - std::pow(0.99, 50.125), 1e-4);
+}
+
 TEST(RayCaster, OpacityUnitDistanceScalesTheOpacity)
 {
   const parc::ScalarField field = ConstantSlab(100.f);
