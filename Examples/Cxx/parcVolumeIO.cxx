@@ -101,14 +101,13 @@ bool ReadRaw(const std::string& path, vtkImageData* out, std::string& error)
   out->ShallowCopy(reader->GetOutput());
   return true;
 }
-}
-
 template <class Reader>
 vtkSmartPointer<vtkAlgorithm> MakeReader(const std::string& path)
 {
   auto reader = vtkSmartPointer<Reader>::New();
   reader->SetFileName(path.c_str());
   return reader;
+}
 }
 
 bool ReadVolume(const std::string& path, vtkImageData* out, std::string& error)
