@@ -101,6 +101,7 @@ bool ReadRaw(const std::string& path, vtkImageData* out, std::string& error)
   out->ShallowCopy(reader->GetOutput());
   return true;
 }
+
 template <class Reader>
 vtkSmartPointer<vtkAlgorithm> MakeReader(const std::string& path)
 {
