@@ -15,7 +15,6 @@ namespace
 constexpr int TileSize = 16;        ///< ray-image pixels per tile edge
 constexpr int TileRowsPerBand = 4;  ///< tile rows cast between two progress reports
 constexpr int RegulaFalsiSteps = 2; ///< isosurface refinement steps
-constexpr std::size_t MaxIsoValues = 64;
 }
 
 CastStatistics& CastStatistics::operator+=(const CastStatistics& o)

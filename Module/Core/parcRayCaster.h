@@ -33,6 +33,9 @@
 namespace parc
 {
 
+/// The isosurface ray function uses at most this many iso values (the smallest ones).
+constexpr std::size_t MaxIsoValues = 64;
+
 enum class BlendMode
 {
   Composite,

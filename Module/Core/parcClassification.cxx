@@ -1,0 +1,285 @@
+#include "parcClassification.h"
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <limits>
+
+namespace parc
+{
+
+namespace
+{
+/// Float rounding of a trilinear sample stays within a few units in the last place of the
+/// largest corner magnitude; the margin is generous on purpose (it costs nothing).
+constexpr double RoundingMargin = 32.0 * FLT_EPSILON;
+
+/// Appends [lo, hi] to sorted closed intervals, merging it with the last one if they meet.
+void AppendInterval(std::vector<double>& los, std::vector<double>& his, double lo, double hi)
+{
+  if (!los.empty() && lo <= his.back())
+  {
+    his.back() = std::max(his.back(), hi);
+    return;
+  }
+  los.push_back(lo);
+  his.push_back(hi);
+}
+
+/// Closed intervals covering every scalar where f is non-zero (a superset of
+/// PiecewiseLinearFunction::IsNonZeroOn, so never smaller than the exact set).
+void NonZeroIntervals(const PiecewiseLinearFunction& f, std::vector<double>& los,
+  std::vector<double>& his)
+{
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  const std::vector<double>& x = f.GetX();
+  const std::vector<double>& y = f.GetY();
+  if (x.empty())
+  {
+    if (f.IsNonZeroOn(0.0, 0.0))
+    {
+      AppendInterval(los, his, -inf, inf);
+    }
+    return;
+  }
+  if (f.IsNonZeroOn(-inf, std::nextafter(x.front(), -inf)))
+  {
+    AppendInterval(los, his, -inf, x.front());
+  }
+  for (std::size_t i = 0; i < x.size(); ++i)
+  {
+    if (y[i] > 0.0)
+    {
+      AppendInterval(los, his, x[i], x[i]);
+    }
+    if (i + 1 < x.size() && x[i] < x[i + 1] && std::max(y[i], y[i + 1]) > 0.0)
+    {
+      AppendInterval(los, his, x[i], x[i + 1]);
+    }
+  }
+  if (f.IsNonZeroOn(std::nextafter(x.back(), inf), inf))
+  {
+    AppendInterval(los, his, x.back(), inf);
+  }
+}
+}
+
+void ContributionRule::Set(const CastParameters& p, const double range[2])
+{
+  this->Blend = p.Blend;
+  this->Lo.clear();
+  this->Hi.clear();
+  this->Margin = RoundingMargin * std::max(std::fabs(range[0]), std::fabs(range[1]));
+  switch (p.Blend)
+  {
+    case BlendMode::Composite:
+    case BlendMode::Additive:
+      NonZeroIntervals(p.Opacity, this->Lo, this->Hi);
+      break;
+    case BlendMode::MaximumIntensity:
+      this->Threshold = p.Opacity.FirstNonZero();
+      break;
+    case BlendMode::MinimumIntensity:
+      this->Threshold = p.Opacity.LastNonZero();
+      break;
+    case BlendMode::AverageIntensity:
+      if (p.AverageRange[0] <= p.AverageRange[1])
+      {
+        AppendInterval(this->Lo, this->Hi, p.AverageRange[0], p.AverageRange[1]);
+      }
+      break;
+    case BlendMode::IsoSurface:
+    {
+      std::vector<double> values = p.IsoValues;
+      std::sort(values.begin(), values.end());
+      values.resize(std::min(values.size(), MaxIsoValues));
+      for (double v : values)
+      {
+        AppendInterval(this->Lo, this->Hi, v, v);
+      }
+      break;
+    }
+  }
+}
+
+bool ContributionRule::IsPossiblyContributing(double lo, double hi) const
+{
+  lo -= this->Margin;
+  hi += this->Margin;
+  switch (this->Blend)
+  {
+    case BlendMode::MaximumIntensity:
+      return hi >= this->Threshold;
+    case BlendMode::MinimumIntensity:
+      return lo <= this->Threshold;
+    default:
+    {
+      // The first interval ending at or after lo; it is met if it starts at or before hi.
+      const auto it = std::lower_bound(this->Hi.begin(), this->Hi.end(), lo);
+      return it != this->Hi.end() && this->Lo[it - this->Hi.begin()] <= hi;
+    }
+  }
+}
+
+void RangePyramid::Build(const ScalarField& field)
+{
+  this->Field = &field;
+  const int* dims = field.GetDimensions();
+  for (int a = 0; a < 3; ++a)
+  {
+    this->CellDims[a] = std::max(dims[a] - 1, 0);
+  }
+  this->Levels.clear();
+  int levelDims[3] = { this->CellDims[0], this->CellDims[1], this->CellDims[2] };
+  for (int level = 1; levelDims[0] > 1 || levelDims[1] > 1 || levelDims[2] > 1; ++level)
+  {
+    Level next;
+    for (int a = 0; a < 3; ++a)
+    {
+      next.Dims[a] = (levelDims[a] + 1) / 2;
+    }
+    const std::size_t n = static_cast<std::size_t>(next.Dims[0]) * next.Dims[1] * next.Dims[2];
+    next.Min.assign(n, std::numeric_limits<float>::max());
+    next.Max.assign(n, std::numeric_limits<float>::lowest());
+    std::size_t out = 0;
+    for (int k = 0; k < next.Dims[2]; ++k)
+    {
+      for (int j = 0; j < next.Dims[1]; ++j)
+      {
+        for (int i = 0; i < next.Dims[0]; ++i, ++out)
+        {
+          // The children: cells (level 1) or nodes of the level below.
+          for (int ck = 2 * k; ck < std::min(2 * k + 2, levelDims[2]); ++ck)
+          {
+            for (int cj = 2 * j; cj < std::min(2 * j + 2, levelDims[1]); ++cj)
+            {
+              for (int ci = 2 * i; ci < std::min(2 * i + 2, levelDims[0]); ++ci)
+              {
+                float lo, hi;
+                if (level == 1)
+                {
+                  this->CellRange(ci, cj, ck, lo, hi);
+                }
+                else
+                {
+                  const Level& below = this->Levels.back();
+                  const std::size_t c = static_cast<std::size_t>(ci) +
+                    static_cast<std::size_t>(below.Dims[0]) *
+                      (cj + static_cast<std::size_t>(below.Dims[1]) * ck);
+                  lo = below.Min[c];
+                  hi = below.Max[c];
+                }
+                next.Min[out] = std::min(next.Min[out], lo);
+                next.Max[out] = std::max(next.Max[out], hi);
+              }
+            }
+          }
+        }
+      }
+    }
+    this->Levels.push_back(std::move(next));
+    for (int a = 0; a < 3; ++a)
+    {
+      levelDims[a] = this->Levels.back().Dims[a];
+    }
+  }
+}
+
+void RangePyramid::CellRange(int i, int j, int k, float& lo, float& hi) const
+{
+  const ScalarField& f = *this->Field;
+  lo = hi = f.GetValue(i, j, k);
+  for (int c = 1; c < 8; ++c)
+  {
+    const float v = f.GetValue(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
+    lo = std::min(lo, v);
+    hi = std::max(hi, v);
+  }
+}
+
+bool RangePyramid::Query(int level, const int node[3], const int c0[3], const int c1[3],
+  const ContributionRule& rule) const
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    const int first = node[a] << level;
+    const int last = ((node[a] + 1) << level) - 1;
+    if (last < c0[a] || first > c1[a] || first >= this->CellDims[a])
+    {
+      return false;
+    }
+  }
+  if (level == 0)
+  {
+    float lo, hi;
+    this->CellRange(node[0], node[1], node[2], lo, hi);
+    return rule.IsPossiblyContributing(lo, hi);
+  }
+  const Level& l = this->Levels[level - 1];
+  const std::size_t n = static_cast<std::size_t>(node[0]) +
+    static_cast<std::size_t>(l.Dims[0]) * (node[1] + static_cast<std::size_t>(l.Dims[1]) * node[2]);
+  if (!rule.IsPossiblyContributing(l.Min[n], l.Max[n]))
+  {
+    return false;
+  }
+  for (int c = 0; c < 8; ++c)
+  {
+    const int child[3] = { 2 * node[0] + (c & 1), 2 * node[1] + ((c >> 1) & 1),
+      2 * node[2] + ((c >> 2) & 1) };
+    if (this->Query(level - 1, child, c0, c1, rule))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+
+bool RangePyramid::AnyContributing(const int c0[3], const int c1[3],
+  const ContributionRule& rule) const
+{
+  // Start at the coarsest level whose nodes are at least as large as the box: the box then
+  // meets at most 2 nodes per axis.
+  int extent = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    extent = std::max(extent, c1[a] - c0[a] + 1);
+  }
+  int level = 0;
+  while ((1 << level) < extent && level < static_cast<int>(this->Levels.size()))
+  {
+    ++level;
+  }
+  int first[3], last[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    first[a] = c0[a] >> level;
+    last[a] = c1[a] >> level;
+  }
+  int node[3];
+  for (node[2] = first[2]; node[2] <= last[2]; ++node[2])
+  {
+    for (node[1] = first[1]; node[1] <= last[1]; ++node[1])
+    {
+      for (node[0] = first[0]; node[0] <= last[0]; ++node[0])
+      {
+        if (this->Query(level, node, c0, c1, rule))
+        {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+std::size_t RangePyramid::GetMemorySize() const
+{
+  std::size_t bytes = 0;
+  for (const Level& l : this->Levels)
+  {
+    bytes += (l.Min.size() + l.Max.size()) * sizeof(float);
+  }
+  return bytes;
+}
+
+} // namespace parc

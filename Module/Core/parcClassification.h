@@ -1,0 +1,85 @@
+// PARC for VTK: which cells can change a ray's result ("possibly contributing", PC).
+//
+// DESIGN.md section 2. Every trilinear (or nearest) sample taken inside a cell lies in the
+// cell's [min, max] of its 8 corners, up to the float rounding of the caster; the rule
+// widens each range by a margin that covers that rounding. A cell is PC when its widened
+// range passes the test of the ray function:
+// - composite, additive: the scalar opacity is non-zero somewhere on [min, max];
+// - maximum intensity: max >= the smallest scalar with non-zero opacity;
+// - minimum intensity: min <= the largest scalar with non-zero opacity;
+// - average intensity: [min, max] meets the averaged scalar range;
+// - isosurface: some iso value v with min <= v <= max.
+// A sample outside every PC cell cannot change the ray (zero opacity, below the threshold,
+// outside the averaged range, or no iso-value crossing nearby), so skipping it is exact.
+//
+// RangePyramid keeps cell ranges as a min/max pyramid built once per data change, so that
+// a transfer-function or iso-value change reclassifies a volume in a few milliseconds.
+#ifndef parcClassification_h
+#define parcClassification_h
+
+#include "parcRayCaster.h"
+
+#include <vector>
+
+namespace parc
+{
+
+class ContributionRule
+{
+public:
+  /// The rule of the ray function in p for a field whose values lie in range[0..1].
+  void Set(const CastParameters& p, const double range[2]);
+
+  /// True when a cell whose samples lie in [lo, hi] may change a ray's result.
+  bool IsPossiblyContributing(double lo, double hi) const;
+
+  /// The margin added on both sides of every range (scalar units).
+  double GetMargin() const { return this->Margin; }
+
+private:
+  BlendMode Blend = BlendMode::Composite;
+  /// Closed scalar intervals, sorted and disjoint: non-zero opacity (composite, additive)
+  /// or the averaged range; for the isosurface, degenerate intervals at the iso values.
+  std::vector<double> Lo, Hi;
+  double Threshold = 0.0; ///< maximum / minimum intensity
+  double Margin = 0.0;
+};
+
+/// Min/max of the cells of a field, as a pyramid: level 1 holds the range of 2x2x2 cells,
+/// level L of 2^L x 2^L x 2^L cells. Cell ranges (level 0) are read from the field.
+class RangePyramid
+{
+public:
+  /// Keeps a pointer to field (it must outlive the pyramid's use).
+  void Build(const ScalarField& field);
+
+  const ScalarField* GetField() const { return this->Field; }
+  /// The number of cells per axis (voxels - 1).
+  const int* GetCellDimensions() const { return this->CellDims; }
+
+  /// The range of the 8 corners of cell (i, j, k).
+  void CellRange(int i, int j, int k, float& lo, float& hi) const;
+
+  /// Whether some cell of the inclusive cell-index box [c0, c1] is PC under rule.
+  bool AnyContributing(const int c0[3], const int c1[3], const ContributionRule& rule) const;
+
+  /// Memory held by the pyramid, in bytes.
+  std::size_t GetMemorySize() const;
+
+private:
+  struct Level
+  {
+    int Dims[3];
+    std::vector<float> Min, Max;
+  };
+  bool Query(int level, const int node[3], const int c0[3], const int c1[3],
+    const ContributionRule& rule) const;
+
+  const ScalarField* Field = nullptr;
+  int CellDims[3] = { 0, 0, 0 };
+  std::vector<Level> Levels; ///< Levels[L - 1] is level L
+};
+
+} // namespace parc
+
+#endif

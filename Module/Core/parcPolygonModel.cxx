@@ -1,0 +1,187 @@
+#include "parcPolygonModel.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace parc
+{
+
+namespace
+{
+/// Appends the quad on the side (0 low, 1 high) along axis of the supercells whose indices
+/// along the two other axes b = axis + 1, c = axis + 2 (cyclic) run over [b0, b1] x [c0, c1]
+/// and whose index along axis is i; wound counter-clockwise seen from outside.
+void AddQuad(const SupercellGrid& grid, int axis, int side, int i, int b0, int b1, int c0,
+  int c1, PolygonModel& model)
+{
+  const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+  const double x = grid.Boundary(axis, i + side);
+  const double u0 = grid.Boundary(b, b0), u1 = grid.Boundary(b, b1 + 1);
+  const double v0 = grid.Boundary(c, c0), v1 = grid.Boundary(c, c1 + 1);
+  const double uv[4][2] = { { u0, v0 }, { u1, v0 }, { u1, v1 }, { u0, v1 } };
+  for (int n = 0; n < 4; ++n)
+  {
+    const int corner = side ? n : (4 - n) % 4;
+    Vec3 p;
+    p[axis] = x;
+    p[b] = uv[corner][0];
+    p[c] = uv[corner][1];
+    model.Vertices.push_back(p);
+  }
+}
+
+/// Covers the set entries of a row-major nu x nv mask with rectangles (greedy: widest run
+/// along u first, then as many full rows along v as follow), clearing them; calls
+/// emit(u0, u1, v0, v1) for each. Without merging, each entry is its own rectangle.
+template <class Emit>
+void CoverMask(std::vector<char>& mask, int nu, int nv, bool merge, Emit&& emit)
+{
+  for (int v = 0; v < nv; ++v)
+  {
+    for (int u = 0; u < nu; ++u)
+    {
+      if (!mask[u + static_cast<std::size_t>(nu) * v])
+      {
+        continue;
+      }
+      int u1 = u, v1 = v;
+      if (merge)
+      {
+        while (u1 + 1 < nu && mask[u1 + 1 + static_cast<std::size_t>(nu) * v])
+        {
+          ++u1;
+        }
+        for (bool fullRow = true; fullRow && v1 + 1 < nv;)
+        {
+          for (int x = u; x <= u1 && fullRow; ++x)
+          {
+            fullRow = mask[x + static_cast<std::size_t>(nu) * (v1 + 1)] != 0;
+          }
+          v1 += fullRow ? 1 : 0;
+        }
+      }
+      for (int y = v; y <= v1; ++y)
+      {
+        std::fill_n(mask.begin() + u + static_cast<std::size_t>(nu) * y, u1 - u + 1, 0);
+      }
+      emit(u, u1, v, v1);
+    }
+  }
+}
+
+/// The supercell with index i along axis and (u, v) along the two other axes (cyclic).
+void Compose(int axis, int i, int u, int v, int idx[3])
+{
+  idx[axis] = i;
+  idx[(axis + 1) % 3] = u;
+  idx[(axis + 2) % 3] = v;
+}
+}
+
+double PolygonModel::GetArea() const
+{
+  double area = 0.0;
+  for (std::size_t q = 0; q + 3 < this->Vertices.size(); q += 4)
+  {
+    const Vec3& p = this->Vertices[q];
+    area += 0.5 * Length(Cross(this->Vertices[q + 1] - p, this->Vertices[q + 2] - p));
+    area += 0.5 * Length(Cross(this->Vertices[q + 2] - p, this->Vertices[q + 3] - p));
+  }
+  return area;
+}
+
+void BuildDepthModel(const SupercellGrid& grid, bool merge, PolygonModel& model)
+{
+  model = PolygonModel();
+  const int* n = grid.GetCounts();
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    const int nu = n[(axis + 1) % 3], nv = n[(axis + 2) % 3];
+    std::vector<char> mask(static_cast<std::size_t>(nu) * nv);
+    for (int side = 0; side < 2; ++side)
+    {
+      for (int i = 0; i < n[axis]; ++i)
+      {
+        for (int v = 0; v < nv; ++v)
+        {
+          for (int u = 0; u < nu; ++u)
+          {
+            int idx[3], other[3];
+            Compose(axis, i, u, v, idx);
+            Compose(axis, side ? i + 1 : i - 1, u, v, other);
+            mask[u + static_cast<std::size_t>(nu) * v] = grid.IsContributing(idx[0], idx[1], idx[2]) &&
+              !grid.IsContributingOrOutside(other[0], other[1], other[2]);
+          }
+        }
+        CoverMask(mask, nu, nv, merge, [&](int u0, int u1, int v0, int v1) {
+          AddQuad(grid, axis, side, i, u0, u1, v0, v1, model);
+        });
+      }
+    }
+  }
+}
+
+void BuildColorModel(const SupercellGrid& grid, int axis, PolygonModel& model)
+{
+  model = PolygonModel();
+  model.MajorAxis = axis;
+  int first, last;
+  grid.ContributingPlanes(axis, first, last);
+  if (first > last)
+  {
+    return;
+  }
+  model.FirstPlane = first;
+  model.PlaneCount = last - first + 1;
+  const int* n = grid.GetCounts();
+  const int nu = n[(axis + 1) % 3], nv = n[(axis + 2) % 3];
+  for (int i = first; i <= last; ++i)
+  {
+    for (int v = 0; v < nv; ++v)
+    {
+      for (int u = 0; u < nu; ++u)
+      {
+        int idx[3];
+        Compose(axis, i, u, v, idx);
+        if (!grid.IsContributing(idx[0], idx[1], idx[2]))
+        {
+          continue;
+        }
+        // Across the axis: always (the neighbour is in another plane).
+        AddQuad(grid, axis, 0, i, u, u, v, v, model);
+        AddQuad(grid, axis, 1, i, u, u, v, v, model);
+        // Within the plane: only towards an empty supercell or the outside.
+        for (int along = 1; along < 3; ++along)
+        {
+          const int a = (axis + along) % 3;
+          for (int side = 0; side < 2; ++side)
+          {
+            int other[3] = { idx[0], idx[1], idx[2] };
+            other[a] += side ? 1 : -1;
+            if (!grid.IsContributingOrOutside(other[0], other[1], other[2]))
+            {
+              const int fu = idx[(a + 1) % 3], fv = idx[(a + 2) % 3];
+              AddQuad(grid, a, side, idx[a], fu, fu, fv, fv, model);
+            }
+          }
+        }
+        model.Planes.resize(model.GetNumberOfQuads(), i - first);
+      }
+    }
+  }
+}
+
+ModelStatistics ComputeStatistics(const SupercellGrid& grid, const PolygonModel& model)
+{
+  ModelStatistics s;
+  const int* cells = grid.GetCellDimensions();
+  s.Cells = static_cast<std::uint64_t>(cells[0]) * cells[1] * cells[2];
+  s.Supercells = grid.GetNumberOfSupercells();
+  s.ContributingSupercells = grid.GetNumberOfContributing();
+  s.ContributingPercent =
+    s.Supercells ? 100.0 * static_cast<double>(s.ContributingSupercells) / s.Supercells : 0.0;
+  s.Polygons = model.GetNumberOfQuads();
+  return s;
+}
+
+} // namespace parc

@@ -1,0 +1,234 @@
+#include "parcSupercellGrid.h"
+
+#include <vtkSMPTools.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+
+namespace parc
+{
+
+namespace
+{
+/// The range of the trilinear interpolant of the 8 corners v (x fastest) on the box
+/// [u0, u1] (local cell coordinates in [0, 1]^3): the range of its values at the corners.
+void TrilinearRange(const double v[8], const double u0[3], const double u1[3], double& lo,
+  double& hi)
+{
+  lo = std::numeric_limits<double>::infinity();
+  hi = -lo;
+  for (int c = 0; c < 8; ++c)
+  {
+    const double x = (c & 1) ? u1[0] : u0[0];
+    const double y = (c & 2) ? u1[1] : u0[1];
+    const double z = (c & 4) ? u1[2] : u0[2];
+    const double v00 = v[0] + x * (v[1] - v[0]);
+    const double v10 = v[2] + x * (v[3] - v[2]);
+    const double v01 = v[4] + x * (v[5] - v[4]);
+    const double v11 = v[6] + x * (v[7] - v[6]);
+    const double w0 = v00 + y * (v10 - v00);
+    const double w1 = v01 + y * (v11 - v01);
+    const double s = w0 + z * (w1 - w0);
+    lo = std::min(lo, s);
+    hi = std::max(hi, s);
+  }
+}
+}
+
+bool SupercellGrid::Configure(const int cellDims[3], const double size[3])
+{
+  this->Flags.clear();
+  this->ContributingCount = 0;
+  std::size_t total = 1;
+  for (int a = 0; a < 3; ++a)
+  {
+    this->Counts[a] = 0;
+    if (cellDims[a] < 1 || !(size[a] > 0.0) || !std::isfinite(size[a]))
+    {
+      return false;
+    }
+    const double count = std::ceil(cellDims[a] / size[a]);
+    if (!(count <= static_cast<double>(MaxSupercells)))
+    {
+      return false;
+    }
+    int n = std::max(1, static_cast<int>(count));
+    // Rounding may leave an empty last supercell: drop it.
+    while (n > 1 && (n - 1) * size[a] >= cellDims[a])
+    {
+      --n;
+    }
+    total *= static_cast<std::size_t>(n);
+    if (total > MaxSupercells)
+    {
+      return false;
+    }
+    this->CellDims[a] = cellDims[a];
+    this->Size[a] = size[a];
+    this->Counts[a] = n;
+  }
+  this->Flags.assign(total, 0);
+  return true;
+}
+
+bool SupercellGrid::ClassifySupercell(const RangePyramid& pyramid, const ContributionRule& rule,
+  Interpolation interpolation, int i, int j, int k) const
+{
+  const int index[3] = { i, j, k };
+  double lo[3], hi[3];
+  int c0[3], c1[3];
+  bool subcell = false;
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = this->Boundary(a, index[a]);
+    hi[a] = this->Boundary(a, index[a] + 1);
+    c0[a] = std::max(0, static_cast<int>(std::floor(lo[a])));
+    c1[a] = std::min(this->CellDims[a] - 1, static_cast<int>(std::ceil(hi[a])) - 1);
+    c1[a] = std::max(c1[a], c0[a]);
+    subcell = subcell || this->Size[a] < 1.0;
+  }
+  // A supercell is PC when it overlaps a PC cell. Subcells (linear interpolation) are
+  // tighter: only the part of each overlapped PC cell they cover counts.
+  if (!pyramid.AnyContributing(c0, c1, rule))
+  {
+    return false;
+  }
+  if (!subcell || interpolation == Interpolation::Nearest)
+  {
+    return true;
+  }
+  const ScalarField& field = *pyramid.GetField();
+  int c[3];
+  for (c[2] = c0[2]; c[2] <= c1[2]; ++c[2])
+  {
+    for (c[1] = c0[1]; c[1] <= c1[1]; ++c[1])
+    {
+      for (c[0] = c0[0]; c[0] <= c1[0]; ++c[0])
+      {
+        double corners[8], u0[3], u1[3];
+        for (int n = 0; n < 8; ++n)
+        {
+          corners[n] = field.GetValue(c[0] + (n & 1), c[1] + ((n >> 1) & 1), c[2] + ((n >> 2) & 1));
+        }
+        for (int a = 0; a < 3; ++a)
+        {
+          u0[a] = std::max(lo[a] - c[a], 0.0);
+          u1[a] = std::min(hi[a] - c[a], 1.0);
+        }
+        double vlo, vhi;
+        TrilinearRange(corners, u0, u1, vlo, vhi);
+        if (rule.IsPossiblyContributing(vlo, vhi))
+        {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+void SupercellGrid::Classify(const RangePyramid& pyramid, const ContributionRule& rule,
+  Interpolation interpolation)
+{
+  std::atomic<std::size_t> contributing{ 0 };
+  const int nx = this->Counts[0], ny = this->Counts[1];
+  vtkSMPTools::For(0, this->Counts[2], [&](vtkIdType k0, vtkIdType k1) {
+    std::size_t local = 0;
+    for (int k = static_cast<int>(k0); k < k1; ++k)
+    {
+      for (int j = 0; j < ny; ++j)
+      {
+        for (int i = 0; i < nx; ++i)
+        {
+          const bool pc = this->ClassifySupercell(pyramid, rule, interpolation, i, j, k);
+          this->Flags[this->Index(i, j, k)] = pc ? 1 : 0;
+          local += pc ? 1 : 0;
+        }
+      }
+    }
+    contributing += local;
+  });
+  this->ContributingCount = contributing;
+}
+
+bool SupercellGrid::IsContributingOrOutside(int i, int j, int k) const
+{
+  if (i < 0 || j < 0 || k < 0 || i >= this->Counts[0] || j >= this->Counts[1] ||
+    k >= this->Counts[2])
+  {
+    return false;
+  }
+  return this->IsContributing(i, j, k);
+}
+
+bool SupercellGrid::Locate(int axis, double x, double eps, int& first, int& last) const
+{
+  const int n = this->Counts[axis];
+  if (n == 0 || !(x >= -eps) || !(x <= this->CellDims[axis] + eps))
+  {
+    return false;
+  }
+  const double s = this->Size[axis];
+  first = std::max(0, std::min(n - 1, static_cast<int>(std::floor((x - eps) / s)) - 1));
+  while (first < n - 1 && this->Boundary(axis, first + 1) < x - eps)
+  {
+    ++first;
+  }
+  last = std::max(0, std::min(n - 1, static_cast<int>(std::floor((x + eps) / s)) + 1));
+  while (last > 0 && this->Boundary(axis, last) > x + eps)
+  {
+    --last;
+  }
+  return first <= last;
+}
+
+bool SupercellGrid::TouchesContributing(const Vec3& p, double eps) const
+{
+  int first[3], last[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    if (!this->Locate(a, p[a], eps, first[a], last[a]))
+    {
+      return false;
+    }
+  }
+  for (int k = first[2]; k <= last[2]; ++k)
+  {
+    for (int j = first[1]; j <= last[1]; ++j)
+    {
+      for (int i = first[0]; i <= last[0]; ++i)
+      {
+        if (this->IsContributing(i, j, k))
+        {
+          return true;
+        }
+      }
+    }
+  }
+  return false;
+}
+
+void SupercellGrid::ContributingPlanes(int axis, int& first, int& last) const
+{
+  first = this->Counts[axis];
+  last = -1;
+  for (int k = 0; k < this->Counts[2]; ++k)
+  {
+    for (int j = 0; j < this->Counts[1]; ++j)
+    {
+      for (int i = 0; i < this->Counts[0]; ++i)
+      {
+        if (this->IsContributing(i, j, k))
+        {
+          const int p = axis == 0 ? i : (axis == 1 ? j : k);
+          first = std::min(first, p);
+          last = std::max(last, p);
+        }
+      }
+    }
+  }
+}
+
+} // namespace parc

@@ -1,0 +1,626 @@
+// Classification, supercells, polygon models and the segment oracle, against brute force.
+#include "parcPolygonModel.h"
+#include "parcSegmentOracle.h"
+#include "parcTestUtilities.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <random>
+#include <tuple>
+
+using parc::BlendMode;
+using parc::CastParameters;
+using parc::ContributionRule;
+using parc::RangePyramid;
+using parc::SupercellGrid;
+using parc::Vec3;
+
+namespace
+{
+const BlendMode AllBlendModes[] = { BlendMode::Composite, BlendMode::MaximumIntensity,
+  BlendMode::MinimumIntensity, BlendMode::AverageIntensity, BlendMode::Additive,
+  BlendMode::IsoSurface };
+
+/// A random volume of dims voxels, values in [0, 100], smooth enough to leave empty regions.
+parc::ScalarField RandomVolume(std::mt19937& rng, const int dims[3])
+{
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const double cx = u(rng) * dims[0], cy = u(rng) * dims[1], cz = u(rng) * dims[2];
+  const double r = 1.0 + 3.0 * u(rng);
+  return parctest::MakeField(dims, [&](int i, int j, int k) {
+    const double d = std::sqrt((i - cx) * (i - cx) + (j - cy) * (j - cy) + (k - cz) * (k - cz));
+    return static_cast<float>(std::max(0.0, 100.0 - 100.0 * d / (2.0 * r)) + 5.0 * u(rng));
+  });
+}
+
+/// Random parameters of a ray function: a random piecewise-linear opacity with zero
+/// stretches, random iso values and averaged range.
+CastParameters RandomParameters(std::mt19937& rng, BlendMode blend)
+{
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  CastParameters p;
+  p.Blend = blend;
+  std::vector<double> x, y;
+  double at = -10.0 + 30.0 * u(rng);
+  for (int n = 1 + static_cast<int>(rng() % 6); n > 0; --n)
+  {
+    x.push_back(at);
+    y.push_back(u(rng) < 0.5 ? 0.0 : u(rng));
+    at += (u(rng) < 0.1) ? 0.0 : 40.0 * u(rng);
+  }
+  parctest::SetOpacity(p, x, y, u(rng) < 0.5);
+  p.IsoValues = { 100.0 * u(rng), 100.0 * u(rng) };
+  p.AverageRange[0] = 100.0 * u(rng);
+  p.AverageRange[1] = p.AverageRange[0] + 30.0 * u(rng);
+  p.SampleDistance = 0.3;
+  p.TerminationOpacity = 1.0;
+  return p;
+}
+
+/// Whether a sample of value s, alone, shows in the result of the ray function (the
+/// definition the rule must cover: any such sample must lie in a PC cell).
+bool SampleMatters(const CastParameters& p, float s)
+{
+  switch (p.Blend)
+  {
+    case BlendMode::Composite:
+    case BlendMode::Additive:
+      return p.Opacity.Evaluate(s) > 0.f;
+    case BlendMode::MaximumIntensity:
+      return s >= p.Opacity.FirstNonZero();
+    case BlendMode::MinimumIntensity:
+      return s <= p.Opacity.LastNonZero();
+    case BlendMode::AverageIntensity:
+      return s >= p.AverageRange[0] && s <= p.AverageRange[1];
+    case BlendMode::IsoSurface:
+      return false; // crossings are checked by the image test below
+  }
+  return false;
+}
+
+/// The brute-force rule on an exact range (independent of the rule's interval lists).
+bool BruteRule(const CastParameters& p, double lo, double hi)
+{
+  switch (p.Blend)
+  {
+    case BlendMode::Composite:
+    case BlendMode::Additive:
+      return p.Opacity.IsNonZeroOn(lo, hi);
+    case BlendMode::MaximumIntensity:
+      return hi >= p.Opacity.FirstNonZero();
+    case BlendMode::MinimumIntensity:
+      return lo <= p.Opacity.LastNonZero();
+    case BlendMode::AverageIntensity:
+      return hi >= p.AverageRange[0] && lo <= p.AverageRange[1];
+    case BlendMode::IsoSurface:
+      return std::any_of(p.IsoValues.begin(), p.IsoValues.end(),
+        [&](double v) { return lo <= v && v <= hi; });
+  }
+  return false;
+}
+
+/// Brute-force cell PC flags (x fastest).
+std::vector<char> CellFlags(const RangePyramid& pyramid, const ContributionRule& rule)
+{
+  const int* n = pyramid.GetCellDimensions();
+  std::vector<char> flags;
+  for (int k = 0; k < n[2]; ++k)
+    for (int j = 0; j < n[1]; ++j)
+      for (int i = 0; i < n[0]; ++i)
+      {
+        float lo, hi;
+        pyramid.CellRange(i, j, k, lo, hi);
+        flags.push_back(rule.IsPossiblyContributing(lo, hi));
+      }
+  return flags;
+}
+
+struct Scene
+{
+  parc::ScalarField Field;
+  CastParameters Params;
+  RangePyramid Pyramid;
+  ContributionRule Rule;
+  SupercellGrid Grid;
+
+  /// A random scene; with mixed, drawn again until some but not all supercells are PC.
+  Scene(std::mt19937& rng, const int dims[3], BlendMode blend, const double size[3],
+    parc::Interpolation interp = parc::Interpolation::Linear, bool mixed = false)
+  {
+    do
+    {
+      this->Make(rng, dims, blend, size, interp);
+    } while (mixed &&
+      (this->Grid.GetNumberOfContributing() == 0 ||
+        this->Grid.GetNumberOfContributing() == this->Grid.GetNumberOfSupercells()));
+  }
+
+  void Make(std::mt19937& rng, const int dims[3], BlendMode blend, const double size[3],
+    parc::Interpolation interp)
+  {
+    this->Field = RandomVolume(rng, dims);
+    this->Params = RandomParameters(rng, blend);
+    this->Params.Interp = interp;
+    this->Pyramid.Build(this->Field);
+    this->Rule.Set(this->Params, this->Field.GetRange());
+    const int cells[3] = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
+    EXPECT_TRUE(this->Grid.Configure(cells, size));
+    this->Grid.Classify(this->Pyramid, this->Rule, interp);
+  }
+};
+
+using Key = std::tuple<double, double, double>;
+Key KeyOf(const Vec3& p) { return Key(p.X, p.Y, p.Z); }
+
+/// Closed and consistently oriented: every directed edge is matched by its reverse.
+::testing::AssertionResult IsClosed(const parc::PolygonModel& model)
+{
+  std::map<std::pair<Key, Key>, int> edges;
+  for (std::size_t q = 0; q < model.GetNumberOfQuads(); ++q)
+  {
+    for (int e = 0; e < 4; ++e)
+    {
+      const Key a = KeyOf(model.Vertices[4 * q + e]);
+      const Key b = KeyOf(model.Vertices[4 * q + (e + 1) % 4]);
+      ++edges[{ a, b }];
+      --edges[{ b, a }];
+    }
+  }
+  for (const auto& edge : edges)
+  {
+    if (edge.second != 0)
+    {
+      return ::testing::AssertionFailure() << "an unmatched edge";
+    }
+  }
+  return ::testing::AssertionSuccess();
+}
+
+const double SupercellSizes[][3] = { { 1, 1, 1 }, { 2, 2, 2 }, { 3, 5, 5 }, { 1.03, 1.03, 1.03 },
+  { 3.125, 3.125, 0.15 }, { 6, 4, 3.125 }, { 0.5, 0.7, 0.4 }, { 2.5, 1, 0.75 } };
+}
+
+// The rule's interval lists agree with the exact interval test, for every ray function.
+TEST(Classification, RuleMatchesBruteForce)
+{
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-20.0, 120.0);
+  for (int trial = 0; trial < 300; ++trial)
+  {
+    for (BlendMode blend : AllBlendModes)
+    {
+      const CastParameters p = RandomParameters(rng, blend);
+      ContributionRule rule;
+      const double range[2] = { 0.0, 0.0 };
+      rule.Set(p, range); // zero margin: compare exactly
+      for (int q = 0; q < 50; ++q)
+      {
+        double lo = u(rng), hi = u(rng);
+        if (lo > hi)
+        {
+          std::swap(lo, hi);
+        }
+        ASSERT_EQ(rule.IsPossiblyContributing(lo, hi), BruteRule(p, lo, hi))
+          << "blend " << static_cast<int>(blend) << " [" << lo << ", " << hi << "]";
+      }
+    }
+  }
+}
+
+// Every sample that can show lies in a PC cell: densely sampled cells against the flags.
+TEST(Classification, EverySampleThatMattersIsInAPCCell)
+{
+  std::mt19937 rng(12);
+  const int dims[3] = { 7, 6, 8 };
+  const double unit[3] = { 1, 1, 1 };
+  for (int trial = 0; trial < 40; ++trial)
+  {
+    for (BlendMode blend : AllBlendModes)
+    {
+      Scene s(rng, dims, blend, unit);
+      const std::vector<char> flags = CellFlags(s.Pyramid, s.Rule);
+      std::size_t c = 0;
+      for (int k = 0; k < dims[2] - 1; ++k)
+        for (int j = 0; j < dims[1] - 1; ++j)
+          for (int i = 0; i < dims[0] - 1; ++i, ++c)
+          {
+            // The supercell grid of unit size has the same flags as the cells.
+            ASSERT_EQ(s.Grid.IsContributing(i, j, k), flags[c] != 0);
+            for (int n = 0; n < 64 && !flags[c]; ++n)
+            {
+              const Vec3 p(i + (n & 3) / 3.0, j + ((n >> 2) & 3) / 3.0, k + ((n >> 4) & 3) / 3.0);
+              for (auto interp : { parc::Interpolation::Linear, parc::Interpolation::Nearest })
+              {
+                ASSERT_FALSE(SampleMatters(s.Params, s.Field.Sample(p, interp)))
+                  << "a sample that shows in a cell classified empty";
+              }
+            }
+          }
+    }
+  }
+}
+
+// The pyramid answers "is some cell of this box PC" like the cell flags do.
+TEST(Classification, PyramidMatchesCellFlagsOnRandomBoxes)
+{
+  std::mt19937 rng(13);
+  const int dims[3] = { 19, 12, 23 };
+  const double unit[3] = { 1, 1, 1 };
+  for (int trial = 0; trial < 30; ++trial)
+  {
+    Scene s(rng, dims, AllBlendModes[trial % 6], unit);
+    const std::vector<char> flags = CellFlags(s.Pyramid, s.Rule);
+    for (int q = 0; q < 200; ++q)
+    {
+      int c0[3], c1[3];
+      for (int a = 0; a < 3; ++a)
+      {
+        c0[a] = static_cast<int>(rng() % (dims[a] - 1));
+        c1[a] = c0[a] + static_cast<int>(rng() % (dims[a] - 1 - c0[a]));
+      }
+      bool any = false;
+      for (int k = c0[2]; k <= c1[2]; ++k)
+        for (int j = c0[1]; j <= c1[1]; ++j)
+          for (int i = c0[0]; i <= c1[0]; ++i)
+            any = any || flags[i + (dims[0] - 1) * (j + (dims[1] - 1) * k)];
+      ASSERT_EQ(s.Pyramid.AnyContributing(c0, c1, s.Rule), any);
+    }
+  }
+}
+
+// Supercells of every size (non-integer, subcells): a supercell is PC exactly when it
+// overlaps a PC cell (sizes >= 1); with subcells every point where a sample shows touches
+// a PC subcell, and a PC subcell always lies in a PC cell.
+TEST(SupercellGrid, SupercellsCoverEveryPCCell)
+{
+  std::mt19937 rng(14);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const int dims[3] = { 11, 9, 13 };
+  for (const auto& size : SupercellSizes)
+  {
+    for (BlendMode blend : AllBlendModes)
+    {
+      Scene s(rng, dims, blend, size);
+      const std::vector<char> flags = CellFlags(s.Pyramid, s.Rule);
+      const int* n = s.Grid.GetCounts();
+      for (int k = 0; k < n[2]; ++k)
+        for (int j = 0; j < n[1]; ++j)
+          for (int i = 0; i < n[0]; ++i)
+          {
+            const int idx[3] = { i, j, k };
+            bool overlapsPC = false;
+            int c0[3], c1[3];
+            for (int a = 0; a < 3; ++a)
+            {
+              c0[a] = static_cast<int>(std::floor(s.Grid.Boundary(a, idx[a])));
+              c1[a] = static_cast<int>(std::ceil(s.Grid.Boundary(a, idx[a] + 1))) - 1;
+            }
+            for (int ck = c0[2]; ck <= c1[2]; ++ck)
+              for (int cj = c0[1]; cj <= c1[1]; ++cj)
+                for (int ci = c0[0]; ci <= c1[0]; ++ci)
+                  overlapsPC = overlapsPC || flags[ci + (dims[0] - 1) * (cj + (dims[1] - 1) * ck)];
+            const bool subcell = size[0] < 1 || size[1] < 1 || size[2] < 1;
+            if (!subcell)
+            {
+              ASSERT_EQ(s.Grid.IsContributing(i, j, k), overlapsPC);
+            }
+            else if (s.Grid.IsContributing(i, j, k))
+            {
+              ASSERT_TRUE(overlapsPC);
+            }
+          }
+      for (int q = 0; q < 3000; ++q)
+      {
+        const Vec3 p(u(rng) * (dims[0] - 1), u(rng) * (dims[1] - 1), u(rng) * (dims[2] - 1));
+        if (SampleMatters(s.Params, s.Field.SampleLinear(p)))
+        {
+          ASSERT_TRUE(s.Grid.TouchesContributing(p, 0.0)) << p.X << " " << p.Y << " " << p.Z;
+        }
+      }
+    }
+  }
+}
+
+TEST(SupercellGrid, RejectsInvalidSizes)
+{
+  SupercellGrid grid;
+  const int cells[3] = { 10, 10, 10 };
+  for (double bad : { 0.0, -1.0, std::nan(""), std::numeric_limits<double>::infinity(), 1e-9 })
+  {
+    const double size[3] = { 1.0, bad, 1.0 };
+    EXPECT_FALSE(grid.Configure(cells, size)) << bad;
+    EXPECT_EQ(grid.GetNumberOfSupercells(), 0u);
+  }
+  const double partial[3] = { 3.0, 4.0, 10.0 };
+  ASSERT_TRUE(grid.Configure(cells, partial));
+  EXPECT_EQ(grid.GetCounts()[0], 4);
+  EXPECT_EQ(grid.Boundary(0, 4), 10.0) << "the last supercell is partial";
+  EXPECT_EQ(grid.GetCounts()[1], 3);
+  EXPECT_EQ(grid.GetCounts()[2], 1);
+}
+
+// Depth model: face count and area against an independent count of PC/empty transitions
+// along each grid line; merging keeps the area and never adds quads; closed and oriented.
+TEST(PolygonModel, DepthModelMatchesAnIndependentCount)
+{
+  std::mt19937 rng(15);
+  const int dims[3] = { 12, 10, 14 };
+  for (const auto& size : SupercellSizes)
+  {
+    Scene s(rng, dims, BlendMode::Composite, size, parc::Interpolation::Linear, true);
+    const int* n = s.Grid.GetCounts();
+    std::size_t faces = 0;
+    double area = 0.0;
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      const int b = (axis + 1) % 3, c = (axis + 2) % 3;
+      int idx[3];
+      for (idx[b] = 0; idx[b] < n[b]; ++idx[b])
+        for (idx[c] = 0; idx[c] < n[c]; ++idx[c])
+        {
+          const double faceArea = (s.Grid.Boundary(b, idx[b] + 1) - s.Grid.Boundary(b, idx[b])) *
+            (s.Grid.Boundary(c, idx[c] + 1) - s.Grid.Boundary(c, idx[c]));
+          bool previous = false;
+          for (idx[axis] = 0; idx[axis] <= n[axis]; ++idx[axis])
+          {
+            const bool current =
+              idx[axis] < n[axis] && s.Grid.IsContributing(idx[0], idx[1], idx[2]);
+            if (current != previous)
+            {
+              ++faces;
+              area += faceArea;
+            }
+            previous = current;
+          }
+        }
+    }
+    parc::PolygonModel model, merged;
+    parc::BuildDepthModel(s.Grid, false, model);
+    parc::BuildDepthModel(s.Grid, true, merged);
+    EXPECT_EQ(model.GetNumberOfQuads(), faces);
+    EXPECT_NEAR(model.GetArea(), area, 1e-9 * std::max(1.0, area));
+    EXPECT_NEAR(merged.GetArea(), area, 1e-9 * std::max(1.0, area));
+    EXPECT_LE(merged.GetNumberOfQuads(), faces);
+    if (faces > 20)
+    {
+      EXPECT_LT(merged.GetNumberOfQuads(), faces);
+    }
+    EXPECT_TRUE(IsClosed(model));
+    const parc::ModelStatistics stats = parc::ComputeStatistics(s.Grid, model);
+    EXPECT_EQ(stats.Cells, 11u * 9u * 13u);
+    EXPECT_EQ(stats.Polygons, faces);
+    EXPECT_NEAR(stats.ContributingPercent,
+      100.0 * s.Grid.GetNumberOfContributing() / s.Grid.GetNumberOfSupercells(), 1e-12);
+  }
+}
+
+// Colour model: closed per plane, plane indices from 0, two faces per PC supercell across
+// the axis plus the in-plane transitions.
+TEST(PolygonModel, ColorModelIsClosedPerPlane)
+{
+  std::mt19937 rng(16);
+  const int dims[3] = { 12, 10, 14 };
+  for (const auto& size : SupercellSizes)
+  {
+    Scene s(rng, dims, BlendMode::Composite, size, parc::Interpolation::Linear, true);
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      parc::PolygonModel model;
+      parc::BuildColorModel(s.Grid, axis, model);
+      ASSERT_EQ(model.Planes.size(), model.GetNumberOfQuads());
+      int first, last;
+      s.Grid.ContributingPlanes(axis, first, last);
+      EXPECT_EQ(model.FirstPlane, first);
+      EXPECT_EQ(model.PlaneCount, last - first + 1);
+      std::map<int, parc::PolygonModel> perPlane;
+      for (std::size_t q = 0; q < model.GetNumberOfQuads(); ++q)
+      {
+        ASSERT_GE(model.Planes[q], 0);
+        ASSERT_LT(model.Planes[q], model.PlaneCount);
+        auto& m = perPlane[model.Planes[q]];
+        m.Vertices.insert(m.Vertices.end(), model.Vertices.begin() + 4 * q,
+          model.Vertices.begin() + 4 * q + 4);
+      }
+      EXPECT_EQ(perPlane.begin()->first, 0);
+      for (const auto& plane : perPlane)
+      {
+        EXPECT_TRUE(IsClosed(plane.second)) << "plane " << plane.first;
+      }
+      // Count: per PC supercell 2 faces across the axis and one per empty in-plane side.
+      const int* n = s.Grid.GetCounts();
+      std::size_t faces = 0;
+      for (int k = 0; k < n[2]; ++k)
+        for (int j = 0; j < n[1]; ++j)
+          for (int i = 0; i < n[0]; ++i)
+          {
+            if (!s.Grid.IsContributing(i, j, k))
+              continue;
+            faces += 2;
+            for (int a = 0; a < 3; ++a)
+              for (int d : { -1, 1 })
+              {
+                int o[3] = { i, j, k };
+                o[a] += d;
+                if (a != axis && !s.Grid.IsContributingOrOutside(o[0], o[1], o[2]))
+                  ++faces;
+              }
+          }
+      EXPECT_EQ(model.GetNumberOfQuads(), faces);
+    }
+  }
+}
+
+namespace
+{
+/// Checks the oracle's intervals of one ray against dense sampling: every sampled point
+/// that touches a PC supercell is inside an interval, and the planes it touches are among
+/// the oracle's. With exact, the plane sets must be equal.
+void CheckRay(const Scene& s, const parc::SegmentOracle& oracle, const parc::Ray& ray,
+  bool exact)
+{
+  std::vector<parc::Segment> segments;
+  std::vector<int> planes;
+  oracle.Intervals(ray, ray.TMin, ray.TMax, segments, 2, &planes);
+  for (std::size_t i = 1; i < segments.size(); ++i)
+  {
+    ASSERT_LT(segments[i - 1].TFar, segments[i].TNear) << "sorted and disjoint";
+  }
+  std::vector<int> seen;
+  constexpr int Steps = 4000;
+  const double eps = oracle.GetTolerance();
+  for (int n = 0; n <= Steps; ++n)
+  {
+    const double t = ray.TMin + (ray.TMax - ray.TMin) * n / Steps;
+    const Vec3 p = ray.Origin + t * ray.Direction;
+    const bool touches = s.Grid.TouchesContributing(p, eps);
+    bool inside = false;
+    for (const auto& seg : segments)
+    {
+      inside = inside || (t >= seg.TNear - 1e-9 && t <= seg.TFar + 1e-9);
+    }
+    ASSERT_TRUE(!touches || inside) << "a PC point outside the intervals at t = " << t;
+    if (touches)
+    {
+      std::vector<parc::Segment> pointInterval;
+      std::vector<int> pointPlanes;
+      oracle.Intervals(ray, t, t, pointInterval, 2, &pointPlanes);
+      seen.insert(seen.end(), pointPlanes.begin(), pointPlanes.end());
+    }
+  }
+  // Each interval is PC inside (at its midpoint, unless it is a single point).
+  for (const auto& seg : segments)
+  {
+    const Vec3 p = ray.Origin + 0.5 * (seg.TNear + seg.TFar) * ray.Direction;
+    ASSERT_TRUE(s.Grid.TouchesContributing(p, 2 * eps));
+  }
+  std::sort(seen.begin(), seen.end());
+  seen.erase(std::unique(seen.begin(), seen.end()), seen.end());
+  ASSERT_TRUE(std::includes(planes.begin(), planes.end(), seen.begin(), seen.end()));
+  if (exact)
+  {
+    ASSERT_EQ(planes, seen);
+  }
+}
+}
+
+// Random rays through random grids of every supercell size.
+TEST(SegmentOracle, MatchesDenseSamplingOnRandomRays)
+{
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int dims[3] = { 10, 9, 11 };
+  for (const auto& size : SupercellSizes)
+  {
+    Scene s(rng, dims, BlendMode::Composite, size);
+    const parc::SegmentOracle oracle(s.Grid, parc::Matrix4());
+    for (int r = 0; r < 60; ++r)
+    {
+      const Vec3 target(4.5 + 4 * u(rng), 4 + 4 * u(rng), 5 + 5 * u(rng));
+      const Vec3 dir(u(rng), u(rng), u(rng));
+      parc::Ray ray = parctest::MakeRay(target - 20.0 * parc::Normalized(dir), dir);
+      ray.TMax = 40.0;
+      ASSERT_NO_FATAL_FAILURE(CheckRay(s, oracle, ray, false));
+    }
+  }
+}
+
+// Rays exactly along supercell faces and edges and through corners, along the axes and
+// diagonals: closed boxes, so every touched PC supercell counts.
+TEST(SegmentOracle, RaysOnFacesEdgesAndCorners)
+{
+  // One PC supercell, (1, 1, 1) of 2^3 supercells, in a 4^3-cell grid.
+  const int cells[3] = { 8, 8, 8 };
+  const double size[3] = { 2, 2, 2 };
+  const int dims[3] = { 9, 9, 9 };
+  const parc::ScalarField field = parctest::MakeField(dims, [](int i, int j, int k) {
+    return (i == 3 && j == 3 && k == 3) ? 50.f : 0.f;
+  });
+  CastParameters p;
+  parctest::SetOpacity(p, { 40.0, 60.0 }, { 1.0, 1.0 }, false);
+  RangePyramid pyramid;
+  pyramid.Build(field);
+  ContributionRule rule;
+  rule.Set(p, field.GetRange());
+  SupercellGrid grid;
+  ASSERT_TRUE(grid.Configure(cells, size));
+  grid.Classify(pyramid, rule, parc::Interpolation::Linear);
+  ASSERT_EQ(grid.GetNumberOfContributing(), 1u);
+  ASSERT_TRUE(grid.IsContributing(1, 1, 1));
+  const parc::SegmentOracle oracle(grid, parc::Matrix4());
+  struct Case
+  {
+    Vec3 Origin, Direction;
+    double Near, Far; // expected touching interval (ray parameter), Near > Far: none
+  };
+  const double s3 = std::sqrt(3.0), s2 = std::sqrt(2.0);
+  const Case cases[] = {
+    { { -1, 2, 3 }, { 1, 0, 0 }, 3, 5 },            // on the face y = 2
+    { { -1, 4, 4 }, { 1, 0, 0 }, 3, 5 },            // on the edge y = z = 4
+    { { -1, 4.000001, 4 }, { 1, 0, 0 }, 1, 0 },     // just outside that edge
+    { { 0, 0, 0 }, { 1, 1, 1 }, 2 * s3, 4 * s3 },   // the main diagonal, corner to corner
+    { { 0, 8, 0 }, { 1, -1, 1 }, 4 * s3, 4 * s3 }, // only the corner (4, 4, 4)
+    { { 0, 6, 2 }, { 1, -1, 0 }, 2 * s2, 4 * s2 },  // across the face z = 2
+    { { 2, 2, -3 }, { 0, 0, 1 }, 5, 7 },            // along the edge x = y = 2
+    { { 6, 6, 6 }, { -1, -1, -1 }, s3 * 2, s3 * 4 } // from outside a corner, backwards diagonal
+  };
+  for (const Case& c : cases)
+  {
+    parc::Ray ray = parctest::MakeRay(c.Origin, c.Direction);
+    ray.TMax = 30.0;
+    std::vector<parc::Segment> segments;
+    oracle.Intervals(ray, ray.TMin, ray.TMax, segments);
+    if (c.Near > c.Far)
+    {
+      EXPECT_TRUE(segments.empty()) << c.Origin.X << " " << c.Origin.Y << " " << c.Origin.Z;
+      continue;
+    }
+    ASSERT_EQ(segments.size(), 1u) << c.Origin.X << " " << c.Origin.Y << " " << c.Origin.Z;
+    EXPECT_NEAR(segments[0].TNear, c.Near, 1e-9);
+    EXPECT_NEAR(segments[0].TFar, c.Far, 1e-9);
+  }
+}
+
+// The end-to-end proof that skipping is exact: casting with the oracle's segments gives
+// bit-identical results to casting whole rays, for every ray function, interpolation and
+// supercell size, with fewer samples.
+TEST(SegmentOracle, CastingWithTheOracleIsBitIdentical)
+{
+  std::mt19937 rng(18);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int dims[3] = { 14, 12, 16 };
+  std::uint64_t wholeSamples = 0, oracleSamples = 0;
+  for (const auto& size : SupercellSizes)
+  {
+    for (BlendMode blend : AllBlendModes)
+    {
+      for (auto interp : { parc::Interpolation::Linear, parc::Interpolation::Nearest })
+      {
+        Scene s(rng, dims, blend, size, interp);
+        s.Params.Shade = (rng() % 2) == 0;
+        s.Params.Lights.push_back(parc::Light());
+        s.Params.Lights.back().Position = { 0, 0, 1 };
+        const parc::SegmentOracle oracle(s.Grid, s.Params.WorldToIndex);
+        for (int r = 0; r < 40; ++r)
+        {
+          const Vec3 target(6.5 + 6 * u(rng), 5.5 + 5 * u(rng), 7.5 + 7 * u(rng));
+          const Vec3 dir(u(rng), u(rng), u(rng));
+          const parc::Ray ray = parctest::MakeRay(target - 30.0 * parc::Normalized(dir), dir);
+          const auto whole = parctest::CastOne(s.Field, s.Params, ray);
+          const auto fast = parctest::CastOne(s.Field, s.Params, ray, &oracle);
+          ASSERT_EQ(std::memcmp(whole.RGBA, fast.RGBA, sizeof(whole.RGBA)), 0)
+            << "blend " << static_cast<int>(blend) << " size " << size[0] << " rgba "
+            << whole.RGBA[3] << " vs " << fast.RGBA[3];
+          ASSERT_LE(fast.Stats.Samples, whole.Stats.Samples);
+          wholeSamples += whole.Stats.Samples;
+          oracleSamples += fast.Stats.Samples;
+        }
+      }
+    }
+  }
+  EXPECT_LT(oracleSamples, wholeSamples) << "the oracle skips empty samples";
+}
