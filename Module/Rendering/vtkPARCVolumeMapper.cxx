@@ -1,11 +1,10 @@
 #include "vtkPARCVolumeMapper.h"
 
 #include "parcRayCaster.h"
+#include "parcVTKConversion.h"
 
 #include "vtkCamera.h"
-#include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
-#include "vtkContourValues.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
@@ -14,75 +13,21 @@
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRayCastImageDisplayHelper.h"
-#include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkTimerLog.h"
 #include "vtkVolume.h"
-#include "vtkVolumeProperty.h"
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace
 {
-constexpr int ColorTableSize = 1024;
-constexpr int NonLinearSegmentPieces = 32; ///< pieces for a node with midpoint/sharpness
-constexpr float DisplayDepth = 1e-6f;      ///< window depth of the displayed image quad
-
-/// Converts a vtkPiecewiseFunction into the core's exact piecewise-linear function.
-void ConvertPiecewise(vtkPiecewiseFunction* f, parc::PiecewiseLinearFunction& out)
-{
-  const int n = f ? f->GetSize() : 0;
-  if (n == 0)
-  {
-    out.SetConstant(f ? f->GetValue(0.0) : 1.0);
-    return;
-  }
-  std::vector<double> x, y;
-  double node[4], next[4];
-  for (int i = 0; i < n; ++i)
-  {
-    f->GetNodeValue(i, node);
-    x.push_back(node[0]);
-    y.push_back(node[1]);
-    if (i + 1 < n && (node[2] != 0.5 || node[3] != 0.0))
-    {
-      f->GetNodeValue(i + 1, next);
-      for (int p = 1; p < NonLinearSegmentPieces; ++p)
-      {
-        const double s = node[0] + (next[0] - node[0]) * p / NonLinearSegmentPieces;
-        x.push_back(s);
-        y.push_back(f->GetValue(s));
-      }
-    }
-  }
-  out.SetNodes(std::move(x), std::move(y), f->GetClamping() != 0);
-}
-
-void ConvertColor(vtkVolumeProperty* property, const double range[2], parc::ColorTable& out)
-{
-  std::vector<float> rgb(3 * ColorTableSize);
-  const double lo = range[0];
-  const double hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
-  if (property->GetColorChannels() == 1)
-  {
-    std::vector<float> gray(ColorTableSize);
-    property->GetGrayTransferFunction()->GetTable(lo, hi, ColorTableSize, gray.data());
-    for (int i = 0; i < ColorTableSize; ++i)
-    {
-      rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = gray[i];
-    }
-  }
-  else
-  {
-    property->GetRGBTransferFunction()->GetTable(lo, hi, ColorTableSize, rgb.data());
-  }
-  out.SetTable(lo, hi, std::move(rgb));
-}
+constexpr float DisplayDepth = 1e-6f; ///< window depth of the displayed image quad
 
 void ConvertLights(vtkRenderer* ren, std::vector<parc::Light>& lights)
 {
@@ -114,29 +59,10 @@ void ConvertLights(vtkRenderer* ren, std::vector<parc::Light>& lights)
   }
 }
 
-parc::Matrix4 ToMatrix4(vtkMatrix4x4* m)
-{
-  parc::Matrix4 out;
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      out(r, c) = m->GetElement(r, c);
-    }
-  }
-  return out;
-}
-
 /// The matrix from 0-based voxel indices of the image to world coordinates.
 parc::Matrix4 IndexToWorld(vtkImageData* image, vtkVolume* vol)
 {
-  parc::Matrix4 indexToData = ToMatrix4(image->GetIndexToPhysicalMatrix());
-  const int* extent = image->GetExtent();
-  parc::Matrix4 shift;
-  shift(0, 3) = extent[0];
-  shift(1, 3) = extent[2];
-  shift(2, 3) = extent[4];
-  return parc::Multiply(ToMatrix4(vol->GetMatrix()), parc::Multiply(indexToData, shift));
+  return parc::Multiply(parc::vtk::ToMatrix4(vol->GetMatrix()), parc::vtk::IndexToPhysical(image));
 }
 
 /// True when the renderer draws any visible prop besides volumes.
@@ -155,12 +81,6 @@ bool HasOtherGeometry(vtkRenderer* ren)
   return false;
 }
 
-template <typename T>
-std::size_t AssignField(parc::ScalarField& field, vtkDataArray* array, const int dims[3])
-{
-  return field.Assign(static_cast<const T*>(array->GetVoidPointer(0)), dims,
-    array->GetNumberOfComponents());
-}
 }
 
 //------------------------------------------------------------------------------
@@ -255,24 +175,11 @@ bool vtkPARCVolumeMapper::PrepareField()
     vtkErrorMacro("The input is not a vtkImageData.");
     return false;
   }
-  int dims[3];
-  image->GetDimensions(dims);
-  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
+  std::string error;
+  if (!parc::vtk::CheckImage(image, error))
   {
-    vtkErrorMacro("The input has dimensions " << dims[0] << " x " << dims[1] << " x " << dims[2]
-                                               << ": at least 2 samples are needed along each "
-                                                  "axis to cast rays; nothing is drawn.");
+    vtkErrorMacro(<< error << " Nothing is drawn.");
     return false;
-  }
-  const double* spacing = image->GetSpacing();
-  for (int a = 0; a < 3; ++a)
-  {
-    if (spacing[a] == 0.0 || !std::isfinite(spacing[a]))
-    {
-      vtkErrorMacro("The input spacing (" << spacing[0] << ", " << spacing[1] << ", "
-                                          << spacing[2] << ") must be finite and non-zero.");
-      return false;
-    }
   }
   int cellFlag = 0;
   vtkDataArray* scalars = vtkAbstractMapper::GetScalars(image, this->ScalarMode,
@@ -297,48 +204,12 @@ bool vtkPARCVolumeMapper::PrepareField()
     vtkWarningMacro("The scalars have " << scalars->GetNumberOfComponents()
                                         << " components; only the first is rendered.");
   }
+  int dims[3];
+  image->GetDimensions(dims);
   std::size_t replaced = 0;
-  try
+  if (!parc::vtk::ConvertScalars(scalars, dims, in.Field, replaced, error))
   {
-    switch (scalars->GetDataType())
-    {
-      case VTK_CHAR:
-      case VTK_SIGNED_CHAR:
-        replaced = AssignField<signed char>(in.Field, scalars, dims);
-        break;
-      case VTK_UNSIGNED_CHAR:
-        replaced = AssignField<unsigned char>(in.Field, scalars, dims);
-        break;
-      case VTK_SHORT:
-        replaced = AssignField<short>(in.Field, scalars, dims);
-        break;
-      case VTK_UNSIGNED_SHORT:
-        replaced = AssignField<unsigned short>(in.Field, scalars, dims);
-        break;
-      case VTK_INT:
-        replaced = AssignField<int>(in.Field, scalars, dims);
-        break;
-      case VTK_UNSIGNED_INT:
-        replaced = AssignField<unsigned int>(in.Field, scalars, dims);
-        break;
-      case VTK_FLOAT:
-        replaced = AssignField<float>(in.Field, scalars, dims);
-        break;
-      case VTK_DOUBLE:
-        replaced = AssignField<double>(in.Field, scalars, dims);
-        break;
-      default:
-        vtkErrorMacro("Unsupported scalar type " << scalars->GetDataTypeAsString()
-                                                 << ": use (unsigned) char, short, int, float "
-                                                    "or double.");
-        in.FieldArray = nullptr;
-        return false;
-    }
-  }
-  catch (const std::bad_alloc&)
-  {
-    vtkErrorMacro("Not enough memory to convert " << scalars->GetNumberOfTuples()
-                                                  << " scalars; nothing is drawn.");
+    vtkErrorMacro(<< error << " Nothing is drawn.");
     in.FieldArray = nullptr;
     return false;
   }
@@ -358,58 +229,16 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& in = *this->Internals;
   parc::CastParameters& p = in.Parameters;
-  switch (this->BlendMode)
+  if (!parc::vtk::ConvertBlendMode(this->BlendMode, p.Blend))
   {
-    case COMPOSITE_BLEND:
-      p.Blend = parc::BlendMode::Composite;
-      break;
-    case MAXIMUM_INTENSITY_BLEND:
-      p.Blend = parc::BlendMode::MaximumIntensity;
-      break;
-    case MINIMUM_INTENSITY_BLEND:
-      p.Blend = parc::BlendMode::MinimumIntensity;
-      break;
-    case AVERAGE_INTENSITY_BLEND:
-      p.Blend = parc::BlendMode::AverageIntensity;
-      break;
-    case ADDITIVE_BLEND:
-      p.Blend = parc::BlendMode::Additive;
-      break;
-    case ISOSURFACE_BLEND:
-      p.Blend = parc::BlendMode::IsoSurface;
-      break;
-    default:
-      vtkErrorMacro("Blend mode " << this->BlendMode << " is not supported; nothing is drawn.");
-      return false;
+    vtkErrorMacro("Blend mode " << this->BlendMode << " is not supported; nothing is drawn.");
+    return false;
   }
   if (this->Cropping)
   {
     vtkWarningMacro("Cropping is not supported and is ignored.");
   }
-  vtkVolumeProperty* property = vol->GetProperty();
-  p.Interp = property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION
-    ? parc::Interpolation::Nearest
-    : parc::Interpolation::Linear;
-  ConvertPiecewise(property->GetScalarOpacity(0), p.Opacity);
-  ConvertColor(property, in.Field.GetRange(), p.Color);
-  p.UseGradientOpacity = property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
-  if (p.UseGradientOpacity)
-  {
-    ConvertPiecewise(property->GetGradientOpacity(0), p.GradientOpacity);
-  }
-  p.OpacityUnitDistance = property->GetScalarOpacityUnitDistance(0);
-  p.Shade = property->GetShade(0) &&
-    (p.Blend == parc::BlendMode::Composite || p.Blend == parc::BlendMode::IsoSurface);
-  p.Ambient = property->GetAmbient(0);
-  p.Diffuse = property->GetDiffuse(0);
-  p.Specular = property->GetSpecular(0);
-  p.SpecularPower = property->GetSpecularPower(0);
-  p.IsoValues.clear();
-  vtkContourValues* iso = property->GetIsoSurfaceValues();
-  for (int i = 0; i < iso->GetNumberOfContours(); ++i)
-  {
-    p.IsoValues.push_back(iso->GetValue(i));
-  }
+  parc::vtk::ConvertProperty(vol->GetProperty(), in.Field.GetRange(), p);
   p.AverageRange[0] = this->AverageIPScalarRange[0];
   p.AverageRange[1] = this->AverageIPScalarRange[1];
   p.TerminationOpacity = this->TerminationOpacity;
@@ -464,7 +293,7 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
   vtkCamera* camera = ren->GetActiveCamera();
   vtkMatrix4x4* worldToNDC =
     camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1);
-  if (!parc::Invert(ToMatrix4(worldToNDC), view.NDCToWorld))
+  if (!parc::Invert(parc::vtk::ToMatrix4(worldToNDC), view.NDCToWorld))
   {
     vtkErrorMacro("The camera's projection is singular.");
     return;

@@ -1,0 +1,45 @@
+// PARC for VTK: conversions from VTK objects to the core's types, shared by the mapper and
+// the polygon-model filter (private to the module, not wrapped).
+#ifndef parcVTKConversion_h
+#define parcVTKConversion_h
+
+#include "parcRayCaster.h"
+
+#include <string>
+
+class vtkDataArray;
+class vtkImageData;
+class vtkMatrix4x4;
+class vtkVolumeProperty;
+
+namespace parc
+{
+namespace vtk
+{
+
+/// The core blend mode of a vtkVolumeMapper blend mode; false for unsupported ones.
+bool ConvertBlendMode(int vtkBlendMode, BlendMode& out);
+
+/// Copies the first component of scalars (point data of an image of dims) into field.
+/// Returns false with a message in error for unsupported types or too little memory;
+/// replaced receives the number of non-finite values replaced.
+bool ConvertScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
+  std::size_t& replaced, std::string& error);
+
+/// Checks that an image can be cast (dims >= 2, finite non-zero spacing); false with a
+/// message otherwise.
+bool CheckImage(vtkImageData* image, std::string& error);
+
+/// The transfer functions, interpolation, shading coefficients and iso values of
+/// component 0 of property, for a field of the given value range. Blend must be set in p
+/// already (it decides whether shading applies).
+void ConvertProperty(vtkVolumeProperty* property, const double range[2], CastParameters& p);
+
+Matrix4 ToMatrix4(vtkMatrix4x4* m);
+/// The matrix from 0-based voxel indices of the image to its physical coordinates.
+Matrix4 IndexToPhysical(vtkImageData* image);
+
+} // namespace vtk
+} // namespace parc
+
+#endif

@@ -1,0 +1,206 @@
+#include "vtkPARCPolygonModelFilter.h"
+
+#include "parcPolygonModel.h"
+#include "parcVTKConversion.h"
+
+#include "vtkCellArray.h"
+#include "vtkDataArray.h"
+#include "vtkDataObject.h"
+#include "vtkDoubleArray.h"
+#include "vtkFieldData.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
+#include "vtkIntArray.h"
+#include "vtkObjectFactory.h"
+#include "vtkPointData.h"
+#include "vtkPoints.h"
+#include "vtkPolyData.h"
+#include "vtkCellData.h"
+#include "vtkVolumeProperty.h"
+
+#include <string>
+
+namespace
+{
+void AddStatistic(vtkFieldData* fd, const char* name, double value)
+{
+  vtkNew<vtkDoubleArray> a;
+  a->SetName(name);
+  a->InsertNextValue(value);
+  fd->AddArray(a);
+}
+}
+
+class vtkPARCPolygonModelFilter::vtkInternals
+{
+public:
+  parc::ScalarField Field;
+  parc::RangePyramid Pyramid;
+  vtkDataArray* FieldArray = nullptr;
+  vtkMTimeType FieldTime = 0;
+  vtkNew<vtkVolumeProperty> DefaultProperty;
+};
+
+vtkStandardNewMacro(vtkPARCPolygonModelFilter);
+vtkCxxSetObjectMacro(vtkPARCPolygonModelFilter, VolumeProperty, vtkVolumeProperty);
+
+//------------------------------------------------------------------------------
+vtkPARCPolygonModelFilter::vtkPARCPolygonModelFilter()
+  : Internals(new vtkInternals)
+{
+  this->SetInputArrayToProcess(
+    0, 0, 0, vtkDataObject::FIELD_ASSOCIATION_POINTS, vtkDataSetAttributes::SCALARS);
+}
+
+//------------------------------------------------------------------------------
+vtkPARCPolygonModelFilter::~vtkPARCPolygonModelFilter()
+{
+  this->SetVolumeProperty(nullptr);
+}
+
+//------------------------------------------------------------------------------
+vtkMTimeType vtkPARCPolygonModelFilter::GetMTime()
+{
+  vtkMTimeType time = this->Superclass::GetMTime();
+  if (this->VolumeProperty)
+  {
+    time = std::max(time, this->VolumeProperty->GetMTime());
+  }
+  return time;
+}
+
+//------------------------------------------------------------------------------
+int vtkPARCPolygonModelFilter::FillInputPortInformation(int, vtkInformation* info)
+{
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkImageData");
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+int vtkPARCPolygonModelFilter::RequestData(
+  vtkInformation*, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkImageData* image = vtkImageData::GetData(inputVector[0]);
+  vtkPolyData* output = vtkPolyData::GetData(outputVector);
+  vtkInternals& in = *this->Internals;
+  std::string error;
+  if (!parc::vtk::CheckImage(image, error))
+  {
+    vtkErrorMacro(<< error);
+    return 1;
+  }
+  vtkDataArray* scalars = this->GetInputArrayToProcess(0, inputVector);
+  if (!scalars)
+  {
+    vtkErrorMacro("The input has no point scalars to classify.");
+    return 1;
+  }
+  parc::CastParameters p;
+  if (!parc::vtk::ConvertBlendMode(this->BlendMode, p.Blend))
+  {
+    vtkErrorMacro("Blend mode " << this->BlendMode << " is not supported.");
+    return 1;
+  }
+  const vtkMTimeType time = std::max(image->GetMTime(), scalars->GetMTime());
+  if (scalars != in.FieldArray || time != in.FieldTime)
+  {
+    int dims[3];
+    image->GetDimensions(dims);
+    std::size_t replaced = 0;
+    in.FieldArray = nullptr;
+    if (!parc::vtk::ConvertScalars(scalars, dims, in.Field, replaced, error))
+    {
+      vtkErrorMacro(<< error);
+      return 1;
+    }
+    in.Pyramid.Build(in.Field);
+    in.FieldArray = scalars;
+    in.FieldTime = time;
+  }
+  this->UpdateProgress(0.25);
+
+  vtkVolumeProperty* property =
+    this->VolumeProperty ? this->VolumeProperty : in.DefaultProperty.Get();
+  parc::vtk::ConvertProperty(property, in.Field.GetRange(), p);
+  p.AverageRange[0] = this->AverageIPScalarRange[0];
+  p.AverageRange[1] = this->AverageIPScalarRange[1];
+  parc::ContributionRule rule;
+  rule.Set(p, in.Field.GetRange());
+  parc::SupercellGrid grid;
+  if (!grid.Configure(in.Pyramid.GetCellDimensions(), this->SupercellSize))
+  {
+    vtkErrorMacro("Invalid supercell size (" << this->SupercellSize[0] << ", "
+                                             << this->SupercellSize[1] << ", "
+                                             << this->SupercellSize[2]
+                                             << "): sizes must be positive and finite, and "
+                                                "make at most 2^28 supercells.");
+    return 1;
+  }
+  grid.Classify(in.Pyramid, rule, p.Interp);
+  this->UpdateProgress(0.5);
+
+  parc::PolygonModel model;
+  if (this->Model == COLOR_MODEL)
+  {
+    parc::BuildColorModel(grid, this->MajorAxis, model);
+  }
+  else
+  {
+    parc::BuildDepthModel(grid, this->MergeFaces, model);
+  }
+  this->UpdateProgress(0.75);
+
+  const parc::Matrix4 indexToPhysical = parc::vtk::IndexToPhysical(image);
+  vtkNew<vtkPoints> points;
+  points->SetDataTypeToDouble();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(model.Vertices.size()));
+  for (std::size_t v = 0; v < model.Vertices.size(); ++v)
+  {
+    const parc::Vec3 x = indexToPhysical.TransformPoint(model.Vertices[v]);
+    points->SetPoint(static_cast<vtkIdType>(v), x.X, x.Y, x.Z);
+  }
+  vtkNew<vtkCellArray> quads;
+  quads->AllocateExact(static_cast<vtkIdType>(model.GetNumberOfQuads()),
+    static_cast<vtkIdType>(model.Vertices.size()));
+  for (std::size_t q = 0; q < model.GetNumberOfQuads(); ++q)
+  {
+    const vtkIdType ids[4] = { static_cast<vtkIdType>(4 * q), static_cast<vtkIdType>(4 * q + 1),
+      static_cast<vtkIdType>(4 * q + 2), static_cast<vtkIdType>(4 * q + 3) };
+    quads->InsertNextCell(4, ids);
+  }
+  output->SetPoints(points);
+  output->SetPolys(quads);
+  if (this->Model == COLOR_MODEL)
+  {
+    vtkNew<vtkIntArray> planes;
+    planes->SetName("PlaneIndex");
+    planes->SetNumberOfValues(static_cast<vtkIdType>(model.Planes.size()));
+    std::copy(model.Planes.begin(), model.Planes.end(), planes->GetPointer(0));
+    output->GetCellData()->AddArray(planes);
+  }
+  const parc::ModelStatistics stats = parc::ComputeStatistics(grid, model);
+  vtkFieldData* fd = output->GetFieldData();
+  AddStatistic(fd, "Cells", static_cast<double>(stats.Cells));
+  AddStatistic(fd, "Supercells", static_cast<double>(stats.Supercells));
+  AddStatistic(fd, "ContributingSupercells", static_cast<double>(stats.ContributingSupercells));
+  AddStatistic(fd, "ContributingPercent", stats.ContributingPercent);
+  AddStatistic(fd, "Polygons", static_cast<double>(stats.Polygons));
+  this->UpdateProgress(1.0);
+  return 1;
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCPolygonModelFilter::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "VolumeProperty: " << this->VolumeProperty << "\n";
+  os << indent << "BlendMode: " << this->BlendMode << "\n";
+  os << indent << "AverageIPScalarRange: " << this->AverageIPScalarRange[0] << ", "
+     << this->AverageIPScalarRange[1] << "\n";
+  os << indent << "SupercellSize: " << this->SupercellSize[0] << ", " << this->SupercellSize[1]
+     << ", " << this->SupercellSize[2] << "\n";
+  os << indent << "Model: " << (this->Model == COLOR_MODEL ? "Color" : "Depth") << "\n";
+  os << indent << "MajorAxis: " << this->MajorAxis << "\n";
+  os << indent << "MergeFaces: " << this->MergeFaces << "\n";
+}

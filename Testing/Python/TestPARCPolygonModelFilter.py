@@ -1,0 +1,148 @@
+"""vtkPARCPolygonModelFilter from Python: the depth model of the wavelet is a closed
+surface whose statistics match its polygons, merging keeps the area with fewer quads, the
+colour model numbers its planes from 0, a transfer-function change re-executes the
+filter, a bad supercell size gives an error and an empty model, and the model renders
+through vtkPolyDataMapper."""
+import unittest
+
+from parc import vtkPARCPolygonModelFilter
+from vtkmodules.vtkCommonCore import vtkCommand
+from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
+from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkFeatureEdges
+from vtkmodules.vtkFiltersVerdict import vtkCellSizeFilter
+from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
+from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderWindow,
+                                         vtkRenderer, vtkVolumeProperty, vtkWindowToImageFilter)
+from vtkmodules.vtkRenderingVolume import vtkVolumeMapper
+
+
+def statistic(poly, name):
+    return poly.GetFieldData().GetArray(name).GetValue(0)
+
+
+def total_area(poly):
+    sizes = vtkCellSizeFilter()
+    sizes.SetInputData(poly)
+    sizes.ComputeSumOn()
+    sizes.Update()
+    return sizes.GetOutput().GetFieldData().GetArray("Area").GetValue(0)
+
+
+class ErrorObserver:
+    def __init__(self):
+        self.messages = []
+
+    def __call__(self, caller, event, data=None):
+        self.messages.append(event)
+
+
+class TestPolygonModelFilter(unittest.TestCase):
+    def setUp(self):
+        self.source = vtkRTAnalyticSource()  # the wavelet, values about 37..277
+        self.source.SetWholeExtent(-16, 16, -16, 16, -16, 16)
+        self.opacity = vtkPiecewiseFunction()
+        self.opacity.AddPoint(200, 0.0)
+        self.opacity.AddPoint(260, 0.5)
+        self.property = vtkVolumeProperty()
+        self.property.SetScalarOpacity(self.opacity)
+        self.filter = vtkPARCPolygonModelFilter()
+        self.filter.SetInputConnection(self.source.GetOutputPort())
+        self.filter.SetVolumeProperty(self.property)
+        self.filter.SetBlendMode(vtkVolumeMapper.COMPOSITE_BLEND)
+        self.filter.SetSupercellSize(2, 2, 2)
+
+    def model(self):
+        self.filter.Update()
+        out = vtkCleanPolyData()
+        out.SetInputData(self.filter.GetOutput())
+        out.Update()
+        return self.filter.GetOutput(), out.GetOutput()
+
+    def test_depth_model_is_closed_and_counted(self):
+        poly, cleaned = self.model()
+        self.assertGreater(poly.GetNumberOfCells(), 0)
+        self.assertEqual(statistic(poly, "Polygons"), poly.GetNumberOfCells())
+        self.assertEqual(statistic(poly, "Cells"), 32 ** 3)
+        self.assertEqual(statistic(poly, "Supercells"), 16 ** 3)
+        pc = statistic(poly, "ContributingSupercells")
+        self.assertTrue(0 < pc < 16 ** 3)
+        self.assertAlmostEqual(statistic(poly, "ContributingPercent"), 100.0 * pc / 16 ** 3)
+        edges = vtkFeatureEdges()
+        edges.SetInputData(cleaned)
+        edges.BoundaryEdgesOn()
+        edges.FeatureEdgesOff()
+        edges.ManifoldEdgesOff()
+        edges.NonManifoldEdgesOff()
+        edges.Update()
+        self.assertEqual(edges.GetOutput().GetNumberOfCells(), 0, "no boundary edge")
+
+    def test_merging_keeps_the_area(self):
+        poly, _ = self.model()
+        area, quads = total_area(poly), poly.GetNumberOfCells()
+        self.filter.MergeFacesOn()
+        merged, _ = self.model()
+        self.assertLess(merged.GetNumberOfCells(), quads)
+        self.assertAlmostEqual(total_area(merged), area, delta=1e-9 * area)
+
+    def test_color_model_planes(self):
+        self.filter.SetModelToColor()
+        self.filter.SetMajorAxis(0)
+        poly, _ = self.model()
+        planes = poly.GetCellData().GetArray("PlaneIndex")
+        self.assertIsNotNone(planes)
+        lo, hi = planes.GetRange()
+        self.assertEqual(lo, 0)
+        self.assertGreater(hi, 0)
+        self.assertLess(hi, 16)
+
+    def test_transfer_function_change_reexecutes(self):
+        poly, _ = self.model()
+        before = statistic(poly, "ContributingSupercells")
+        self.opacity.AddPoint(120, 0.0)
+        self.opacity.AddPoint(140, 0.2)
+        self.opacity.AddPoint(160, 0.0)
+        poly, _ = self.model()
+        self.assertGreater(statistic(poly, "ContributingSupercells"), before)
+
+    def test_isosurface_and_progress(self):
+        self.property.GetIsoSurfaceValues().SetValue(0, 150.0)
+        self.filter.SetBlendMode(vtkVolumeMapper.ISOSURFACE_BLEND)
+        progress = []
+        self.filter.AddObserver(vtkCommand.ProgressEvent,
+                                lambda caller, event: progress.append(caller.GetProgress()))
+        poly, _ = self.model()
+        self.assertGreater(poly.GetNumberOfCells(), 0)
+        self.assertEqual(progress, sorted(progress))
+        self.assertEqual(progress[-1], 1.0)
+
+    def test_bad_supercell_size(self):
+        errors = ErrorObserver()
+        self.filter.AddObserver(vtkCommand.ErrorEvent, errors)
+        self.filter.SetSupercellSize(0, 1, 1)
+        self.filter.Update()
+        self.assertEqual(self.filter.GetOutput().GetNumberOfCells(), 0)
+        self.assertEqual(len(errors.messages), 1)
+
+    def test_renders_through_a_polydata_mapper(self):
+        mapper = vtkPolyDataMapper()
+        mapper.SetInputConnection(self.filter.GetOutputPort())
+        actor = vtkActor()
+        actor.SetMapper(mapper)
+        renderer = vtkRenderer()
+        renderer.AddActor(actor)
+        window = vtkRenderWindow()
+        window.SetOffScreenRendering(1)
+        window.SetSize(100, 100)
+        window.AddRenderer(renderer)
+        renderer.ResetCamera()
+        window.Render()
+        grab = vtkWindowToImageFilter()
+        grab.SetInput(window)
+        grab.Update()
+        pixels = grab.GetOutput().GetPointData().GetScalars()
+        lit = sum(1 for i in range(pixels.GetNumberOfTuples()) if pixels.GetTuple3(i) != (0, 0, 0))
+        self.assertGreater(lit, 100)
+
+
+if __name__ == "__main__":
+    unittest.main()
