@@ -24,6 +24,7 @@ CastStatistics& CastStatistics::operator+=(const CastStatistics& o)
   this->Samples += o.Samples;
   this->ContributingSamples += o.ContributingSamples;
   this->GradientEvaluations += o.GradientEvaluations;
+  this->Cells += o.Cells;
   return *this;
 }
 
@@ -483,6 +484,17 @@ struct IsoSurfaceFunction
   }
 };
 
+/// The number of unit cells the segment from a to b (voxel-index coordinates) passes.
+std::uint64_t CellsCrossed(const Vec3& a, const Vec3& b)
+{
+  std::uint64_t n = 1;
+  for (int axis = 0; axis < 3; ++axis)
+  {
+    n += static_cast<std::uint64_t>(std::fabs(std::floor(b[axis]) - std::floor(a[axis])));
+  }
+  return n;
+}
+
 template <class Function>
 void Walk(const std::vector<LatticeRange>& ranges, Function& fn)
 {
@@ -537,6 +549,10 @@ void RayCaster::CastRay(const Ray& ray, int px, int py, const SegmentSource& sou
   const Matrix4& w2i = this->Params->WorldToIndex;
   RayContext context{ *this->Field, *this->Params, ray, w2i.TransformPoint(ray.Origin),
     w2i.TransformVector(ray.Direction), dt, this->OpacityExponent, this->GradientNeeded, stats };
+  for (const LatticeRange& r : ranges)
+  {
+    stats.Cells += CellsCrossed(context.IndexPosition(r.First * dt), context.IndexPosition(r.Last * dt));
+  }
   switch (this->Params->Blend)
   {
     case BlendMode::Composite:

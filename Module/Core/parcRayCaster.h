@@ -86,6 +86,7 @@ struct CastStatistics
   std::uint64_t Samples = 0;             ///< scalar samples taken on the lattice
   std::uint64_t ContributingSamples = 0; ///< non-zero opacity, or isosurface crossings
   std::uint64_t GradientEvaluations = 0;
+  std::uint64_t Cells = 0; ///< cells crossed by the cast lattice ranges (paper, Table 2)
 
   CastStatistics& operator+=(const CastStatistics& o);
 };

@@ -1,7 +1,10 @@
 #include "vtkPARCVolumeMapper.h"
 
+#include "parcBufferSources.h"
+#include "parcPolygonModel.h"
 #include "parcRayCaster.h"
 #include "parcVTKConversion.h"
+#include "vtkPARCRasterizer.h"
 
 #include "vtkCamera.h"
 #include "vtkCommand.h"
@@ -19,6 +22,7 @@
 #include "vtkRenderer.h"
 #include "vtkTimerLog.h"
 #include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
 
 #include <algorithm>
 #include <cmath>
@@ -102,6 +106,34 @@ public:
   double RenderTime = 0.0;
   int LastMode = ACCELERATION_NONE;
   vtkNew<vtkOpenGLRayCastImageDisplayHelper> DisplayHelper;
+
+  // PARC: cached classification and models, rebuilt only when their inputs change.
+  parc::RangePyramid Pyramid;
+  vtkMTimeType PyramidFieldTime = 0;
+  parc::SupercellGrid Grid;
+  parc::PolygonModel DepthModel;
+  parc::PolygonModel ColorModels[3];
+  bool ColorModelBuilt[3] = { false, false, false };
+  std::uint64_t ModelVersion = 0;
+  struct ClassificationKey
+  {
+    vtkMTimeType FieldTime = 0, PropertyTime = 0;
+    int Blend = -1;
+    double Average[2] = { 0, 0 }, Size[3] = { 0, 0, 0 };
+    bool operator==(const ClassificationKey& o) const
+    {
+      return FieldTime == o.FieldTime && PropertyTime == o.PropertyTime && Blend == o.Blend &&
+        std::equal(Average, Average + 2, o.Average) && std::equal(Size, Size + 3, o.Size);
+    }
+  } Classified;
+  vtkNew<vtkPARCRasterizer> Rasterizer;
+  parc::DepthBufferSource DepthSource;
+  parc::PlaneBufferSource PlaneSource;
+  bool FallbackWarned = false;
+  vtkIdType PolygonCount = 0;
+  int PlaneCount = 0;
+  int PassCount = 0;
+  vtkIdType PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
 };
 
 vtkStandardNewMacro(vtkPARCVolumeMapper);
@@ -142,6 +174,8 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->SetAbortExecute(0); // like an algorithm's execution, each render starts un-aborted
   in.Stats = parc::CastStatistics();
   in.CastingTime = in.ProjectionTime = 0.0;
+  in.PolygonCount = 0;
+  in.PlaneCount = in.PassCount = 0;
   in.ImageSize[0] = in.ImageSize[1] = 0;
   in.Image.clear();
 
@@ -151,7 +185,7 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
   this->InvokeEvent(vtkCommand::VolumeMapperRenderStartEvent, nullptr);
-  this->CastImage(ren);
+  this->CastImage(ren, vol);
   this->InvokeEvent(vtkCommand::VolumeMapperRenderEndEvent, nullptr);
   this->DisplayImage(ren, vol);
   in.RenderTime = vtkTimerLog::GetUniversalTime() - renderStart;
@@ -278,30 +312,24 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
 }
 
 //------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
+void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
 {
   vtkInternals& in = *this->Internals;
   int width, height, x0, y0;
   ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
-  parc::ViewGeometry view;
-  view.Width = std::max(1, static_cast<int>(width / this->ImageSampleDistance));
-  view.Height = std::max(1, static_cast<int>(height / this->ImageSampleDistance));
   if (width < 1 || height < 1)
   {
     return;
   }
-  vtkCamera* camera = ren->GetActiveCamera();
-  vtkMatrix4x4* worldToNDC =
-    camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1);
-  if (!parc::Invert(parc::vtk::ToMatrix4(worldToNDC), view.NDCToWorld))
+  parc::ViewGeometry view;
+  vtkPARCRasterizer::View passView;
+  if (!vtkPARCRasterizer::MakeViews(ren,
+        std::max(1, static_cast<int>(width / this->ImageSampleDistance)),
+        std::max(1, static_cast<int>(height / this->ImageSampleDistance)), view, passView))
   {
     vtkErrorMacro("The camera's projection is singular.");
     return;
   }
-  view.Parallel = camera->GetParallelProjection() != 0;
-  const double* eye = camera->GetPosition();
-  view.Eye = { eye[0], eye[1], eye[2] };
-
   const std::size_t pixels = static_cast<std::size_t>(view.Width) * view.Height;
   const float* depth = nullptr;
   if (this->IntermixIntersectingGeometry && HasOtherGeometry(ren))
@@ -322,14 +350,33 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
     depth = in.Depth.data();
   }
 
-  in.LastMode = ACCELERATION_NONE;
-  if (this->AccelerationMode == ACCELERATION_DEPTH_BUFFER ||
-    this->AccelerationMode == ACCELERATION_COLOR_BUFFER)
-  {
-    vtkWarningMacro("Acceleration mode " << GetAccelerationModeAsString(this->AccelerationMode)
-                                         << " is not available yet; casting unaccelerated.");
-  }
   const parc::WholeRaySource wholeRays;
+  const parc::SegmentSource* source = &wholeRays;
+  in.LastMode = ACCELERATION_NONE;
+  const int mode = this->AccelerationMode == ACCELERATION_AUTO ? ACCELERATION_DEPTH_BUFFER
+                                                                 : this->AccelerationMode;
+  if (mode != ACCELERATION_NONE && this->PrepareModels(vol))
+  {
+    const parc::Matrix4 indexToWorld =
+      IndexToWorld(vtkImageData::SafeDownCast(this->GetInput()), vol);
+    const double projectionStart = vtkTimerLog::GetUniversalTime();
+    std::vector<float> nearFar;
+    if (in.Rasterizer->RenderDepth(ren->GetRenderWindow(), in.DepthModel, in.ModelVersion,
+          indexToWorld, passView, nearFar))
+    {
+      in.DepthSource.Set(passView.Pass, std::move(nearFar), &in.Grid, in.Parameters.WorldToIndex);
+      source = &in.DepthSource;
+      in.LastMode = ACCELERATION_DEPTH_BUFFER;
+      in.PolygonCount = static_cast<vtkIdType>(in.DepthModel.GetNumberOfQuads());
+    }
+    else if (!in.FallbackWarned)
+    {
+      vtkWarningMacro("PARC passes are not available (" << in.Rasterizer->GetLastError()
+                                                        << "); casting unaccelerated.");
+      in.FallbackWarned = true;
+    }
+    in.ProjectionTime = vtkTimerLog::GetUniversalTime() - projectionStart;
+  }
   in.Image.resize(4 * pixels);
   in.ImageSize[0] = view.Width;
   in.ImageSize[1] = view.Height;
@@ -339,8 +386,48 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
     return !this->GetAbortExecute() && !window->CheckAbortStatus();
   };
   const double castStart = vtkTimerLog::GetUniversalTime();
-  in.Caster.CastImage(view, depth, wholeRays, in.Image.data(), in.Stats, progress);
+  in.Caster.CastImage(view, depth, *source, in.Image.data(), in.Stats, progress);
   in.CastingTime = vtkTimerLog::GetUniversalTime() - castStart;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPARCVolumeMapper::PrepareModels(vtkVolume* vol)
+{
+  vtkInternals& in = *this->Internals;
+  if (in.PyramidFieldTime != in.FieldTime)
+  {
+    in.Pyramid.Build(in.Field);
+    in.PyramidFieldTime = in.FieldTime;
+    ++in.PyramidBuilds;
+  }
+  vtkInternals::ClassificationKey key;
+  key.FieldTime = in.FieldTime;
+  key.PropertyTime = vol->GetProperty()->GetMTime();
+  key.Blend = this->BlendMode;
+  std::copy_n(this->AverageIPScalarRange, 2, key.Average);
+  std::copy_n(this->SupercellSize, 3, key.Size);
+  if (key == in.Classified)
+  {
+    return in.Grid.GetNumberOfSupercells() > 0;
+  }
+  in.Classified = key;
+  if (!in.Grid.Configure(in.Pyramid.GetCellDimensions(), this->SupercellSize))
+  {
+    vtkErrorMacro("Invalid supercell size (" << this->SupercellSize[0] << ", "
+                                             << this->SupercellSize[1] << ", "
+                                             << this->SupercellSize[2]
+                                             << "): casting unaccelerated.");
+    return false;
+  }
+  parc::ContributionRule rule;
+  rule.Set(in.Parameters, in.Field.GetRange());
+  in.Grid.Classify(in.Pyramid, rule, in.Parameters.Interp);
+  parc::BuildDepthModel(in.Grid, false, in.DepthModel);
+  std::fill_n(in.ColorModelBuilt, 3, false);
+  ++in.ModelVersion;
+  ++in.Classifications;
+  ++in.ModelBuilds;
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -366,6 +453,7 @@ void vtkPARCVolumeMapper::DisplayImage(vtkRenderer* ren, vtkVolume* vol)
 void vtkPARCVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->DisplayHelper->ReleaseGraphicsResources(window);
+  this->Internals->Rasterizer->ReleaseGraphicsResources(window);
 }
 
 //------------------------------------------------------------------------------
@@ -418,6 +506,46 @@ int vtkPARCVolumeMapper::GetLastAccelerationMode()
 {
   return this->Internals->LastMode;
 }
+vtkIdType vtkPARCVolumeMapper::GetLastPolygonCount()
+{
+  return this->Internals->PolygonCount;
+}
+vtkIdType vtkPARCVolumeMapper::GetLastCellCount()
+{
+  return static_cast<vtkIdType>(this->Internals->Stats.Cells);
+}
+vtkIdType vtkPARCVolumeMapper::GetLastSupercellCount()
+{
+  return static_cast<vtkIdType>(this->Internals->Grid.GetNumberOfSupercells());
+}
+vtkIdType vtkPARCVolumeMapper::GetLastContributingSupercellCount()
+{
+  return static_cast<vtkIdType>(this->Internals->Grid.GetNumberOfContributing());
+}
+int vtkPARCVolumeMapper::GetLastPlaneCount()
+{
+  return this->Internals->PlaneCount;
+}
+int vtkPARCVolumeMapper::GetLastPassCount()
+{
+  return this->Internals->PassCount;
+}
+vtkIdType vtkPARCVolumeMapper::GetPyramidBuildCount()
+{
+  return this->Internals->PyramidBuilds;
+}
+vtkIdType vtkPARCVolumeMapper::GetClassificationCount()
+{
+  return this->Internals->Classifications;
+}
+vtkIdType vtkPARCVolumeMapper::GetModelBuildCount()
+{
+  return this->Internals->ModelBuilds;
+}
+vtkIdType vtkPARCVolumeMapper::GetModelUploadCount()
+{
+  return static_cast<vtkIdType>(this->Internals->Rasterizer->GetUploadCount());
+}
 
 //------------------------------------------------------------------------------
 void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
@@ -430,6 +558,11 @@ void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
      << "Samples: " << in.Stats.Samples << "\n"
      << "Contributing samples: " << in.Stats.ContributingSamples << "\n"
      << "Gradients: " << in.Stats.GradientEvaluations << "\n"
+     << "Cells considered: " << in.Stats.Cells << "\n"
+     << "Supercells: " << in.Grid.GetNumberOfSupercells() << " ("
+     << in.Grid.GetNumberOfContributing() << " possibly contributing)\n"
+     << "Polygons: " << in.PolygonCount << "\n"
+     << "Planes: " << in.PlaneCount << " in " << in.PassCount << " passes\n"
      << "Casting time (s): " << in.CastingTime << "\n"
      << "Projection time (s): " << in.ProjectionTime << "\n"
      << "Render time (s): " << in.RenderTime << "\n";
@@ -441,6 +574,8 @@ void vtkPARCVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "AccelerationMode: " << GetAccelerationModeAsString(this->AccelerationMode)
      << "\n";
+  os << indent << "SupercellSize: " << this->SupercellSize[0] << ", " << this->SupercellSize[1]
+     << ", " << this->SupercellSize[2] << "\n";
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
   os << indent << "TerminationOpacity: " << this->TerminationOpacity << "\n";

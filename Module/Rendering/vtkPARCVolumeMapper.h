@@ -70,8 +70,12 @@ public:
   ///@{
   /**
    * How rays are told where to sample. None casts each ray through the whole volume;
-   * DepthBuffer and ColorBuffer use PARC passes; Auto picks per volume and ray function.
-   * Modes not built yet fall back to None with a warning. Default: Auto.
+   * DepthBuffer projects the outer faces of the possibly contributing (PC) supercells into
+   * near/far buffers and casts each ray only between them; ColorBuffer projects per-plane
+   * faces into bit planes and casts only inside the planes a ray's bits name; Auto picks
+   * per volume and ray function. The image is bit-identical in every mode. When no OpenGL
+   * 3.3 context or framebuffer is available, the mapper warns once and casts unaccelerated.
+   * Default: Auto.
    */
   vtkSetClampMacro(AccelerationMode, int, ACCELERATION_NONE, ACCELERATION_AUTO);
   vtkGetMacro(AccelerationMode, int);
@@ -80,6 +84,16 @@ public:
   void SetAccelerationModeToColorBuffer() { this->SetAccelerationMode(ACCELERATION_COLOR_BUFFER); }
   void SetAccelerationModeToAuto() { this->SetAccelerationMode(ACCELERATION_AUTO); }
   static const char* GetAccelerationModeAsString(int mode);
+  ///@}
+
+  ///@{
+  /**
+   * Supercell size in cells along the volume's x, y and z (positive real numbers; below 1
+   * they are subcells): larger supercells mean fewer polygons to project, smaller ones
+   * fewer samples in empty space (paper, section 2). Default 4 x 4 x 4.
+   */
+  vtkSetVector3Macro(SupercellSize, double);
+  vtkGetVector3Macro(SupercellSize, double);
   ///@}
 
   ///@{
@@ -147,6 +161,25 @@ public:
   double GetLastRenderTime();
   /** The acceleration mode the last render used (after any fallback). */
   int GetLastAccelerationMode();
+  /** Polygons projected by the last render's PARC passes (0 without acceleration). */
+  vtkIdType GetLastPolygonCount();
+  /** Cells the cast ray segments crossed (the paper's "cells considered"). */
+  vtkIdType GetLastCellCount();
+  /** Supercells and PC supercells of the last classification. */
+  vtkIdType GetLastSupercellCount();
+  vtkIdType GetLastContributingSupercellCount();
+  /** Colour-buffer PARC: planes and passes of the last render (0 otherwise). */
+  int GetLastPlaneCount();
+  int GetLastPassCount();
+  /**
+   * How often the work that only changes with the data, the transfer functions or the
+   * supercell size was done since the mapper was made: cell-range pyramids built,
+   * classifications, polygon models built and uploaded to the GPU.
+   */
+  vtkIdType GetPyramidBuildCount();
+  vtkIdType GetClassificationCount();
+  vtkIdType GetModelBuildCount();
+  vtkIdType GetModelUploadCount();
   void PrintStatistics(ostream& os);
   ///@}
 
@@ -162,11 +195,14 @@ protected:
   /** Converts the property, transform and lights into the caster's parameters. */
   bool PrepareParameters(vtkRenderer* ren, vtkVolume* vol);
   /** Casts the ray image for the renderer's camera (statistics and times included). */
-  void CastImage(vtkRenderer* ren);
+  void CastImage(vtkRenderer* ren, vtkVolume* vol);
+  /** Classifies and builds the polygon models when their inputs changed. */
+  bool PrepareModels(vtkVolume* vol);
   /** Composites the ray image over the renderer's viewport. */
   void DisplayImage(vtkRenderer* ren, vtkVolume* vol);
 
   int AccelerationMode = ACCELERATION_AUTO;
+  double SupercellSize[3] = { 4.0, 4.0, 4.0 };
   double SampleDistance = 0.0;
   double ImageSampleDistance = 1.0;
   double TerminationOpacity = 0.99;

@@ -1,0 +1,626 @@
+#include "vtkPARCRasterizer.h"
+
+#include "vtkCamera.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRenderWindow.h"
+#include "vtkOpenGLShaderCache.h"
+#include "vtkOpenGLState.h"
+#include "vtkRenderer.h"
+#include "vtk_glew.h"
+
+#include <algorithm>
+#include <array>
+
+namespace
+{
+constexpr int PlanesPerAttachment = 128; ///< one GL_RGBA32UI texel: 4 x 32 bits
+constexpr int MaxAttachments = 8;
+constexpr int PlanesPerPass = PlanesPerAttachment * MaxAttachments;
+constexpr double DilationPixels = 0.75; ///< bounding-box growth, more than half a pixel
+constexpr double NearClipFraction = 0.5; ///< perspective: clip at this fraction of near
+
+const char* VertexShader = R"(#version 330 core
+layout(location = 0) in vec3 IndexPosition;
+layout(location = 1) in int Plane;
+uniform mat4 IndexToWorld;
+uniform mat4 WorldToClip;
+uniform vec3 Eye;
+uniform vec3 ViewDirection;
+out vec4 vClip;
+out float vDepth;
+flat out int vPlane;
+void main()
+{
+  vec4 world = IndexToWorld * vec4(IndexPosition, 1.0);
+  vClip = WorldToClip * world;
+  vDepth = dot(world.xyz - Eye, ViewDirection);
+  vPlane = Plane;
+  gl_Position = vClip;
+}
+)";
+
+// One quad (4 vertices, drawn as lines_adjacency) in, its dilated screen bounding box out.
+const char* GeometryShader = R"(#version 330 core
+layout(lines_adjacency) in;
+layout(triangle_strip, max_vertices = 4) out;
+in vec4 vClip[];
+in float vDepth[];
+flat in int vPlane[];
+uniform float MinDepth;
+uniform vec2 Dilation;
+flat out vec2 gDepthRange;
+flat out int gPlane;
+vec2 lo = vec2(3.0e38);
+vec2 hi = vec2(-3.0e38);
+float zlo = 3.0e38;
+float zhi = -3.0e38;
+void include(vec4 c, float depth)
+{
+  vec2 ndc = c.xy / c.w;
+  lo = min(lo, ndc);
+  hi = max(hi, ndc);
+  zlo = min(zlo, depth);
+  zhi = max(zhi, depth);
+}
+void main()
+{
+  for (int i = 0; i < 4; ++i)
+  {
+    int j = (i + 1) % 4;
+    bool inI = vDepth[i] >= MinDepth;
+    bool inJ = vDepth[j] >= MinDepth;
+    if (inI)
+    {
+      include(vClip[i], vDepth[i]);
+    }
+    if (inI != inJ)
+    {
+      float s = (MinDepth - vDepth[i]) / (vDepth[j] - vDepth[i]);
+      include(mix(vClip[i], vClip[j], s), MinDepth);
+    }
+  }
+  if (zlo > zhi)
+  {
+    return;
+  }
+  lo -= Dilation;
+  hi += Dilation;
+  gDepthRange = vec2(zlo, zhi);
+  gPlane = vPlane[0];
+  gl_Position = vec4(lo.x, lo.y, 0.0, 1.0);
+  EmitVertex();
+  gl_Position = vec4(hi.x, lo.y, 0.0, 1.0);
+  EmitVertex();
+  gl_Position = vec4(lo.x, hi.y, 0.0, 1.0);
+  EmitVertex();
+  gl_Position = vec4(hi.x, hi.y, 0.0, 1.0);
+  EmitVertex();
+  EndPrimitive();
+}
+)";
+
+const char* DepthFragmentShader = R"(#version 330 core
+flat in vec2 gDepthRange;
+flat in int gPlane;
+layout(location = 0) out vec4 NearFar;
+void main()
+{
+  NearFar = vec4(gDepthRange.x, -gDepthRange.y, 0.0, 0.0);
+}
+)";
+
+const char* PlaneFragmentShader = R"(#version 330 core
+flat in vec2 gDepthRange;
+flat in int gPlane;
+uniform int PlaneBase;
+layout(location = 0) out uvec4 Bits0;
+layout(location = 1) out uvec4 Bits1;
+layout(location = 2) out uvec4 Bits2;
+layout(location = 3) out uvec4 Bits3;
+layout(location = 4) out uvec4 Bits4;
+layout(location = 5) out uvec4 Bits5;
+layout(location = 6) out uvec4 Bits6;
+layout(location = 7) out uvec4 Bits7;
+void main()
+{
+  int p = gPlane - PlaneBase;
+  if (p < 0 || p >= 1024)
+  {
+    discard;
+  }
+  uvec4 word = uvec4(0u);
+  word[(p >> 5) & 3] = 1u << uint(p & 31);
+  int a = p >> 7;
+  Bits0 = a == 0 ? word : uvec4(0u);
+  Bits1 = a == 1 ? word : uvec4(0u);
+  Bits2 = a == 2 ? word : uvec4(0u);
+  Bits3 = a == 3 ? word : uvec4(0u);
+  Bits4 = a == 4 ? word : uvec4(0u);
+  Bits5 = a == 5 ? word : uvec4(0u);
+  Bits6 = a == 6 ? word : uvec4(0u);
+  Bits7 = a == 7 ? word : uvec4(0u);
+}
+)";
+
+/// A compiled and linked program; 0 and a message on failure.
+GLuint BuildProgram(const char* fragment, std::string& error)
+{
+  const GLenum types[3] = { GL_VERTEX_SHADER, GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER };
+  const char* sources[3] = { VertexShader, GeometryShader, fragment };
+  const GLuint program = glCreateProgram();
+  GLuint shaders[3];
+  for (int s = 0; s < 3; ++s)
+  {
+    shaders[s] = glCreateShader(types[s]);
+    glShaderSource(shaders[s], 1, &sources[s], nullptr);
+    glCompileShader(shaders[s]);
+    GLint ok = 0;
+    glGetShaderiv(shaders[s], GL_COMPILE_STATUS, &ok);
+    if (!ok)
+    {
+      char log[1024] = { 0 };
+      glGetShaderInfoLog(shaders[s], sizeof(log), nullptr, log);
+      error = std::string("a PARC shader does not compile: ") + log;
+    }
+    glAttachShader(program, shaders[s]);
+  }
+  glLinkProgram(program);
+  GLint linked = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &linked);
+  for (GLuint shader : shaders)
+  {
+    glDetachShader(program, shader);
+    glDeleteShader(shader);
+  }
+  if (!linked)
+  {
+    if (error.empty())
+    {
+      char log[1024] = { 0 };
+      glGetProgramInfoLog(program, sizeof(log), nullptr, log);
+      error = std::string("the PARC program does not link: ") + log;
+    }
+    glDeleteProgram(program);
+    return 0;
+  }
+  return program;
+}
+
+/// Row-major double matrix -> column-major float uniform.
+void SetMatrix(GLuint program, const char* name, const parc::Matrix4& m)
+{
+  float v[16];
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      v[4 * c + r] = static_cast<float>(m(r, c));
+    }
+  }
+  glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, v);
+}
+
+/// A model on the GPU.
+struct GPUModel
+{
+  GLuint VertexArray = 0;
+  GLuint Positions = 0;
+  GLuint Planes = 0;
+  GLsizei Count = 0;
+  std::uint64_t Version = ~std::uint64_t(0);
+
+  void Release()
+  {
+    if (this->VertexArray)
+    {
+      glDeleteVertexArrays(1, &this->VertexArray);
+      glDeleteBuffers(1, &this->Positions);
+      glDeleteBuffers(1, &this->Planes);
+    }
+    *this = GPUModel();
+  }
+};
+
+/// Saves the GL state the passes change and restores it when destroyed.
+class ScopedPassState
+{
+public:
+  explicit ScopedPassState(vtkOpenGLState* state)
+    : State(state)
+    , Viewport(state)
+    , ClearColor(state)
+    , ColorMask(state)
+    , DepthMask(state)
+    , BlendFunc(state)
+    , Scissor(state, GL_SCISSOR_TEST)
+    , DepthTest(state, GL_DEPTH_TEST)
+    , Blend(state, GL_BLEND)
+    , Cull(state, GL_CULL_FACE)
+  {
+    this->State->PushFramebufferBindings();
+    this->DepthClamp = glIsEnabled(GL_DEPTH_CLAMP);
+    this->LogicOp = glIsEnabled(GL_COLOR_LOGIC_OP);
+    glGetIntegerv(GL_LOGIC_OP_MODE, &this->LogicOpMode);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &this->VertexArray);
+    glGetIntegerv(GL_PACK_ALIGNMENT, &this->PackAlignment);
+  }
+  ~ScopedPassState()
+  {
+    glBindVertexArray(static_cast<GLuint>(this->VertexArray));
+    glLogicOp(static_cast<GLenum>(this->LogicOpMode));
+    (this->LogicOp ? glEnable : glDisable)(GL_COLOR_LOGIC_OP);
+    (this->DepthClamp ? glEnable : glDisable)(GL_DEPTH_CLAMP);
+    this->State->vtkglPixelStorei(GL_PACK_ALIGNMENT, this->PackAlignment);
+    this->State->ResetGLBlendEquationState();
+    this->State->GetShaderCache()->ReleaseCurrentShader();
+    this->State->PopFramebufferBindings();
+  }
+
+private:
+  vtkOpenGLState* State;
+  vtkOpenGLState::ScopedglViewport Viewport;
+  vtkOpenGLState::ScopedglClearColor ClearColor;
+  vtkOpenGLState::ScopedglColorMask ColorMask;
+  vtkOpenGLState::ScopedglDepthMask DepthMask;
+  vtkOpenGLState::ScopedglBlendFuncSeparate BlendFunc;
+  vtkOpenGLState::ScopedglEnableDisable Scissor, DepthTest, Blend, Cull;
+  GLboolean DepthClamp = GL_FALSE;
+  GLboolean LogicOp = GL_FALSE;
+  GLint LogicOpMode = GL_COPY;
+  GLint VertexArray = 0;
+  GLint PackAlignment = 4;
+};
+}
+
+//------------------------------------------------------------------------------
+class vtkPARCRasterizer::vtkInternals
+{
+public:
+  vtkOpenGLRenderWindow* Context = nullptr;
+  GLuint DepthProgram = 0;
+  GLuint PlaneProgram = 0;
+  GPUModel Models[2]; ///< depth, colour
+  GLuint Framebuffer = 0;
+  std::vector<GLuint> Renderbuffers;
+  GLenum RenderbufferFormat = 0;
+  int Size[2] = { 0, 0 };
+
+  bool Prepare(vtkRenderWindow* window, std::string& error);
+  void Upload(GPUModel& gpu, const parc::PolygonModel& model, std::uint64_t version);
+  bool Target(GLenum format, int attachments, int width, int height, std::string& error);
+  void Draw(GLuint program, const GPUModel& gpu, const parc::Matrix4& indexToWorld,
+    const vtkPARCRasterizer::View& view);
+  void Release();
+};
+
+bool vtkPARCRasterizer::vtkInternals::Prepare(vtkRenderWindow* window, std::string& error)
+{
+  auto* context = vtkOpenGLRenderWindow::SafeDownCast(window);
+  if (!context || !context->GetState())
+  {
+    error = "the render window has no OpenGL context";
+    return false;
+  }
+  if (context != this->Context)
+  {
+    this->Release();
+    this->Context = context;
+  }
+  context->MakeCurrent();
+  if (!this->DepthProgram)
+  {
+    GLint major = 0, minor = 0;
+    glGetIntegerv(GL_MAJOR_VERSION, &major);
+    glGetIntegerv(GL_MINOR_VERSION, &minor);
+    if (major * 10 + minor < 33)
+    {
+      error = "the OpenGL context is older than 3.3";
+      return false;
+    }
+    this->DepthProgram = BuildProgram(DepthFragmentShader, error);
+    this->PlaneProgram = this->DepthProgram ? BuildProgram(PlaneFragmentShader, error) : 0;
+    if (!this->PlaneProgram)
+    {
+      return false;
+    }
+    glGenFramebuffers(1, &this->Framebuffer);
+  }
+  return true;
+}
+
+void vtkPARCRasterizer::vtkInternals::Upload(
+  GPUModel& gpu, const parc::PolygonModel& model, std::uint64_t version)
+{
+  if (!gpu.VertexArray)
+  {
+    glGenVertexArrays(1, &gpu.VertexArray);
+    glGenBuffers(1, &gpu.Positions);
+    glGenBuffers(1, &gpu.Planes);
+  }
+  std::vector<float> positions;
+  positions.reserve(3 * model.Vertices.size());
+  for (const parc::Vec3& v : model.Vertices)
+  {
+    positions.insert(positions.end(),
+      { static_cast<float>(v.X), static_cast<float>(v.Y), static_cast<float>(v.Z) });
+  }
+  std::vector<GLint> planes(model.Vertices.size(), 0);
+  for (std::size_t q = 0; q < model.Planes.size(); ++q)
+  {
+    std::fill_n(planes.begin() + 4 * q, 4, model.Planes[q]);
+  }
+  glBindVertexArray(gpu.VertexArray);
+  glBindBuffer(GL_ARRAY_BUFFER, gpu.Positions);
+  glBufferData(GL_ARRAY_BUFFER, positions.size() * sizeof(float), positions.data(), GL_STATIC_DRAW);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
+  glEnableVertexAttribArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, gpu.Planes);
+  glBufferData(GL_ARRAY_BUFFER, planes.size() * sizeof(GLint), planes.data(), GL_STATIC_DRAW);
+  glVertexAttribIPointer(1, 1, GL_INT, 0, nullptr);
+  glEnableVertexAttribArray(1);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  gpu.Count = static_cast<GLsizei>(model.Vertices.size());
+  gpu.Version = version;
+}
+
+bool vtkPARCRasterizer::vtkInternals::Target(
+  GLenum format, int attachments, int width, int height, std::string& error)
+{
+  glBindFramebuffer(GL_FRAMEBUFFER, this->Framebuffer);
+  if (format != this->RenderbufferFormat || width != this->Size[0] || height != this->Size[1] ||
+    static_cast<int>(this->Renderbuffers.size()) != attachments)
+  {
+    for (int a = 0; a < static_cast<int>(this->Renderbuffers.size()); ++a)
+    {
+      glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + a, GL_RENDERBUFFER, 0);
+    }
+    if (!this->Renderbuffers.empty())
+    {
+      glDeleteRenderbuffers(static_cast<GLsizei>(this->Renderbuffers.size()), this->Renderbuffers.data());
+    }
+    this->Renderbuffers.assign(attachments, 0);
+    glGenRenderbuffers(attachments, this->Renderbuffers.data());
+    for (int a = 0; a < attachments; ++a)
+    {
+      glBindRenderbuffer(GL_RENDERBUFFER, this->Renderbuffers[a]);
+      glRenderbufferStorage(GL_RENDERBUFFER, format, width, height);
+      glFramebufferRenderbuffer(
+        GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + a, GL_RENDERBUFFER, this->Renderbuffers[a]);
+    }
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    this->RenderbufferFormat = format;
+    this->Size[0] = width;
+    this->Size[1] = height;
+  }
+  std::array<GLenum, MaxAttachments> buffers;
+  for (int a = 0; a < attachments; ++a)
+  {
+    buffers[a] = GL_COLOR_ATTACHMENT0 + a;
+  }
+  glDrawBuffers(attachments, buffers.data());
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+  {
+    error = "the PARC framebuffer is incomplete (status " + std::to_string(status) + ")";
+    this->Size[0] = this->Size[1] = 0; // rebuild next time
+    return false;
+  }
+  return true;
+}
+
+void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
+  const parc::Matrix4& indexToWorld, const vtkPARCRasterizer::View& view)
+{
+  glUseProgram(program);
+  SetMatrix(program, "IndexToWorld", indexToWorld);
+  SetMatrix(program, "WorldToClip", view.WorldToClip);
+  const parc::Vec3& d = view.Pass.Direction;
+  glUniform3f(glGetUniformLocation(program, "Eye"), static_cast<float>(view.Eye.X),
+    static_cast<float>(view.Eye.Y), static_cast<float>(view.Eye.Z));
+  glUniform3f(glGetUniformLocation(program, "ViewDirection"), static_cast<float>(d.X),
+    static_cast<float>(d.Y), static_cast<float>(d.Z));
+  const float minDepth =
+    view.Pass.Parallel ? -3.0e38f : static_cast<float>(NearClipFraction * view.NearDistance);
+  glUniform1f(glGetUniformLocation(program, "MinDepth"), minDepth);
+  glUniform2f(glGetUniformLocation(program, "Dilation"),
+    static_cast<float>(2.0 * DilationPixels / view.Pass.Width),
+    static_cast<float>(2.0 * DilationPixels / view.Pass.Height));
+  glBindVertexArray(gpu.VertexArray);
+  glDrawArrays(GL_LINES_ADJACENCY, 0, gpu.Count);
+}
+
+void vtkPARCRasterizer::vtkInternals::Release()
+{
+  if (this->Context && this->DepthProgram)
+  {
+    this->Context->MakeCurrent();
+    glDeleteProgram(this->DepthProgram);
+    glDeleteProgram(this->PlaneProgram);
+    for (GPUModel& m : this->Models)
+    {
+      m.Release();
+    }
+    if (!this->Renderbuffers.empty())
+    {
+      glDeleteRenderbuffers(static_cast<GLsizei>(this->Renderbuffers.size()), this->Renderbuffers.data());
+    }
+    glDeleteFramebuffers(1, &this->Framebuffer);
+  }
+  this->DepthProgram = this->PlaneProgram = this->Framebuffer = 0;
+  this->Renderbuffers.clear();
+  this->RenderbufferFormat = 0;
+  this->Size[0] = this->Size[1] = 0;
+  for (GPUModel& m : this->Models)
+  {
+    m = GPUModel();
+  }
+  this->Context = nullptr;
+}
+
+//------------------------------------------------------------------------------
+vtkStandardNewMacro(vtkPARCRasterizer);
+
+vtkPARCRasterizer::vtkPARCRasterizer()
+  : Internals(new vtkInternals)
+{
+}
+
+vtkPARCRasterizer::~vtkPARCRasterizer()
+{
+  this->Internals->Release();
+}
+
+void vtkPARCRasterizer::ReleaseGraphicsResources(vtkWindow*)
+{
+  this->Internals->Release();
+}
+
+//------------------------------------------------------------------------------
+bool vtkPARCRasterizer::MakeViews(
+  vtkRenderer* ren, int width, int height, parc::ViewGeometry& rays, View& pass)
+{
+  vtkCamera* camera = ren->GetActiveCamera();
+  vtkMatrix4x4* worldToNDC =
+    camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1);
+  for (int r = 0; r < 4; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      pass.WorldToClip(r, c) = worldToNDC->GetElement(r, c);
+    }
+  }
+  rays.Width = pass.Pass.Width = width;
+  rays.Height = pass.Pass.Height = height;
+  rays.Parallel = pass.Pass.Parallel = camera->GetParallelProjection() != 0;
+  const double* eye = camera->GetPosition();
+  rays.Eye = pass.Eye = { eye[0], eye[1], eye[2] };
+  const double* direction = camera->GetDirectionOfProjection();
+  pass.Pass.Direction = parc::Normalized({ direction[0], direction[1], direction[2] });
+  pass.NearDistance = camera->GetClippingRange()[0];
+  return parc::Invert(pass.WorldToClip, rays.NDCToWorld);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::PolygonModel& model,
+  std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view,
+  std::vector<float>& nearFar)
+{
+  vtkInternals& in = *this->Internals;
+  this->LastError.clear();
+  if (!in.Prepare(window, this->LastError))
+  {
+    return false;
+  }
+  vtkOpenGLState* state = in.Context->GetState();
+  ScopedPassState saved(state);
+  GPUModel& gpu = in.Models[0];
+  if (gpu.Version != modelVersion)
+  {
+    in.Upload(gpu, model, modelVersion);
+    ++this->UploadCount;
+  }
+  const int w = view.Pass.Width, h = view.Pass.Height;
+  if (!in.Target(GL_RG32F, 1, w, h, this->LastError))
+  {
+    return false;
+  }
+  state->vtkglViewport(0, 0, w, h);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDisable(GL_CULL_FACE);
+  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  state->vtkglDepthMask(GL_FALSE);
+  glDisable(GL_COLOR_LOGIC_OP);
+  glEnable(GL_DEPTH_CLAMP);
+  const GLfloat clear[4] = { parc::DepthBufferSource::Empty, parc::DepthBufferSource::Empty, 0.f,
+    0.f };
+  glClearBufferfv(GL_COLOR, 0, clear);
+  state->vtkglEnable(GL_BLEND);
+  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+  state->vtkglBlendEquation(GL_MIN);
+  in.Draw(in.DepthProgram, gpu, indexToWorld, view);
+  nearFar.resize(2 * static_cast<std::size_t>(w) * h);
+  glReadBuffer(GL_COLOR_ATTACHMENT0);
+  state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, nearFar.data());
+  return glGetError() == GL_NO_ERROR || (this->LastError = "an OpenGL error in the depth pass", false);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::PolygonModel& model,
+  std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view,
+  std::vector<std::uint32_t>& bits, int& wordsPerPixel, int& passes)
+{
+  vtkInternals& in = *this->Internals;
+  this->LastError.clear();
+  if (!in.Prepare(window, this->LastError))
+  {
+    return false;
+  }
+  vtkOpenGLState* state = in.Context->GetState();
+  ScopedPassState saved(state);
+  GPUModel& gpu = in.Models[1];
+  if (gpu.Version != modelVersion)
+  {
+    in.Upload(gpu, model, modelVersion);
+    ++this->UploadCount;
+  }
+  const int w = view.Pass.Width, h = view.Pass.Height;
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  passes = std::max(1, (model.PlaneCount + PlanesPerPass - 1) / PlanesPerPass);
+  wordsPerPixel = 0;
+  const int planeWords = std::max(1, (model.PlaneCount + 31) / 32);
+  // Words per pixel: whole attachments (4 words each) up to the planes needed.
+  const int attachmentsTotal = (planeWords + 3) / 4;
+  wordsPerPixel = 4 * attachmentsTotal;
+  bits.assign(pixels * wordsPerPixel, 0u);
+  std::vector<std::uint32_t> texels(4 * pixels);
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDisable(GL_CULL_FACE);
+  state->vtkglDisable(GL_BLEND);
+  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  state->vtkglDepthMask(GL_FALSE);
+  glEnable(GL_DEPTH_CLAMP);
+  state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 4);
+  for (int pass = 0; pass < passes; ++pass)
+  {
+    const int attachments =
+      std::min(MaxAttachments, attachmentsTotal - pass * MaxAttachments);
+    if (!in.Target(GL_RGBA32UI, attachments, w, h, this->LastError))
+    {
+      return false;
+    }
+    state->vtkglViewport(0, 0, w, h);
+    const GLuint zero[4] = { 0, 0, 0, 0 };
+    for (int a = 0; a < attachments; ++a)
+    {
+      glClearBufferuiv(GL_COLOR, a, zero);
+    }
+    glEnable(GL_COLOR_LOGIC_OP);
+    glLogicOp(GL_OR);
+    glUseProgram(in.PlaneProgram);
+    glUniform1i(glGetUniformLocation(in.PlaneProgram, "PlaneBase"), pass * PlanesPerPass);
+    in.Draw(in.PlaneProgram, gpu, indexToWorld, view);
+    for (int a = 0; a < attachments; ++a)
+    {
+      glReadBuffer(GL_COLOR_ATTACHMENT0 + a);
+      glReadPixels(0, 0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
+      const int word0 = 4 * (pass * MaxAttachments + a);
+      for (std::size_t p = 0; p < pixels; ++p)
+      {
+        std::copy_n(texels.data() + 4 * p, 4, bits.data() + p * wordsPerPixel + word0);
+      }
+    }
+  }
+  return glGetError() == GL_NO_ERROR || (this->LastError = "an OpenGL error in the plane pass", false);
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCRasterizer::PrintSelf(ostream& os, vtkIndent indent)
+{
+  this->Superclass::PrintSelf(os, indent);
+  os << indent << "UploadCount: " << this->UploadCount << "\n";
+  os << indent << "LastError: " << this->LastError << "\n";
+}

@@ -1,0 +1,102 @@
+/**
+ * @class   vtkPARCRasterizer
+ * @brief   The PARC passes in VTK's OpenGL context: near/far depths and plane bit sets.
+ *
+ * The one class of the module that calls OpenGL. Inside the render window's own context
+ * it projects a polygon model (parcPolygonModel.h) into an offscreen framebuffer at the
+ * ray image's resolution with the ray caster's camera, and reads the result back:
+ *
+ * - RenderDepth: the depth model into one RG32F buffer with MIN blending, cleared to
+ *   DepthBufferSource::Empty, each fragment writing (near, -far): the smallest and the
+ *   largest view depth of its face. One pass gives both the "less" near buffer and the
+ *   "greater" far buffer of the paper.
+ * - RenderPlanes: the colour model into up to 8 GL_RGBA32UI attachments (1024 planes a
+ *   pass) with glLogicOp(GL_OR); each fragment sets the bit of its face's plane. Only as
+ *   many attachments as the planes need are attached; more than 1024 planes take several
+ *   passes.
+ *
+ * Conservative by construction (DESIGN.md section 2): a geometry shader clips each quad to
+ * the part in front of the eye (half the near distance, perspective only) and replaces it
+ * by the screen-space bounding box of its projection, dilated by 3/4 of a pixel, so every
+ * pixel whose centre ray touches the quad, including grazing rays and sub-pixel quads, gets
+ * a fragment; the fragment carries the quad's depth range, so near is never too far and far
+ * never too near. Depth clamping keeps faces beyond the near/far planes.
+ *
+ * Every piece of GL state it changes is saved and restored (through vtkOpenGLState where
+ * VTK tracks it), so the rest of the scene renders unchanged. Programs, framebuffers and
+ * vertex buffers are kept between frames; a model is uploaded again only when its version
+ * changes. When the context lacks OpenGL 3.3, a program fails to build or a framebuffer is
+ * incomplete, the passes return false with a message in GetLastError().
+ *
+ * Not wrapped (it speaks the core's types); used by vtkPARCVolumeMapper.
+ */
+#ifndef vtkPARCRasterizer_h
+#define vtkPARCRasterizer_h
+
+#include "PARCRenderingModule.h" // For export macro
+#include "vtkObject.h"
+
+#include "parcBufferSources.h" // For PassView
+#include "parcPolygonModel.h"  // For PolygonModel
+
+#include <cstdint> // For std::uint32_t
+#include <memory>  // For std::unique_ptr
+#include <string>  // For std::string
+#include <vector>  // For std::vector
+
+class vtkRenderWindow;
+class vtkRenderer;
+class vtkWindow;
+
+class PARCRENDERING_EXPORT vtkPARCRasterizer : public vtkObject
+{
+public:
+  static vtkPARCRasterizer* New();
+  vtkTypeMacro(vtkPARCRasterizer, vtkObject);
+  void PrintSelf(ostream& os, vtkIndent indent) override;
+
+  /// The camera of a pass: the caster's view plus what the shaders need.
+  struct View
+  {
+    parc::PassView Pass;
+    parc::Matrix4 WorldToClip; ///< the camera's composite projection (NDC z in [-1, 1])
+    parc::Vec3 Eye;
+    double NearDistance = 0.0; ///< near clipping distance along the view direction
+  };
+
+  /// The rays of a width x height ray image of the renderer's active camera, and the
+  /// matching pass camera. False when the projection is singular.
+  static bool MakeViews(vtkRenderer* ren, int width, int height, parc::ViewGeometry& rays,
+    View& pass);
+
+  /// Near/far view depths of the depth model (2 floats per pixel, see class comment).
+  bool RenderDepth(vtkRenderWindow* window, const parc::PolygonModel& model,
+    std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view,
+    std::vector<float>& nearFar);
+
+  /// Plane bit sets of the colour model (wordsPerPixel 32-bit words per pixel).
+  bool RenderPlanes(vtkRenderWindow* window, const parc::PolygonModel& model,
+    std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view,
+    std::vector<std::uint32_t>& bits, int& wordsPerPixel, int& passes);
+
+  const std::string& GetLastError() const { return this->LastError; }
+  /// How many times a model was uploaded to the GPU (statistics).
+  std::uint64_t GetUploadCount() const { return this->UploadCount; }
+
+  void ReleaseGraphicsResources(vtkWindow* window);
+
+protected:
+  vtkPARCRasterizer();
+  ~vtkPARCRasterizer() override;
+
+private:
+  vtkPARCRasterizer(const vtkPARCRasterizer&) = delete;
+  void operator=(const vtkPARCRasterizer&) = delete;
+
+  class vtkInternals;
+  std::unique_ptr<vtkInternals> Internals;
+  std::string LastError;
+  std::uint64_t UploadCount = 0;
+};
+
+#endif

@@ -1,0 +1,143 @@
+// Exactness of PARC through the mapper: for every blend mode, camera case and supercell
+// size, the float ray-cast image with acceleration is bit-identical to the one without,
+// and takes fewer samples.
+#include "parcTestScene.h"
+
+#include <vtkActor.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkRendererCollection.h>
+#include <vtkSphereSource.h>
+
+#include <cstring>
+#include <functional>
+#include <iostream>
+#include <vector>
+
+namespace
+{
+std::vector<float> RayImage(vtkPARCVolumeMapper* mapper)
+{
+  vtkNew<vtkImageData> image;
+  mapper->GetLastRayCastImage(image);
+  vtkFloatArray* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
+  return std::vector<float>(rgba->GetPointer(0), rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples());
+}
+
+struct CameraCase
+{
+  const char* Name;
+  std::function<void(vtkCamera*)> Set;
+  bool Geometry; ///< an opaque sphere in the scene
+};
+}
+
+int TestPARCAccelerationExact(int argc, char* argv[])
+{
+  (void)argc;
+  (void)argv;
+  const int modes[] = { vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER,
+    vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER, vtkPARCVolumeMapper::ACCELERATION_AUTO };
+  const int blends[] = { vtkVolumeMapper::COMPOSITE_BLEND, vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND,
+    vtkVolumeMapper::MINIMUM_INTENSITY_BLEND, vtkVolumeMapper::AVERAGE_INTENSITY_BLEND,
+    vtkVolumeMapper::ADDITIVE_BLEND, vtkVolumeMapper::ISOSURFACE_BLEND };
+  const double sizes[][3] = { { 1, 1, 1 }, { 4, 4, 4 }, { 2.5, 3, 1.7 }, { 0.5, 0.75, 0.6 } };
+  const CameraCase cameras[] = {
+    { "perspective", [](vtkCamera*) {}, false },
+    { "parallel", [](vtkCamera* c) { c->ParallelProjectionOn(); }, false },
+    { "opaque sphere", [](vtkCamera*) {}, true },
+    { "eye on a face", // the eye on the volume's face z = -31.5, looking in
+      [](vtkCamera* c) {
+        c->SetPosition(0.3, 0.2, -31.5);
+        c->SetFocalPoint(0.3, 0.2, 0.0);
+        c->SetViewUp(0, 1, 0);
+      },
+      false },
+    { "eye inside a PC blob",
+      [](vtkCamera* c) {
+        c->SetPosition(-9, 0, 4);
+        c->SetFocalPoint(20, 5, -3);
+        c->SetViewUp(0, 0, 1);
+      },
+      false },
+    { "parallel, view plane inside",
+      [](vtkCamera* c) {
+        c->ParallelProjectionOn();
+        c->SetPosition(-9, 0, 4);
+        c->SetFocalPoint(20, 5, -3);
+        c->SetViewUp(0, 0, 1);
+        c->SetParallelScale(20);
+      },
+      false },
+  };
+  vtkSmartPointer<vtkImageData> blobs = parctest::MakeBlobs(40);
+  vtkSmartPointer<vtkImageData> inverted = parctest::MakeBlobs(40, true);
+  vtkSmartPointer<vtkVolumeProperty> property = parctest::MakeProperty(true);
+  property->GetIsoSurfaceValues()->SetValue(1, 60.0);
+
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetSize(72, 64);
+  const double vp[4] = { 0, 0, 1, 1 };
+  int failures = 0, cases = 0;
+  for (int blend : blends)
+  {
+    vtkImageData* image = blend == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND ? inverted : blobs;
+    for (const CameraCase& cam : cameras)
+    {
+      window->GetRenderers()->RemoveAllItems();
+      vtkSmartPointer<vtkPARCVolumeMapper> mapper =
+        parctest::AddVolume(window, vp, image, property, blend);
+      mapper->SetAverageIPScalarRange(60, 255);
+      vtkRenderer* ren = window->GetRenderers()->GetFirstRenderer();
+      if (cam.Geometry)
+      {
+        vtkNew<vtkSphereSource> sphere;
+        sphere->SetRadius(12);
+        sphere->SetCenter(-5, 0, 0);
+        vtkNew<vtkPolyDataMapper> pm;
+        pm->SetInputConnection(sphere->GetOutputPort());
+        vtkNew<vtkActor> actor;
+        actor->SetMapper(pm);
+        ren->AddActor(actor);
+      }
+      cam.Set(ren->GetActiveCamera());
+      ren->ResetCameraClippingRange();
+      mapper->SetAccelerationModeToNone();
+      window->Render();
+      const std::vector<float> reference = RayImage(mapper);
+      const vtkIdType referenceSamples = mapper->GetLastSampleCount();
+      for (const auto& size : sizes)
+      {
+        mapper->SetSupercellSize(size[0], size[1], size[2]);
+        for (int mode : modes)
+        {
+          mapper->SetAccelerationMode(mode);
+          window->Render();
+          ++cases;
+          const std::vector<float> fast = RayImage(mapper);
+          const bool same = fast.size() == reference.size() &&
+            std::memcmp(fast.data(), reference.data(), fast.size() * sizeof(float)) == 0;
+          const bool accelerated = mapper->GetLastAccelerationMode() != vtkPARCVolumeMapper::ACCELERATION_NONE;
+          if (!same || !accelerated || mapper->GetLastSampleCount() > referenceSamples)
+          {
+            std::size_t differ = 0;
+            for (std::size_t i = 0; i < fast.size() && i < reference.size(); ++i)
+            {
+              differ += fast[i] != reference[i];
+            }
+            std::cerr << "FAIL blend " << blend << ", " << cam.Name << ", supercell " << size[0]
+                      << "x" << size[1] << "x" << size[2] << ", mode "
+                      << vtkPARCVolumeMapper::GetAccelerationModeAsString(mode) << ": "
+                      << differ << " values differ, used "
+                      << vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode())
+                      << ", samples " << mapper->GetLastSampleCount() << " vs " << referenceSamples
+                      << "\n";
+            ++failures;
+          }
+        }
+      }
+    }
+  }
+  std::cout << cases << " accelerated renders compared, " << failures << " failures\n";
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
