@@ -1,0 +1,261 @@
+// The GL passes against the CPU segment oracle, on random and adversarial cameras: near is
+// never after the ideal near, far never before the ideal far, and every plane a ray truly
+// crosses in a PC supercell has its bit set. Reports how loose the buffers are.
+#include "parcSegmentOracle.h"
+#include "parcTestScene.h"
+#include "vtkPARCRasterizer.h"
+
+#include <vtkRendererCollection.h>
+
+#include <algorithm>
+#include <iostream>
+#include <random>
+
+namespace
+{
+struct Tally
+{
+  std::size_t Rays = 0, Misses = 0, ExtraPlanes = 0, Planes = 0;
+  double IdealLength = 0.0, ExtraLength = 0.0;
+};
+
+/// Checks every pixel of the current camera; returns false on the first violation.
+bool CheckCamera(vtkRenderWindow* window, vtkRenderer* ren, vtkPARCRasterizer* rasterizer,
+  const parc::SupercellGrid& grid, const parc::PolygonModel& depthModel,
+  const parc::PolygonModel* colorModels, const parc::Matrix4& indexToWorld,
+  const parc::Matrix4& worldToIndex, const char* name, Tally& tally)
+{
+  static std::uint64_t version = 0;
+  ++version; // force uploads: the test switches models freely
+  int size[2];
+  ren->GetTiledSize(&size[0], &size[1]);
+  parc::ViewGeometry rays;
+  vtkPARCRasterizer::View view;
+  if (!vtkPARCRasterizer::MakeViews(ren, size[0], size[1], rays, view))
+  {
+    std::cerr << name << ": singular camera\n";
+    return false;
+  }
+  std::vector<float> nearFar;
+  if (!rasterizer->RenderDepth(window, depthModel, version, indexToWorld, view, nearFar))
+  {
+    std::cerr << name << ": " << rasterizer->GetLastError() << "\n";
+    return false;
+  }
+  parc::DepthBufferSource depth;
+  depth.Set(view.Pass, nearFar, &grid, worldToIndex);
+  // The colour model along the axis closest to the view direction.
+  const parc::Vec3 d = worldToIndex.TransformVector(view.Pass.Direction);
+  const int axis = std::fabs(d.X) >= std::max(std::fabs(d.Y), std::fabs(d.Z))
+    ? 0
+    : (std::fabs(d.Y) >= std::fabs(d.Z) ? 1 : 2);
+  const parc::PolygonModel& colorModel = colorModels[axis];
+  std::vector<std::uint32_t> bits;
+  int words = 0, passes = 0;
+  if (!rasterizer->RenderPlanes(window, colorModel, version, indexToWorld, view, bits, words, passes))
+  {
+    std::cerr << name << ": " << rasterizer->GetLastError() << "\n";
+    return false;
+  }
+  parc::PlaneBufferSource planes;
+  planes.Set(view.Pass, bits, words, &grid, axis, colorModel.FirstPlane, worldToIndex);
+  const parc::SegmentOracle oracle(grid, worldToIndex);
+  const int* cells = grid.GetCellDimensions();
+  std::vector<parc::Segment> ideal;
+  std::vector<int> idealPlanes, setPlanes;
+  for (int py = 0; py < rays.Height; ++py)
+  {
+    for (int px = 0; px < rays.Width; ++px)
+    {
+      const parc::Ray ray = rays.MakeRay(px, py);
+      double t0 = ray.TMin, t1 = ray.TMax;
+      if (!parc::ClipToBox(worldToIndex.TransformPoint(ray.Origin),
+            worldToIndex.TransformVector(ray.Direction), { 0, 0, 0 },
+            { double(cells[0]), double(cells[1]), double(cells[2]) }, t0, t1))
+      {
+        continue;
+      }
+      ideal.clear();
+      idealPlanes.clear();
+      oracle.Intervals(ray, t0, t1, ideal, axis, &idealPlanes);
+      if (ideal.empty())
+      {
+        continue;
+      }
+      ++tally.Rays;
+      parc::Segment s;
+      const bool covered = depth.PixelSegment(px, py, ray, s);
+      if (!covered || s.TNear > ideal.front().TNear || s.TFar < ideal.back().TFar)
+      {
+        std::cerr << name << ": pixel (" << px << ", " << py << ") near/far "
+                  << (covered ? s.TNear : NAN) << " " << (covered ? s.TFar : NAN)
+                  << " does not contain the ideal " << ideal.front().TNear << " "
+                  << ideal.back().TFar << "\n";
+        ++tally.Misses;
+        return false;
+      }
+      const double idealLength = ideal.back().TFar - ideal.front().TNear;
+      tally.IdealLength += idealLength;
+      tally.ExtraLength += (std::min(s.TFar, t1) - std::max(s.TNear, t0)) - idealLength;
+      planes.PixelPlanes(px, py, setPlanes);
+      for (int& p : idealPlanes)
+      {
+        p -= colorModel.FirstPlane;
+      }
+      if (!std::includes(setPlanes.begin(), setPlanes.end(), idealPlanes.begin(), idealPlanes.end()))
+      {
+        std::cerr << name << ": pixel (" << px << ", " << py << ") misses a plane bit\n";
+        ++tally.Misses;
+        return false;
+      }
+      tally.Planes += idealPlanes.size();
+      tally.ExtraPlanes += setPlanes.size() - idealPlanes.size();
+    }
+  }
+  return true;
+}
+}
+
+int TestPARCRasterizer(int argc, char* argv[])
+{
+  (void)argc;
+  (void)argv;
+  // A 40^3 blob volume (spacing 63/39) and a unit-spacing 33^3 copy for cameras aligned
+  // with the cell planes.
+  vtkSmartPointer<vtkImageData> blobs = parctest::MakeBlobs(33);
+  blobs->SetSpacing(1, 1, 1);
+  blobs->SetOrigin(0, 0, 0);
+  vtkSmartPointer<vtkVolumeProperty> property = parctest::MakeProperty(false);
+
+  vtkNew<vtkRenderWindow> window;
+  window->SetOffScreenRendering(1);
+  window->SetSize(64, 48);
+  const double vp[4] = { 0, 0, 1, 1 };
+  vtkSmartPointer<vtkPARCVolumeMapper> mapper =
+    parctest::AddVolume(window, vp, blobs, property, vtkVolumeMapper::COMPOSITE_BLEND);
+  mapper->SetAccelerationModeToNone();
+  window->Render(); // a live context
+  vtkRenderer* ren = window->GetRenderers()->GetFirstRenderer();
+  vtkCamera* camera = ren->GetActiveCamera();
+
+  // The classification of the blob volume, straight from the core.
+  parc::ScalarField field;
+  const int dims[3] = { 33, 33, 33 };
+  field.Assign(static_cast<unsigned char*>(blobs->GetScalarPointer()), dims);
+  parc::CastParameters p;
+  p.Opacity.SetNodes({ 40.0, 110.0, 160.0, 255.0 }, { 0.0, 0.05, 0.3, 0.8 }, true);
+  parc::RangePyramid pyramid;
+  pyramid.Build(field);
+  parc::ContributionRule rule;
+  rule.Set(p, field.GetRange());
+
+  vtkNew<vtkPARCRasterizer> rasterizer;
+  const parc::Matrix4 identity;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double sizes[][3] = { { 1, 1, 1 }, { 3, 5, 5 }, { 2.5, 1.5, 0.7 } };
+  Tally tally;
+  int cameras = 0;
+  for (const auto& size : sizes)
+  {
+    parc::SupercellGrid grid;
+    grid.Configure(pyramid.GetCellDimensions(), size);
+    grid.Classify(pyramid, rule, parc::Interpolation::Linear);
+    parc::PolygonModel depthModel, colorModels[3];
+    parc::BuildDepthModel(grid, false, depthModel);
+    for (int a = 0; a < 3; ++a)
+    {
+      parc::BuildColorModel(grid, a, colorModels[a]);
+    }
+    auto check = [&](const char* name) {
+      ren->ResetCameraClippingRange();
+      ++cameras;
+      return CheckCamera(window, ren, rasterizer, grid, depthModel, colorModels, identity,
+        identity, name, tally);
+    };
+    // Axis-aligned parallel views with pixel centres exactly on cell planes: 64 x 48
+    // pixels of one voxel each, centres on integer coordinates.
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      double focal[3] = { 16.5, 16.5, 16.5 }, position[3] = { 16.5, 16.5, 16.5 };
+      position[axis] = -40.0;
+      focal[(axis + 1) % 3] = 16.0 + 0.5; // centres at 16.5 +- (k + 0.5) = integers
+      camera->ParallelProjectionOn();
+      camera->SetParallelScale(24.0);
+      camera->SetFocalPoint(focal);
+      camera->SetPosition(position[0], position[1], position[2]);
+      double up[3] = { 0, 0, 0 };
+      up[(axis + 2) % 3] = 1.0;
+      camera->SetViewUp(up);
+      if (!check("axis-aligned parallel"))
+        return EXIT_FAILURE;
+    }
+    // 45-degree views along cell diagonals, both projections.
+    for (int parallel = 0; parallel < 2; ++parallel)
+    {
+      camera->SetParallelProjection(parallel);
+      camera->SetFocalPoint(16, 16, 16);
+      camera->SetPosition(-24, -24, 16);
+      camera->SetViewUp(0, 0, 1);
+      camera->SetViewAngle(30);
+      if (!check("45 degrees"))
+        return EXIT_FAILURE;
+      camera->SetPosition(-24, -24, -24);
+      camera->SetViewUp(0, 1, 0);
+      if (!check("main diagonal"))
+        return EXIT_FAILURE;
+    }
+    // A far camera: supercells smaller than a pixel.
+    camera->ParallelProjectionOff();
+    camera->SetFocalPoint(16, 16, 16);
+    camera->SetPosition(16, 400, 2000);
+    camera->SetViewUp(0, 1, 0);
+    camera->SetViewAngle(30);
+    if (!check("far camera"))
+      return EXIT_FAILURE;
+    // Fields of view from 1 to 170 degrees.
+    for (double angle : { 1.0, 10.0, 60.0, 120.0, 170.0 })
+    {
+      camera->SetViewAngle(angle);
+      camera->SetPosition(50, 30, 60);
+      camera->SetFocalPoint(16, 16, 16);
+      camera->SetViewUp(0, 1, 0);
+      if (!check("field of view"))
+        return EXIT_FAILURE;
+    }
+    // The eye inside a PC blob and inside the volume in empty space.
+    const double eyes[2][3] = { { 7.5, 16, 20 }, { 16, 16, 16 } };
+    for (const double* eye : eyes)
+    {
+      camera->SetPosition(eye[0], eye[1], eye[2]);
+      camera->SetFocalPoint(30, 20, 10);
+      camera->SetViewAngle(90);
+      if (!check("eye inside"))
+        return EXIT_FAILURE;
+    }
+    // Random cameras, inside and outside, both projections.
+    for (int r = 0; r < 12; ++r)
+    {
+      const double distance = (r % 3 == 0) ? 10.0 : 60.0;
+      const parc::Vec3 dir = parc::Normalized({ u(rng), u(rng), u(rng) });
+      camera->SetParallelProjection(r % 4 == 1);
+      camera->SetParallelScale(10 + 10 * std::fabs(u(rng)));
+      camera->SetFocalPoint(16 + 8 * u(rng), 16 + 8 * u(rng), 16 + 8 * u(rng));
+      const double* f = camera->GetFocalPoint();
+      camera->SetPosition(f[0] + distance * dir.X, f[1] + distance * dir.Y, f[2] + distance * dir.Z);
+      camera->SetViewUp(u(rng), u(rng), u(rng));
+      camera->OrthogonalizeViewUp();
+      camera->SetViewAngle(20 + 100 * std::fabs(u(rng)));
+      if (!check("random"))
+        return EXIT_FAILURE;
+    }
+  }
+  std::cout << cameras << " cameras, " << tally.Rays << " rays meeting PC supercells: no miss.\n"
+            << "Depth buffers: mean ideal length " << tally.IdealLength / tally.Rays
+            << ", mean extra length " << tally.ExtraLength / tally.Rays << " (world units, "
+            << 100.0 * tally.ExtraLength / tally.IdealLength << "%).\n"
+            << "Plane bits: " << tally.Planes << " true planes, " << tally.ExtraPlanes
+            << " extra (" << 100.0 * tally.ExtraPlanes / std::max<std::size_t>(1, tally.Planes)
+            << "%).\n";
+  return EXIT_SUCCESS;
+}
