@@ -67,6 +67,13 @@ public:
   void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const override;
 };
 
+/// Nothing may contribute anywhere: no segment at all.
+class EmptySource : public SegmentSource
+{
+public:
+  void GetSegments(int, int, const Ray&, std::vector<Segment>&) const override {}
+};
+
 } // namespace parc
 
 #endif

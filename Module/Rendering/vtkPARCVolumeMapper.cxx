@@ -69,6 +69,26 @@ parc::Matrix4 IndexToWorld(vtkImageData* image, vtkVolume* vol)
   return parc::Multiply(parc::vtk::ToMatrix4(vol->GetMatrix()), parc::vtk::IndexToPhysical(image));
 }
 
+/// The volume axis whose world direction is closest to the viewing direction (towards the
+/// volume's centre for perspective): its planes are crossed in order by every ray.
+int MajorAxis(const parc::Matrix4& indexToWorld, const vtkPARCRasterizer::View& view)
+{
+  int best = 2;
+  double bestCosine = -1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    const parc::Vec3 axis =
+      parc::Normalized({ indexToWorld(0, a), indexToWorld(1, a), indexToWorld(2, a) });
+    const double c = std::fabs(parc::Dot(axis, view.Pass.Direction));
+    if (c > bestCosine)
+    {
+      bestCosine = c;
+      best = a;
+    }
+  }
+  return best;
+}
+
 /// True when the renderer draws any visible prop besides volumes.
 bool HasOtherGeometry(vtkRenderer* ren)
 {
@@ -129,11 +149,20 @@ public:
   vtkNew<vtkPARCRasterizer> Rasterizer;
   parc::DepthBufferSource DepthSource;
   parc::PlaneBufferSource PlaneSource;
+  std::unique_ptr<parc::BothSource> Both;
+  const parc::WholeRaySource WholeRays;
+  const parc::EmptySource NoRays;
   bool FallbackWarned = false;
   vtkIdType PolygonCount = 0;
   int PlaneCount = 0;
   int PassCount = 0;
   vtkIdType PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
+
+  /// The mode Auto resolves to for the current classification and ray function.
+  int ChooseMode(int requested) const;
+  /// Runs the PARC passes of the requested mode; the segment source the caster uses.
+  const parc::SegmentSource& RunPasses(vtkPARCVolumeMapper* self, vtkRenderer* ren,
+    vtkVolume* vol, const vtkPARCRasterizer::View& passView);
 };
 
 vtkStandardNewMacro(vtkPARCVolumeMapper);
@@ -161,6 +190,8 @@ const char* vtkPARCVolumeMapper::GetAccelerationModeAsString(int mode)
       return "ColorBuffer";
     case ACCELERATION_AUTO:
       return "Auto";
+    case ACCELERATION_BOTH:
+      return "DepthAndColorBuffer";
     default:
       return "Unknown";
   }
@@ -350,33 +381,9 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
     depth = in.Depth.data();
   }
 
-  const parc::WholeRaySource wholeRays;
-  const parc::SegmentSource* source = &wholeRays;
-  in.LastMode = ACCELERATION_NONE;
-  const int mode = this->AccelerationMode == ACCELERATION_AUTO ? ACCELERATION_DEPTH_BUFFER
-                                                                 : this->AccelerationMode;
-  if (mode != ACCELERATION_NONE && this->PrepareModels(vol))
-  {
-    const parc::Matrix4 indexToWorld =
-      IndexToWorld(vtkImageData::SafeDownCast(this->GetInput()), vol);
-    const double projectionStart = vtkTimerLog::GetUniversalTime();
-    std::vector<float> nearFar;
-    if (in.Rasterizer->RenderDepth(ren->GetRenderWindow(), in.DepthModel, in.ModelVersion,
-          indexToWorld, passView, nearFar))
-    {
-      in.DepthSource.Set(passView.Pass, std::move(nearFar), &in.Grid, in.Parameters.WorldToIndex);
-      source = &in.DepthSource;
-      in.LastMode = ACCELERATION_DEPTH_BUFFER;
-      in.PolygonCount = static_cast<vtkIdType>(in.DepthModel.GetNumberOfQuads());
-    }
-    else if (!in.FallbackWarned)
-    {
-      vtkWarningMacro("PARC passes are not available (" << in.Rasterizer->GetLastError()
-                                                        << "); casting unaccelerated.");
-      in.FallbackWarned = true;
-    }
-    in.ProjectionTime = vtkTimerLog::GetUniversalTime() - projectionStart;
-  }
+  const double projectionStart = vtkTimerLog::GetUniversalTime();
+  const parc::SegmentSource& source = in.RunPasses(this, ren, vol, passView);
+  in.ProjectionTime = vtkTimerLog::GetUniversalTime() - projectionStart;
   in.Image.resize(4 * pixels);
   in.ImageSize[0] = view.Width;
   in.ImageSize[1] = view.Height;
@@ -386,8 +393,107 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
     return !this->GetAbortExecute() && !window->CheckAbortStatus();
   };
   const double castStart = vtkTimerLog::GetUniversalTime();
-  in.Caster.CastImage(view, depth, *source, in.Image.data(), in.Stats, progress);
+  in.Caster.CastImage(view, depth, source, in.Image.data(), in.Stats, progress);
   in.CastingTime = vtkTimerLog::GetUniversalTime() - castStart;
+}
+
+//------------------------------------------------------------------------------
+int vtkPARCVolumeMapper::vtkInternals::ChooseMode(int requested) const
+{
+  const vtkInternals& in = *this;
+  if (requested != ACCELERATION_AUTO)
+  {
+    return requested;
+  }
+  const std::size_t pc = in.Grid.GetNumberOfContributing();
+  if (pc == in.Grid.GetNumberOfSupercells())
+  {
+    return ACCELERATION_NONE; // every supercell may contribute: no pass can help
+  }
+  // Opaque or thin results stop early or need only the span: depth. Translucent
+  // ray functions that integrate the whole span gain from skipping empty planes inside it.
+  switch (in.Parameters.Blend)
+  {
+    case parc::BlendMode::Composite:
+    case parc::BlendMode::Additive:
+    case parc::BlendMode::AverageIntensity:
+      return ACCELERATION_BOTH;
+    default:
+      return ACCELERATION_DEPTH_BUFFER;
+  }
+}
+
+//------------------------------------------------------------------------------
+const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(
+  vtkPARCVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol, const vtkPARCRasterizer::View& passView)
+{
+  vtkInternals& in = *this;
+  const int requested = self->AccelerationMode;
+  in.LastMode = ACCELERATION_NONE;
+  if (requested == ACCELERATION_NONE || !self->PrepareModels(vol))
+  {
+    return in.WholeRays;
+  }
+  if (in.Grid.GetNumberOfContributing() == 0)
+  {
+    in.LastMode = requested;
+    return in.NoRays; // nothing can show: no pass, no sample
+  }
+  const int mode = in.ChooseMode(requested);
+  if (mode == ACCELERATION_NONE)
+  {
+    return in.WholeRays;
+  }
+  const parc::Matrix4 indexToWorld = IndexToWorld(vtkImageData::SafeDownCast(self->GetInput()), vol);
+  vtkRenderWindow* window = ren->GetRenderWindow();
+  const bool depth = mode == ACCELERATION_DEPTH_BUFFER || mode == ACCELERATION_BOTH;
+  const bool color = mode == ACCELERATION_COLOR_BUFFER || mode == ACCELERATION_BOTH;
+  bool ok = true;
+  if (depth)
+  {
+    std::vector<float> nearFar;
+    ok = in.Rasterizer->RenderDepth(window, in.DepthModel, in.ModelVersion, indexToWorld, passView, nearFar);
+    in.DepthSource.Set(passView.Pass, std::move(nearFar), &in.Grid, in.Parameters.WorldToIndex);
+    in.PolygonCount += static_cast<vtkIdType>(in.DepthModel.GetNumberOfQuads());
+  }
+  if (ok && color)
+  {
+    const int axis = MajorAxis(indexToWorld, passView);
+    parc::PolygonModel& model = in.ColorModels[axis];
+    if (!in.ColorModelBuilt[axis])
+    {
+      parc::BuildColorModel(in.Grid, axis, model);
+      in.ColorModelBuilt[axis] = true;
+      ++in.ModelBuilds;
+    }
+    std::vector<std::uint32_t> bits;
+    int words = 0;
+    ok = in.Rasterizer->RenderPlanes(window, model, 4 * in.ModelVersion + axis, indexToWorld,
+      passView, bits, words, in.PassCount);
+    in.PlaneSource.Set(passView.Pass, std::move(bits), words, &in.Grid, axis, model.FirstPlane,
+      in.Parameters.WorldToIndex);
+    in.PlaneCount = model.PlaneCount;
+    in.PolygonCount += static_cast<vtkIdType>(model.GetNumberOfQuads());
+  }
+  if (!ok)
+  {
+    if (!in.FallbackWarned)
+    {
+      vtkWarningWithObjectMacro(self, "PARC passes are not available ("
+          << in.Rasterizer->GetLastError() << "); casting unaccelerated.");
+      in.FallbackWarned = true;
+    }
+    in.PolygonCount = 0;
+    in.PlaneCount = in.PassCount = 0;
+    return in.WholeRays;
+  }
+  in.LastMode = mode;
+  if (mode == ACCELERATION_BOTH)
+  {
+    in.Both.reset(new parc::BothSource(in.DepthSource, in.PlaneSource));
+    return *in.Both;
+  }
+  return depth ? static_cast<const parc::SegmentSource&>(in.DepthSource) : in.PlaneSource;
 }
 
 //------------------------------------------------------------------------------

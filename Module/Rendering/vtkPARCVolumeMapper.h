@@ -64,7 +64,8 @@ public:
     ACCELERATION_NONE = 0,
     ACCELERATION_DEPTH_BUFFER = 1,
     ACCELERATION_COLOR_BUFFER = 2,
-    ACCELERATION_AUTO = 3
+    ACCELERATION_AUTO = 3,
+    ACCELERATION_BOTH = 4
   };
 
   ///@{
@@ -72,17 +73,21 @@ public:
    * How rays are told where to sample. None casts each ray through the whole volume;
    * DepthBuffer projects the outer faces of the possibly contributing (PC) supercells into
    * near/far buffers and casts each ray only between them; ColorBuffer projects per-plane
-   * faces into bit planes and casts only inside the planes a ray's bits name; Auto picks
-   * per volume and ray function. The image is bit-identical in every mode. When no OpenGL
+   * faces into bit planes and casts only inside the planes a ray's bits name; Both
+   * intersects the two. Auto picks per volume and ray function: no pass when every
+   * supercell may contribute (none can help) and no sample when none may; depth for
+   * isosurfaces and maximum/minimum intensity; depth and colour for composite, additive
+   * and average intensity (GetLastAccelerationMode says which). The image is bit-identical in every mode. When no OpenGL
    * 3.3 context or framebuffer is available, the mapper warns once and casts unaccelerated.
    * Default: Auto.
    */
-  vtkSetClampMacro(AccelerationMode, int, ACCELERATION_NONE, ACCELERATION_AUTO);
+  vtkSetClampMacro(AccelerationMode, int, ACCELERATION_NONE, ACCELERATION_BOTH);
   vtkGetMacro(AccelerationMode, int);
   void SetAccelerationModeToNone() { this->SetAccelerationMode(ACCELERATION_NONE); }
   void SetAccelerationModeToDepthBuffer() { this->SetAccelerationMode(ACCELERATION_DEPTH_BUFFER); }
   void SetAccelerationModeToColorBuffer() { this->SetAccelerationMode(ACCELERATION_COLOR_BUFFER); }
   void SetAccelerationModeToAuto() { this->SetAccelerationMode(ACCELERATION_AUTO); }
+  void SetAccelerationModeToBoth() { this->SetAccelerationMode(ACCELERATION_BOTH); }
   static const char* GetAccelerationModeAsString(int mode);
   ///@}
 
@@ -198,6 +203,7 @@ protected:
   void CastImage(vtkRenderer* ren, vtkVolume* vol);
   /** Classifies and builds the polygon models when their inputs changed. */
   bool PrepareModels(vtkVolume* vol);
+
   /** Composites the ray image over the renderer's viewport. */
   void DisplayImage(vtkRenderer* ren, vtkVolume* vol);
 
