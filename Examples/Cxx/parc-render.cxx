@@ -8,9 +8,11 @@
 #include <vtkContourValues.h>
 #include <vtkPiecewiseFunction.h>
 #include <vtkFixedPointVolumeRayCastMapper.h>
+#include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
+#include <vtkPointData.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkTimerLog.h>
@@ -18,6 +20,7 @@
 #include <vtkVolumeProperty.h>
 #include <vtkWindowToImageFilter.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -41,7 +44,11 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
   --camera-position X,Y,Z [--focal-point X,Y,Z]   explicit camera
   --parallel            parallel projection (default perspective)
   --sample-distance D   world units (default: half the smallest spacing)
-  --acceleration MODE   none, depth, color, auto (default)
+  --acceleration MODE   none, depth, color, both, auto (default)
+  --supercell M,N,P     supercell size in cells (default 4,4,4)
+  --compare-acceleration  also render with every acceleration mode, side by side: a table
+                        of samples, cells, polygons, times, speedup and exactness
+  --sweep-supercells S1,S2,...  also render with cubic supercells of these sizes (table)
   --repeat N            timed renders after one warm-up render (default 1)
   --compare-fixed-point also render with vtkFixedPointVolumeRayCastMapper
   --json                print statistics as JSON
@@ -53,7 +60,9 @@ struct Options
   std::string Volume, Output = "parc.png", Blend = "composite", TF, Acceleration = "auto";
   double Iso = 0.0, Azimuth = 30.0, Elevation = 20.0, Zoom = 1.0, SampleDistance = 0.0;
   bool HasIso = false, Shade = false, Parallel = false, Compare = false, Json = false;
-  bool HasPosition = false, HasFocal = false;
+  bool HasPosition = false, HasFocal = false, CompareAcceleration = false;
+  double Supercell[3] = { 4, 4, 4 };
+  std::vector<double> Sweep;
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
   int Width = 300, Height = 300, Repeat = 1;
 };
@@ -122,6 +131,16 @@ Options Parse(int argc, char* argv[])
     else if (a == "--acceleration") { o.Acceleration = value(); }
     else if (a == "--repeat") { o.Repeat = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--compare-fixed-point") { o.Compare = true; }
+    else if (a == "--supercell") { ToTriple(a, value(), o.Supercell); }
+    else if (a == "--compare-acceleration") { o.CompareAcceleration = true; }
+    else if (a == "--sweep-supercells")
+    {
+      std::stringstream in(value());
+      for (std::string part; std::getline(in, part, ',');)
+      {
+        o.Sweep.push_back(ToNumber(a, part));
+      }
+    }
     else if (a == "--json") { o.Json = true; }
     else if (a == "--size")
     {
@@ -172,12 +191,13 @@ int AccelerationMode(const std::string& name)
     { "none", vtkPARCVolumeMapper::ACCELERATION_NONE },
     { "depth", vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER },
     { "color", vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER },
+    { "both", vtkPARCVolumeMapper::ACCELERATION_BOTH },
     { "auto", vtkPARCVolumeMapper::ACCELERATION_AUTO }
   };
   const auto it = modes.find(name);
   if (it == modes.end())
   {
-    Fail("unknown acceleration mode " + name + " (none, depth, color, auto)");
+    Fail("unknown acceleration mode " + name + " (none, depth, color, both, auto)");
   }
   return it->second;
 }
@@ -188,6 +208,87 @@ double TimedRender(vtkRenderWindow* window)
   const double start = vtkTimerLog::GetUniversalTime();
   window->Render();
   return vtkTimerLog::GetUniversalTime() - start;
+}
+
+/// Averages of repeated renders of one configuration, and its float ray-cast image.
+struct Measurement
+{
+  std::string Mode;
+  long long Samples = 0, Cells = 0, Polygons = 0, Supercells = 0, Contributing = 0;
+  int Planes = 0, Passes = 0;
+  double Projection = 0.0, Casting = 0.0, Total = 0.0, Wall = 0.0;
+  std::vector<float> Image;
+};
+
+Measurement Measure(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, int repeat)
+{
+  window->Render(); // warm-up: classification, models, GL resources
+  Measurement m;
+  for (int r = 0; r < repeat; ++r)
+  {
+    m.Wall += TimedRender(window) / repeat;
+    m.Projection += mapper->GetLastProjectionTime() / repeat;
+    m.Casting += mapper->GetLastCastingTime() / repeat;
+    m.Total += mapper->GetLastRenderTime() / repeat;
+  }
+  m.Mode = vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode());
+  m.Samples = mapper->GetLastSampleCount();
+  m.Cells = mapper->GetLastCellCount();
+  m.Polygons = mapper->GetLastPolygonCount();
+  m.Supercells = mapper->GetLastSupercellCount();
+  m.Contributing = mapper->GetLastContributingSupercellCount();
+  m.Planes = mapper->GetLastPlaneCount();
+  m.Passes = mapper->GetLastPassCount();
+  vtkNew<vtkImageData> image;
+  mapper->GetLastRayCastImage(image);
+  auto* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
+  m.Image.assign(rgba->GetPointer(0), rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples());
+  return m;
+}
+
+/// Every acceleration mode side by side in one run (markdown table).
+void CompareAccelerationModes(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, int repeat)
+{
+  const int modes[] = { vtkPARCVolumeMapper::ACCELERATION_NONE,
+    vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER, vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER,
+    vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_AUTO };
+  std::vector<Measurement> rows;
+  for (int mode : modes)
+  {
+    mapper->SetAccelerationMode(mode);
+    rows.push_back(Measure(window, mapper, repeat));
+    if (mode == vtkPARCVolumeMapper::ACCELERATION_AUTO)
+    {
+      rows.back().Mode = "Auto: " + rows.back().Mode;
+    }
+  }
+  std::printf("| mode | samples | cells | polygons | planes/passes | projection (s) | casting (s) "
+              "| total (s) | speedup | identical |\n|---|---|---|---|---|---|---|---|---|---|\n");
+  for (const Measurement& m : rows)
+  {
+    const bool same = m.Image == rows[0].Image;
+    std::printf("| %s | %lld | %lld | %lld | %d/%d | %.4f | %.4f | %.4f | %.2fx | %s |\n",
+      m.Mode.c_str(), m.Samples, m.Cells, m.Polygons, m.Planes, m.Passes, m.Projection,
+      m.Casting, m.Total, rows[0].Total / m.Total, same ? "yes" : "NO");
+  }
+  std::printf("PC supercells: %lld of %lld (%.2f%%)\n", rows[1].Contributing, rows[1].Supercells,
+    100.0 * rows[1].Contributing / std::max(1LL, rows[1].Supercells));
+}
+
+/// Polygons against ray steps: cubic supercells of each size (markdown table).
+void SweepSupercells(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper,
+  const std::vector<double>& sizes, int repeat)
+{
+  std::printf("| supercell | PC supercells | polygons | samples | projection (s) | casting (s) "
+              "| total (s) | mode |\n|---|---|---|---|---|---|---|---|\n");
+  for (double s : sizes)
+  {
+    mapper->SetSupercellSize(s, s, s);
+    const Measurement m = Measure(window, mapper, repeat);
+    std::printf("| %g | %lld of %lld (%.1f%%) | %lld | %lld | %.4f | %.4f | %.4f | %s |\n", s,
+      m.Contributing, m.Supercells, 100.0 * m.Contributing / std::max(1LL, m.Supercells),
+      m.Polygons, m.Samples, m.Projection, m.Casting, m.Total, m.Mode.c_str());
+  }
 }
 }
 
@@ -226,6 +327,7 @@ int main(int argc, char* argv[])
   mapper->SetInputData(image);
   mapper->SetBlendMode(blend);
   mapper->SetAccelerationMode(acceleration);
+  mapper->SetSupercellSize(o.Supercell);
   mapper->SetSampleDistance(o.SampleDistance);
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
@@ -302,14 +404,28 @@ int main(int argc, char* argv[])
     fixedWall /= o.Repeat;
   }
 
-  const char* accel =
+  const std::string accel =
     vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode());
+  const vtkIdType samples = mapper->GetLastSampleCount();
+  if (o.CompareAcceleration || !o.Sweep.empty())
+  {
+    volume->SetMapper(mapper);
+  }
+  if (o.CompareAcceleration)
+  {
+    CompareAccelerationModes(window, mapper, o.Repeat);
+  }
+  if (!o.Sweep.empty())
+  {
+    mapper->SetAccelerationMode(acceleration);
+    SweepSupercells(window, mapper, o.Sweep, o.Repeat);
+  }
   if (o.Json)
   {
     std::cout << "{\n  \"volume\": \"" << o.Volume << "\",\n  \"image\": [" << o.Width << ", "
               << o.Height << "],\n  \"blend\": \"" << o.Blend << "\",\n  \"acceleration\": \""
               << accel << "\",\n  \"sample_distance\": " << mapper->GetLastSampleDistance()
-              << ",\n  \"samples\": " << mapper->GetLastSampleCount()
+              << ",\n  \"samples\": " << samples
               << ",\n  \"contributing_samples\": " << mapper->GetLastContributingSampleCount()
               << ",\n  \"rays\": " << mapper->GetLastRayCount()
               << ",\n  \"casting_time\": " << casting
@@ -327,7 +443,7 @@ int main(int argc, char* argv[])
   char size[32];
   std::snprintf(size, sizeof(size), "%dx%d", o.Width, o.Height);
   std::printf("%-12s %-9s %-10s %-12s %12lld %10.3f %10.3f %10.3f\n", "PARC", size,
-    o.Blend.c_str(), accel, static_cast<long long>(mapper->GetLastSampleCount()), casting, total,
+    o.Blend.c_str(), accel.c_str(), static_cast<long long>(samples), casting, total,
     wall);
   if (o.Compare && fixedSupports)
   {

@@ -41,19 +41,22 @@ bool DepthBufferSource::PixelSegment(int px, int py, const Ray& ray, Segment& se
   const std::size_t pixel = PixelIndex(this->View, px, py);
   const double zNear = this->NearFar[2 * pixel];
   const double zFar = -static_cast<double>(this->NearFar[2 * pixel + 1]);
-  const bool covered = zNear < Empty;
+  if (!(zNear < Empty))
+  {
+    // No face covers the pixel, so the ray meets no PC supercell: a ray starting inside
+    // one would leave it through a face in front of its start, and that face is drawn.
+    return false;
+  }
   // Depth along the view direction -> ray parameter: t = z / cos(ray, view direction).
   const double cosine = this->View.Parallel ? 1.0 : Dot(ray.Direction, this->View.Direction);
+  if (!(cosine > 0.0))
+  {
+    segment = { -Infinity, Infinity };
+    return true;
+  }
   const Vec3 start = this->WorldToIndex.TransformPoint(ray.Origin + ray.TMin * ray.Direction);
   const bool startsInside =
     this->Grid->TouchesContributing(start, StartTolerance * VolumeScale(*this->Grid));
-  if (!covered || !(cosine > 0.0))
-  {
-    // No face covers the pixel: the ray meets no PC supercell unless it starts in one
-    // (then it is cast whole; this does not happen for bounded models, but stays safe).
-    segment = { -Infinity, Infinity };
-    return startsInside || (covered && !(cosine > 0.0));
-  }
   segment.TNear = zNear / cosine - DepthTolerance * (std::fabs(zNear / cosine) + 1.0);
   segment.TFar = zFar / cosine + DepthTolerance * (std::fabs(zFar / cosine) + 1.0);
   if (startsInside)
@@ -61,6 +64,11 @@ bool DepthBufferSource::PixelSegment(int px, int py, const Ray& ray, Segment& se
     segment.TNear = -Infinity;
   }
   return true;
+}
+
+bool DepthBufferSource::MayHaveSegments(int px, int py) const
+{
+  return this->NearFar[2 * PixelIndex(this->View, px, py)] < Empty;
 }
 
 void DepthBufferSource::GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const
@@ -132,6 +140,13 @@ void PlaneBufferSource::GetSegments(int px, int py, const Ray& ray, std::vector<
   {
     emit(runFirst, runLast);
   }
+}
+
+bool PlaneBufferSource::MayHaveSegments(int px, int py) const
+{
+  const std::uint32_t* words =
+    this->Bits.data() + PixelIndex(this->View, px, py) * this->WordsPerPixel;
+  return std::any_of(words, words + this->WordsPerPixel, [](std::uint32_t w) { return w != 0; });
 }
 
 void PlaneBufferSource::PixelPlanes(int px, int py, std::vector<int>& planes) const

@@ -38,6 +38,7 @@ public:
     const Matrix4& worldToIndex);
 
   void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const override;
+  bool MayHaveSegments(int px, int py) const override;
 
   /// The segment of one pixel; false when the ray meets no PC supercell.
   bool PixelSegment(int px, int py, const Ray& ray, Segment& segment) const;
@@ -58,6 +59,7 @@ public:
     const SupercellGrid* grid, int axis, int firstPlane, const Matrix4& worldToIndex);
 
   void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const override;
+  bool MayHaveSegments(int px, int py) const override;
 
   /// The plane indices set for one pixel (tests and statistics).
   void PixelPlanes(int px, int py, std::vector<int>& planes) const;
@@ -82,6 +84,10 @@ public:
   {
   }
   void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const override;
+  bool MayHaveSegments(int px, int py) const override
+  {
+    return this->Depth.MayHaveSegments(px, py) && this->Planes.MayHaveSegments(px, py);
+  }
 
 private:
   const DepthBufferSource& Depth;

@@ -58,6 +58,8 @@ public:
   virtual ~SegmentSource() = default;
   /// Appends to out the segments of the ray through ray-image pixel (px, py).
   virtual void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const = 0;
+  /// False when the ray through pixel (px, py) surely gets no segment: it is not even made.
+  virtual bool MayHaveSegments(int /*px*/, int /*py*/) const { return true; }
 };
 
 /// Unaccelerated casting: the whole ray is one segment.
@@ -72,6 +74,7 @@ class EmptySource : public SegmentSource
 {
 public:
   void GetSegments(int, int, const Ray&, std::vector<Segment>&) const override {}
+  bool MayHaveSegments(int, int) const override { return false; }
 };
 
 } // namespace parc

@@ -495,8 +495,9 @@ std::uint64_t CellsCrossed(const Vec3& a, const Vec3& b)
   return n;
 }
 
+/// Visits the lattice samples of ranges in order; returns the last one visited.
 template <class Function>
-void Walk(const std::vector<LatticeRange>& ranges, Function& fn)
+long Walk(const std::vector<LatticeRange>& ranges, Function& fn)
 {
   long previous = std::numeric_limits<long>::min();
   for (const LatticeRange& r : ranges)
@@ -507,17 +508,29 @@ void Walk(const std::vector<LatticeRange>& ranges, Function& fn)
       previous = k;
       if (!fn(k, follows))
       {
-        return;
+        return k;
       }
     }
   }
+  return previous;
 }
 
+/// Casts fn over ranges into rgba and counts the cells the visited stretches crossed.
 template <class Function>
 void Run(Function&& fn, const std::vector<LatticeRange>& ranges, float rgba[4])
 {
-  Walk(ranges, fn);
+  const long last = Walk(ranges, fn);
   fn.Finish(rgba);
+  const RayContext& c = fn.C;
+  for (const LatticeRange& r : ranges)
+  {
+    if (r.First > last)
+    {
+      break;
+    }
+    c.Stats.Cells +=
+      CellsCrossed(c.IndexPosition(r.First * c.Dt), c.IndexPosition(std::min(r.Last, last) * c.Dt));
+  }
 }
 
 } // namespace
@@ -549,10 +562,6 @@ void RayCaster::CastRay(const Ray& ray, int px, int py, const SegmentSource& sou
   const Matrix4& w2i = this->Params->WorldToIndex;
   RayContext context{ *this->Field, *this->Params, ray, w2i.TransformPoint(ray.Origin),
     w2i.TransformVector(ray.Direction), dt, this->OpacityExponent, this->GradientNeeded, stats };
-  for (const LatticeRange& r : ranges)
-  {
-    stats.Cells += CellsCrossed(context.IndexPosition(r.First * dt), context.IndexPosition(r.Last * dt));
-  }
   switch (this->Params->Blend)
   {
     case BlendMode::Composite:
@@ -615,6 +624,10 @@ struct TileCaster
       {
         for (int px = tx * TileSize; px < x1; ++px)
         {
+          if (!this->Source.MayHaveSegments(px, py))
+          {
+            continue;
+          }
           const std::size_t pixel = static_cast<std::size_t>(py) * this->View.Width + px;
           Ray ray = this->View.MakeRay(px, py);
           if (this->Depth && this->Depth[pixel] < 1.f)

@@ -410,17 +410,9 @@ int vtkPARCVolumeMapper::vtkInternals::ChooseMode(int requested) const
   {
     return ACCELERATION_NONE; // every supercell may contribute: no pass can help
   }
-  // Opaque or thin results stop early or need only the span: depth. Translucent
-  // ray functions that integrate the whole span gain from skipping empty planes inside it.
-  switch (in.Parameters.Blend)
-  {
-    case parc::BlendMode::Composite:
-    case parc::BlendMode::Additive:
-    case parc::BlendMode::AverageIntensity:
-      return ACCELERATION_BOTH;
-    default:
-      return ACCELERATION_DEPTH_BUFFER;
-  }
+  // Measured on Mesa llvmpipe (scripts/benchmark.sh): the plane pass costs more than the
+  // samples it saves inside [near, far] for every ray function, so depth it is.
+  return ACCELERATION_DEPTH_BUFFER;
 }
 
 //------------------------------------------------------------------------------

@@ -75,9 +75,9 @@ public:
    * near/far buffers and casts each ray only between them; ColorBuffer projects per-plane
    * faces into bit planes and casts only inside the planes a ray's bits name; Both
    * intersects the two. Auto picks per volume and ray function: no pass when every
-   * supercell may contribute (none can help) and no sample when none may; depth for
-   * isosurfaces and maximum/minimum intensity; depth and colour for composite, additive
-   * and average intensity (GetLastAccelerationMode says which). The image is bit-identical in every mode. When no OpenGL
+   * supercell may contribute (none can help), no sample when none may, and otherwise
+   * depth, which measured fastest for every ray function on Mesa llvmpipe (software GL
+   * makes the plane pass dear); GetLastAccelerationMode says which it used. The image is bit-identical in every mode. When no OpenGL
    * 3.3 context or framebuffer is available, the mapper warns once and casts unaccelerated.
    * Default: Auto.
    */
