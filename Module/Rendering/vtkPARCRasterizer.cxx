@@ -244,6 +244,8 @@ public:
     glGetIntegerv(GL_LOGIC_OP_MODE, &this->LogicOpMode);
     glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &this->VertexArray);
     glGetIntegerv(GL_PACK_ALIGNMENT, &this->PackAlignment);
+    glGetIntegerv(GL_BLEND_EQUATION_RGB, &this->BlendEquation[0]);
+    glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &this->BlendEquation[1]);
   }
   ~ScopedPassState()
   {
@@ -252,7 +254,8 @@ public:
     (this->LogicOp ? glEnable : glDisable)(GL_COLOR_LOGIC_OP);
     (this->DepthClamp ? glEnable : glDisable)(GL_DEPTH_CLAMP);
     this->State->vtkglPixelStorei(GL_PACK_ALIGNMENT, this->PackAlignment);
-    this->State->ResetGLBlendEquationState();
+    this->State->vtkglBlendEquationSeparate(
+      static_cast<GLenum>(this->BlendEquation[0]), static_cast<GLenum>(this->BlendEquation[1]));
     this->State->GetShaderCache()->ReleaseCurrentShader();
     this->State->PopFramebufferBindings();
   }
@@ -270,6 +273,7 @@ private:
   GLint LogicOpMode = GL_COPY;
   GLint VertexArray = 0;
   GLint PackAlignment = 4;
+  GLint BlendEquation[2] = { GL_FUNC_ADD, GL_FUNC_ADD };
 };
 }
 
