@@ -143,6 +143,36 @@ int TestPARCAccelerationExact(int argc, char* argv[])
       }
     }
   }
+  // Only what changed is redone: a camera move reclassifies nothing and uploads nothing; a
+  // transfer-function change reclassifies once and keeps the data's cell-range pyramid.
+  {
+    window->GetRenderers()->RemoveAllItems();
+    vtkSmartPointer<vtkPARCVolumeMapper> mapper =
+      parctest::AddVolume(window, vp, blobs, property, vtkVolumeMapper::COMPOSITE_BLEND);
+    mapper->SetAccelerationModeToDepthBuffer();
+    window->Render();
+    const vtkIdType classifications = mapper->GetClassificationCount();
+    const vtkIdType uploads = mapper->GetModelUploadCount();
+    window->GetRenderers()->GetFirstRenderer()->GetActiveCamera()->Azimuth(20);
+    window->Render();
+    window->Render();
+    if (mapper->GetClassificationCount() != classifications || mapper->GetModelUploadCount() != uploads ||
+      mapper->GetPyramidBuildCount() != 1 || classifications != 1 || uploads != 1)
+    {
+      std::cerr << "FAIL: a camera move redid work: classifications " << classifications << " -> "
+                << mapper->GetClassificationCount() << ", uploads " << uploads << " -> "
+                << mapper->GetModelUploadCount() << "\n";
+      ++failures;
+    }
+    property->GetScalarOpacity()->AddPoint(200, 0.9);
+    window->Render();
+    if (mapper->GetClassificationCount() != 2 || mapper->GetModelUploadCount() != 2 ||
+      mapper->GetPyramidBuildCount() != 1)
+    {
+      std::cerr << "FAIL: a transfer-function change should reclassify once\n";
+      ++failures;
+    }
+  }
   std::cout << cases << " accelerated renders compared, " << failures << " failures\n";
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
