@@ -45,7 +45,7 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
   --parallel            parallel projection (default perspective)
   --sample-distance D   world units (default: half the smallest spacing)
   --acceleration MODE   none, depth, color, both, auto (default)
-  --supercell M,N,P     supercell size in cells (default 4,4,4)
+  --supercell M,N,P     supercell size in cells (default 2,2,2)
   --compare-acceleration  also render with every acceleration mode, side by side: a table
                         of samples, cells, polygons, times, speedup and exactness
   --sweep-supercells S1,S2,...  also render with cubic supercells of these sizes (table)
@@ -61,7 +61,7 @@ struct Options
   double Iso = 0.0, Azimuth = 30.0, Elevation = 20.0, Zoom = 1.0, SampleDistance = 0.0;
   bool HasIso = false, Shade = false, Parallel = false, Compare = false, Json = false;
   bool HasPosition = false, HasFocal = false, CompareAcceleration = false;
-  double Supercell[3] = { 4, 4, 4 };
+  double Supercell[3] = { 2, 2, 2 };
   std::vector<double> Sweep;
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
   int Width = 300, Height = 300, Repeat = 1;
@@ -271,8 +271,10 @@ void CompareAccelerationModes(vtkRenderWindow* window, vtkPARCVolumeMapper* mapp
       m.Mode.c_str(), m.Samples, m.Cells, m.Polygons, m.Planes, m.Passes, m.Projection,
       m.Casting, m.Total, rows[0].Total / m.Total, same ? "yes" : "NO");
   }
-  std::printf("PC supercells: %lld of %lld (%.2f%%)\n", rows[1].Contributing, rows[1].Supercells,
-    100.0 * rows[1].Contributing / std::max(1LL, rows[1].Supercells));
+  std::printf("PC supercells: %lld of %lld (%.2f%%); classification took %.4f s\n",
+    rows[1].Contributing, rows[1].Supercells,
+    100.0 * rows[1].Contributing / std::max(1LL, rows[1].Supercells),
+    mapper->GetLastClassificationTime());
 }
 
 /// Polygons against ray steps: cubic supercells of each size (markdown table).

@@ -157,6 +157,7 @@ public:
   int PlaneCount = 0;
   int PassCount = 0;
   vtkIdType PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
+  double ClassificationTime = 0.0;
 
   /// The mode Auto resolves to for the current classification and ray function.
   int ChooseMode(int requested) const;
@@ -517,9 +518,11 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolume* vol)
                                              << "): casting unaccelerated.");
     return false;
   }
+  const double start = vtkTimerLog::GetUniversalTime();
   parc::ContributionRule rule;
   rule.Set(in.Parameters, in.Field.GetRange());
   in.Grid.Classify(in.Pyramid, rule, in.Parameters.Interp);
+  in.ClassificationTime = vtkTimerLog::GetUniversalTime() - start;
   parc::BuildDepthModel(in.Grid, false, in.DepthModel);
   std::fill_n(in.ColorModelBuilt, 3, false);
   ++in.ModelVersion;
@@ -627,6 +630,10 @@ int vtkPARCVolumeMapper::GetLastPlaneCount()
 int vtkPARCVolumeMapper::GetLastPassCount()
 {
   return this->Internals->PassCount;
+}
+double vtkPARCVolumeMapper::GetLastClassificationTime()
+{
+  return this->Internals->ClassificationTime;
 }
 vtkIdType vtkPARCVolumeMapper::GetPyramidBuildCount()
 {

@@ -95,7 +95,8 @@ public:
   /**
    * Supercell size in cells along the volume's x, y and z (positive real numbers; below 1
    * they are subcells): larger supercells mean fewer polygons to project, smaller ones
-   * fewer samples in empty space (paper, section 2). Default 4 x 4 x 4.
+   * fewer samples in empty space (paper, section 2). Default 2 x 2 x 2 (the fastest in
+   * the sweep of scripts/benchmark.sh on this machine).
    */
   vtkSetVector3Macro(SupercellSize, double);
   vtkGetVector3Macro(SupercellSize, double);
@@ -173,6 +174,8 @@ public:
   /** Supercells and PC supercells of the last classification. */
   vtkIdType GetLastSupercellCount();
   vtkIdType GetLastContributingSupercellCount();
+  /** Seconds the most recent classification took (with the data's pyramid cached). */
+  double GetLastClassificationTime();
   /** Colour-buffer PARC: planes and passes of the last render (0 otherwise). */
   int GetLastPlaneCount();
   int GetLastPassCount();
@@ -208,7 +211,7 @@ protected:
   void DisplayImage(vtkRenderer* ren, vtkVolume* vol);
 
   int AccelerationMode = ACCELERATION_AUTO;
-  double SupercellSize[3] = { 4.0, 4.0, 4.0 };
+  double SupercellSize[3] = { 2.0, 2.0, 2.0 };
   double SampleDistance = 0.0;
   double ImageSampleDistance = 1.0;
   double TerminationOpacity = 0.99;
