@@ -201,6 +201,19 @@ void SetMatrix(GLuint program, const char* name, const parc::Matrix4& m)
   glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, v);
 }
 
+/// What both passes set: no scissor, depth test, culling or depth writes; all colour
+/// channels; depth clamping (faces beyond the near/far planes still count); tight rows.
+void SetCommonPassState(vtkOpenGLState* state)
+{
+  state->vtkglDisable(GL_SCISSOR_TEST);
+  state->vtkglDisable(GL_DEPTH_TEST);
+  state->vtkglDisable(GL_CULL_FACE);
+  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  state->vtkglDepthMask(GL_FALSE);
+  state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 4);
+  glEnable(GL_DEPTH_CLAMP);
+}
+
 /// A model on the GPU.
 struct GPUModel
 {
@@ -292,6 +305,18 @@ public:
 
   bool Prepare(vtkRenderWindow* window, std::string& error);
   void Upload(GPUModel& gpu, const parc::PolygonModel& model, std::uint64_t version);
+  /// The GPU copy of model in slot (0 depth, 1 colour), uploaded when its version changed.
+  const GPUModel& Use(int slot, const parc::PolygonModel& model, std::uint64_t version,
+    std::uint64_t& uploads)
+  {
+    GPUModel& gpu = this->Models[slot];
+    if (gpu.Version != version)
+    {
+      this->Upload(gpu, model, version);
+      ++uploads;
+    }
+    return gpu;
+  }
   bool Target(GLenum format, int attachments, int width, int height, std::string& error);
   void Draw(GLuint program, const GPUModel& gpu, const parc::Matrix4& indexToWorld,
     const vtkPARCRasterizer::View& view);
@@ -518,25 +543,15 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
   }
   vtkOpenGLState* state = in.Context->GetState();
   ScopedPassState saved(state);
-  GPUModel& gpu = in.Models[0];
-  if (gpu.Version != modelVersion)
-  {
-    in.Upload(gpu, model, modelVersion);
-    ++this->UploadCount;
-  }
+  const GPUModel& gpu = in.Use(0, model, modelVersion, this->UploadCount);
   const int w = view.Pass.Width, h = view.Pass.Height;
   if (!in.Target(GL_RG32F, 1, w, h, this->LastError))
   {
     return false;
   }
   state->vtkglViewport(0, 0, w, h);
-  state->vtkglDisable(GL_SCISSOR_TEST);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  state->vtkglDisable(GL_CULL_FACE);
-  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  state->vtkglDepthMask(GL_FALSE);
+  SetCommonPassState(state);
   glDisable(GL_COLOR_LOGIC_OP);
-  glEnable(GL_DEPTH_CLAMP);
   const GLfloat clear[4] = { parc::DepthBufferSource::Empty, parc::DepthBufferSource::Empty, 0.f,
     0.f };
   glClearBufferfv(GL_COLOR, 0, clear);
@@ -546,7 +561,6 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
   in.Draw(in.DepthProgram, gpu, indexToWorld, view);
   nearFar.resize(2 * static_cast<std::size_t>(w) * h);
   glReadBuffer(GL_COLOR_ATTACHMENT0);
-  state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 4);
   glReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, nearFar.data());
   return glGetError() == GL_NO_ERROR || (this->LastError = "an OpenGL error in the depth pass", false);
 }
@@ -564,12 +578,7 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
   }
   vtkOpenGLState* state = in.Context->GetState();
   ScopedPassState saved(state);
-  GPUModel& gpu = in.Models[1];
-  if (gpu.Version != modelVersion)
-  {
-    in.Upload(gpu, model, modelVersion);
-    ++this->UploadCount;
-  }
+  const GPUModel& gpu = in.Use(1, model, modelVersion, this->UploadCount);
   const int w = view.Pass.Width, h = view.Pass.Height;
   const std::size_t pixels = static_cast<std::size_t>(w) * h;
   passes = std::max(1, (model.PlaneCount + PlanesPerPass - 1) / PlanesPerPass);
@@ -580,14 +589,8 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
   wordsPerPixel = 4 * attachmentsTotal;
   bits.assign(pixels * wordsPerPixel, 0u);
   std::vector<std::uint32_t> texels(4 * pixels);
-  state->vtkglDisable(GL_SCISSOR_TEST);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  state->vtkglDisable(GL_CULL_FACE);
+  SetCommonPassState(state);
   state->vtkglDisable(GL_BLEND);
-  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  state->vtkglDepthMask(GL_FALSE);
-  glEnable(GL_DEPTH_CLAMP);
-  state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 4);
   for (int pass = 0; pass < passes; ++pass)
   {
     const int attachments =
