@@ -58,8 +58,11 @@ class TestPARCPipeline(unittest.TestCase):
         alpha = rgba.GetRange(3)
         self.assertGreater(alpha[1], 0.1)
         self.assertLessEqual(alpha[1], 1.0)
+        # Auto: depth PARC unless every supercell may contribute (then no pass can help).
+        all_pc = mapper.GetLastContributingSupercellCount() == mapper.GetLastSupercellCount()
         self.assertEqual(vtkPARCVolumeMapper.GetAccelerationModeAsString(
-            mapper.GetLastAccelerationMode()), "None")
+            mapper.GetLastAccelerationMode()), "None" if all_pc else "DepthBuffer")
+        self.assertGreater(mapper.GetLastSupercellCount(), 0)
 
     def test_progress_and_abort(self):
         mapper, window = make_scene(size=256)
