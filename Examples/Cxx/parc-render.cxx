@@ -24,7 +24,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
-#include <map>
+#include <utility>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -168,38 +168,41 @@ Options Parse(int argc, char* argv[])
   return o;
 }
 
+/// The value named name in names; fails with the list of names otherwise.
+int Lookup(const std::vector<std::pair<std::string, int>>& names, const std::string& name,
+  const std::string& what)
+{
+  std::string list;
+  for (const auto& n : names)
+  {
+    if (n.first == name)
+    {
+      return n.second;
+    }
+    list += (list.empty() ? "" : ", ") + n.first;
+  }
+  Fail("unknown " + what + " " + name + " (" + list + ")");
+}
+
 int BlendMode(const std::string& name)
 {
-  static const std::map<std::string, int> modes = {
-    { "composite", vtkVolumeMapper::COMPOSITE_BLEND },
-    { "mip", vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND },
-    { "minip", vtkVolumeMapper::MINIMUM_INTENSITY_BLEND },
-    { "average", vtkVolumeMapper::AVERAGE_INTENSITY_BLEND },
-    { "additive", vtkVolumeMapper::ADDITIVE_BLEND }, { "iso", vtkVolumeMapper::ISOSURFACE_BLEND }
-  };
-  const auto it = modes.find(name);
-  if (it == modes.end())
-  {
-    Fail("unknown blend mode " + name + " (composite, mip, minip, average, additive, iso)");
-  }
-  return it->second;
+  return Lookup({ { "composite", vtkVolumeMapper::COMPOSITE_BLEND },
+                  { "mip", vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND },
+                  { "minip", vtkVolumeMapper::MINIMUM_INTENSITY_BLEND },
+                  { "average", vtkVolumeMapper::AVERAGE_INTENSITY_BLEND },
+                  { "additive", vtkVolumeMapper::ADDITIVE_BLEND },
+                  { "iso", vtkVolumeMapper::ISOSURFACE_BLEND } },
+    name, "blend mode");
 }
 
 int AccelerationMode(const std::string& name)
 {
-  static const std::map<std::string, int> modes = {
-    { "none", vtkPARCVolumeMapper::ACCELERATION_NONE },
-    { "depth", vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER },
-    { "color", vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER },
-    { "both", vtkPARCVolumeMapper::ACCELERATION_BOTH },
-    { "auto", vtkPARCVolumeMapper::ACCELERATION_AUTO }
-  };
-  const auto it = modes.find(name);
-  if (it == modes.end())
-  {
-    Fail("unknown acceleration mode " + name + " (none, depth, color, both, auto)");
-  }
-  return it->second;
+  return Lookup({ { "none", vtkPARCVolumeMapper::ACCELERATION_NONE },
+                  { "depth", vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER },
+                  { "color", vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER },
+                  { "both", vtkPARCVolumeMapper::ACCELERATION_BOTH },
+                  { "auto", vtkPARCVolumeMapper::ACCELERATION_AUTO } },
+    name, "acceleration mode");
 }
 
 /// Wall time of one renWin->Render().

@@ -34,6 +34,7 @@ void DepthBufferSource::Set(const PassView& view, std::vector<float> nearFar,
   this->NearFar = std::move(nearFar);
   this->Grid = grid;
   this->WorldToIndex = worldToIndex;
+  this->StartEps = grid ? StartTolerance * VolumeScale(*grid) : 0.0;
 }
 
 bool DepthBufferSource::PixelSegment(int px, int py, const Ray& ray, Segment& segment) const
@@ -55,8 +56,7 @@ bool DepthBufferSource::PixelSegment(int px, int py, const Ray& ray, Segment& se
     return true;
   }
   const Vec3 start = this->WorldToIndex.TransformPoint(ray.Origin + ray.TMin * ray.Direction);
-  const bool startsInside =
-    this->Grid->TouchesContributing(start, StartTolerance * VolumeScale(*this->Grid));
+  const bool startsInside = this->Grid->TouchesContributing(start, this->StartEps);
   segment.TNear = zNear / cosine - DepthTolerance * (std::fabs(zNear / cosine) + 1.0);
   segment.TFar = zFar / cosine + DepthTolerance * (std::fabs(zFar / cosine) + 1.0);
   if (startsInside)

@@ -48,6 +48,7 @@ private:
   std::vector<float> NearFar;
   const SupercellGrid* Grid = nullptr;
   Matrix4 WorldToIndex;
+  double StartEps = 0.0; ///< voxel-index tolerance of "the ray starts inside"
 };
 
 class PlaneBufferSource : public SegmentSource

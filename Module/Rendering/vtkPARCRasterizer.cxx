@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <string>
 
 namespace
 {
@@ -304,6 +305,31 @@ public:
   int Size[2] = { 0, 0 };
 
   bool Prepare(vtkRenderWindow* window, std::string& error);
+  /// One pass: makes the context current (building the programs the first time), saves
+  /// the GL state for the duration, sets the state both passes share, runs body(state)
+  /// and reports a GL error as a failure of the named pass.
+  template <class Body>
+  bool Run(vtkRenderWindow* window, const char* pass, std::string& error, Body&& body)
+  {
+    error.clear();
+    if (!this->Prepare(window, error))
+    {
+      return false;
+    }
+    vtkOpenGLState* state = this->Context->GetState();
+    ScopedPassState saved(state);
+    SetCommonPassState(state);
+    if (!body(state))
+    {
+      return false;
+    }
+    if (glGetError() != GL_NO_ERROR)
+    {
+      error = std::string("an OpenGL error in the ") + pass + " pass";
+      return false;
+    }
+    return true;
+  }
   void Upload(GPUModel& gpu, const parc::PolygonModel& model, std::uint64_t version);
   /// The GPU copy of model in slot (0 depth, 1 colour), uploaded when its version changed.
   const GPUModel& Use(int slot, const parc::PolygonModel& model, std::uint64_t version,
@@ -536,33 +562,27 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
   std::vector<float>& nearFar)
 {
   vtkInternals& in = *this->Internals;
-  this->LastError.clear();
-  if (!in.Prepare(window, this->LastError))
-  {
-    return false;
-  }
-  vtkOpenGLState* state = in.Context->GetState();
-  ScopedPassState saved(state);
-  const GPUModel& gpu = in.Use(0, model, modelVersion, this->UploadCount);
-  const int w = view.Pass.Width, h = view.Pass.Height;
-  if (!in.Target(GL_RG32F, 1, w, h, this->LastError))
-  {
-    return false;
-  }
-  state->vtkglViewport(0, 0, w, h);
-  SetCommonPassState(state);
-  glDisable(GL_COLOR_LOGIC_OP);
-  const GLfloat clear[4] = { parc::DepthBufferSource::Empty, parc::DepthBufferSource::Empty, 0.f,
-    0.f };
-  glClearBufferfv(GL_COLOR, 0, clear);
-  state->vtkglEnable(GL_BLEND);
-  state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
-  state->vtkglBlendEquation(GL_MIN);
-  in.Draw(in.DepthProgram, gpu, indexToWorld, view);
-  nearFar.resize(2 * static_cast<std::size_t>(w) * h);
-  glReadBuffer(GL_COLOR_ATTACHMENT0);
-  glReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, nearFar.data());
-  return glGetError() == GL_NO_ERROR || (this->LastError = "an OpenGL error in the depth pass", false);
+  return in.Run(window, "depth", this->LastError, [&](vtkOpenGLState* state) {
+    const GPUModel& gpu = in.Use(0, model, modelVersion, this->UploadCount);
+    const int w = view.Pass.Width, h = view.Pass.Height;
+    if (!in.Target(GL_RG32F, 1, w, h, this->LastError))
+    {
+      return false;
+    }
+    state->vtkglViewport(0, 0, w, h);
+    glDisable(GL_COLOR_LOGIC_OP);
+    const GLfloat clear[4] = { parc::DepthBufferSource::Empty, parc::DepthBufferSource::Empty,
+      0.f, 0.f };
+    glClearBufferfv(GL_COLOR, 0, clear);
+    state->vtkglEnable(GL_BLEND);
+    state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
+    state->vtkglBlendEquation(GL_MIN);
+    in.Draw(in.DepthProgram, gpu, indexToWorld, view);
+    nearFar.resize(2 * static_cast<std::size_t>(w) * h);
+    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    glReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, nearFar.data());
+    return true;
+  });
 }
 
 //------------------------------------------------------------------------------
@@ -571,57 +591,49 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
   std::vector<std::uint32_t>& bits, int& wordsPerPixel, int& passes)
 {
   vtkInternals& in = *this->Internals;
-  this->LastError.clear();
-  if (!in.Prepare(window, this->LastError))
-  {
-    return false;
-  }
-  vtkOpenGLState* state = in.Context->GetState();
-  ScopedPassState saved(state);
-  const GPUModel& gpu = in.Use(1, model, modelVersion, this->UploadCount);
-  const int w = view.Pass.Width, h = view.Pass.Height;
-  const std::size_t pixels = static_cast<std::size_t>(w) * h;
-  passes = std::max(1, (model.PlaneCount + PlanesPerPass - 1) / PlanesPerPass);
-  wordsPerPixel = 0;
-  const int planeWords = std::max(1, (model.PlaneCount + 31) / 32);
-  // Words per pixel: whole attachments (4 words each) up to the planes needed.
-  const int attachmentsTotal = (planeWords + 3) / 4;
-  wordsPerPixel = 4 * attachmentsTotal;
-  bits.assign(pixels * wordsPerPixel, 0u);
-  std::vector<std::uint32_t> texels(4 * pixels);
-  SetCommonPassState(state);
-  state->vtkglDisable(GL_BLEND);
-  for (int pass = 0; pass < passes; ++pass)
-  {
-    const int attachments =
-      std::min(MaxAttachments, attachmentsTotal - pass * MaxAttachments);
-    if (!in.Target(GL_RGBA32UI, attachments, w, h, this->LastError))
+  return in.Run(window, "plane", this->LastError, [&](vtkOpenGLState* state) {
+    const GPUModel& gpu = in.Use(1, model, modelVersion, this->UploadCount);
+    const int w = view.Pass.Width, h = view.Pass.Height;
+    const std::size_t pixels = static_cast<std::size_t>(w) * h;
+    passes = std::max(1, (model.PlaneCount + PlanesPerPass - 1) / PlanesPerPass);
+    // Words per pixel: whole attachments (4 words each) up to the planes needed.
+    const int planeWords = std::max(1, (model.PlaneCount + 31) / 32);
+    const int attachmentsTotal = (planeWords + 3) / 4;
+    wordsPerPixel = 4 * attachmentsTotal;
+    bits.assign(pixels * wordsPerPixel, 0u);
+    std::vector<std::uint32_t> texels(4 * pixels);
+    state->vtkglDisable(GL_BLEND);
+    for (int pass = 0; pass < passes; ++pass)
     {
-      return false;
-    }
-    state->vtkglViewport(0, 0, w, h);
-    const GLuint zero[4] = { 0, 0, 0, 0 };
-    for (int a = 0; a < attachments; ++a)
-    {
-      glClearBufferuiv(GL_COLOR, a, zero);
-    }
-    glEnable(GL_COLOR_LOGIC_OP);
-    glLogicOp(GL_OR);
-    glUseProgram(in.PlaneProgram);
-    glUniform1i(glGetUniformLocation(in.PlaneProgram, "PlaneBase"), pass * PlanesPerPass);
-    in.Draw(in.PlaneProgram, gpu, indexToWorld, view);
-    for (int a = 0; a < attachments; ++a)
-    {
-      glReadBuffer(GL_COLOR_ATTACHMENT0 + a);
-      glReadPixels(0, 0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
-      const int word0 = 4 * (pass * MaxAttachments + a);
-      for (std::size_t p = 0; p < pixels; ++p)
+      const int attachments = std::min(MaxAttachments, attachmentsTotal - pass * MaxAttachments);
+      if (!in.Target(GL_RGBA32UI, attachments, w, h, this->LastError))
       {
-        std::copy_n(texels.data() + 4 * p, 4, bits.data() + p * wordsPerPixel + word0);
+        return false;
+      }
+      state->vtkglViewport(0, 0, w, h);
+      const GLuint zero[4] = { 0, 0, 0, 0 };
+      for (int a = 0; a < attachments; ++a)
+      {
+        glClearBufferuiv(GL_COLOR, a, zero);
+      }
+      glEnable(GL_COLOR_LOGIC_OP);
+      glLogicOp(GL_OR);
+      glUseProgram(in.PlaneProgram);
+      glUniform1i(glGetUniformLocation(in.PlaneProgram, "PlaneBase"), pass * PlanesPerPass);
+      in.Draw(in.PlaneProgram, gpu, indexToWorld, view);
+      for (int a = 0; a < attachments; ++a)
+      {
+        glReadBuffer(GL_COLOR_ATTACHMENT0 + a);
+        glReadPixels(0, 0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
+        const int word0 = 4 * (pass * MaxAttachments + a);
+        for (std::size_t p = 0; p < pixels; ++p)
+        {
+          std::copy_n(texels.data() + 4 * p, 4, bits.data() + p * wordsPerPixel + word0);
+        }
       }
     }
-  }
-  return glGetError() == GL_NO_ERROR || (this->LastError = "an OpenGL error in the plane pass", false);
+    return true;
+  });
 }
 
 //------------------------------------------------------------------------------

@@ -115,6 +115,7 @@ public:
   vtkMTimeType FieldTime = 0;
   vtkDataArray* FieldArray = nullptr;
   parc::CastParameters Parameters;
+  parc::Matrix4 IndexToWorld; ///< voxel index -> world, of the last PrepareParameters
   parc::RayCaster Caster;
   std::vector<float> Image;
   int ImageSize[2] = { 0, 0 };
@@ -149,7 +150,7 @@ public:
   vtkNew<vtkPARCRasterizer> Rasterizer;
   parc::DepthBufferSource DepthSource;
   parc::PlaneBufferSource PlaneSource;
-  std::unique_ptr<parc::BothSource> Both;
+  const parc::BothSource Both{ DepthSource, PlaneSource };
   const parc::WholeRaySource WholeRays;
   const parc::EmptySource NoRays;
   bool FallbackWarned = false;
@@ -309,8 +310,8 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
   p.AverageRange[1] = this->AverageIPScalarRange[1];
   p.TerminationOpacity = this->TerminationOpacity;
 
-  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInput());
-  const parc::Matrix4 indexToWorld = IndexToWorld(image, vol);
+  in.IndexToWorld = IndexToWorld(vtkImageData::SafeDownCast(this->GetInput()), vol);
+  const parc::Matrix4& indexToWorld = in.IndexToWorld;
   if (!parc::Invert(indexToWorld, p.WorldToIndex))
   {
     vtkErrorMacro("The volume's index-to-world transform is singular (zero scale?).");
@@ -437,7 +438,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(
   {
     return in.WholeRays;
   }
-  const parc::Matrix4 indexToWorld = IndexToWorld(vtkImageData::SafeDownCast(self->GetInput()), vol);
+  const parc::Matrix4& indexToWorld = in.IndexToWorld;
   vtkRenderWindow* window = ren->GetRenderWindow();
   const bool depth = mode == ACCELERATION_DEPTH_BUFFER || mode == ACCELERATION_BOTH;
   const bool color = mode == ACCELERATION_COLOR_BUFFER || mode == ACCELERATION_BOTH;
@@ -483,8 +484,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(
   in.LastMode = mode;
   if (mode == ACCELERATION_BOTH)
   {
-    in.Both.reset(new parc::BothSource(in.DepthSource, in.PlaneSource));
-    return *in.Both;
+    return in.Both;
   }
   return depth ? static_cast<const parc::SegmentSource&>(in.DepthSource) : in.PlaneSource;
 }
