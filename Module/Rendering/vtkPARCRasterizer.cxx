@@ -7,6 +7,7 @@
 #include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkRenderer.h"
+#include "vtkWeakPointer.h"
 #include "vtk_glew.h"
 
 #include <algorithm>
@@ -295,7 +296,8 @@ private:
 class vtkPARCRasterizer::vtkInternals
 {
 public:
-  vtkOpenGLRenderWindow* Context = nullptr;
+  /// Weak: the window may be destroyed first; its GL objects then went with its context.
+  vtkWeakPointer<vtkOpenGLRenderWindow> Context;
   GLuint DepthProgram = 0;
   GLuint PlaneProgram = 0;
   GPUModel Models[2]; ///< depth, colour

@@ -6,6 +6,7 @@
 #include <vtkActor.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkRendererCollection.h>
+#include <vtkVolumeCollection.h>
 #include <vtkSphereSource.h>
 
 #include <cstring>
@@ -171,6 +172,21 @@ int TestPARCAccelerationExact(int argc, char* argv[])
     {
       std::cerr << "FAIL: a transfer-function change should reclassify once\n";
       ++failures;
+    }
+  }
+  // A mapper that outlives its window (taken off its volume first, so the window never
+  // releases its GL resources) is destroyed without touching the dead context.
+  {
+    vtkSmartPointer<vtkPARCVolumeMapper> survivor;
+    {
+      vtkNew<vtkRenderWindow> shortLived;
+      shortLived->SetOffScreenRendering(1);
+      shortLived->SetSize(32, 32);
+      survivor = parctest::AddVolume(shortLived, vp, blobs, property, vtkVolumeMapper::COMPOSITE_BLEND);
+      survivor->SetAccelerationModeToDepthBuffer();
+      shortLived->Render();
+      vtkRenderer* ren = shortLived->GetRenderers()->GetFirstRenderer();
+      vtkVolume::SafeDownCast(ren->GetVolumes()->GetItemAsObject(0))->SetMapper(nullptr);
     }
   }
   std::cout << cases << " accelerated renders compared, " << failures << " failures\n";
