@@ -36,6 +36,8 @@ public:
   /// grid and worldToIndex locate rays that start inside the model.
   void Set(const PassView& view, std::vector<float> nearFar, const SupercellGrid* grid,
     const Matrix4& worldToIndex);
+  /// Gives the buffer back (to be filled again without reallocating); the source is empty.
+  std::vector<float> ReleaseBuffer() { return std::move(this->NearFar); }
 
   void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const override;
   bool MayHaveSegments(int px, int py) const override;
@@ -58,6 +60,8 @@ public:
   /// (supercell index firstPlane + p along axis).
   void Set(const PassView& view, std::vector<std::uint32_t> bits, int wordsPerPixel,
     const SupercellGrid* grid, int axis, int firstPlane, const Matrix4& worldToIndex);
+  /// Gives the buffer back (to be filled again without reallocating); the source is empty.
+  std::vector<std::uint32_t> ReleaseBuffer() { return std::move(this->Bits); }
 
   void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const override;
   bool MayHaveSegments(int px, int py) const override;

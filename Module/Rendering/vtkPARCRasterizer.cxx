@@ -12,6 +12,8 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <limits>
 #include <string>
 
 namespace
@@ -21,6 +23,12 @@ constexpr int MaxAttachments = 8;
 constexpr int PlanesPerPass = PlanesPerAttachment * MaxAttachments;
 constexpr double DilationPixels = 0.75; ///< bounding-box growth, more than half a pixel
 constexpr double NearClipFraction = 0.5; ///< perspective: clip at this fraction of near
+/// Relative size of the x, y terms of the inverse projection's w row below which the rays
+/// count as affine in NDC x, y (otherwise the depth pass keeps whole face ranges).
+constexpr double AffineTolerance = 1e-12;
+/// Depth pass: the rounding margin of a fragment's depth, relative to the magnitudes that
+/// enter it (about 800 float ulps, far above the handful of roundings in the shader).
+constexpr float FaceDepthMargin = 1.0e-4f;
 
 const char* VertexShader = R"(#version 330 core
 layout(location = 0) in vec3 IndexPosition;
@@ -30,13 +38,15 @@ uniform mat4 WorldToClip;
 uniform vec3 Eye;
 uniform vec3 ViewDirection;
 out vec4 vClip;
+out vec3 vEyeRelative;
 out float vDepth;
 flat out int vPlane;
 void main()
 {
   vec4 world = IndexToWorld * vec4(IndexPosition, 1.0);
   vClip = WorldToClip * world;
-  vDepth = dot(world.xyz - Eye, ViewDirection);
+  vEyeRelative = world.xyz - Eye;
+  vDepth = dot(vEyeRelative, ViewDirection);
   vPlane = Plane;
   gl_Position = vClip;
 }
@@ -47,11 +57,20 @@ const char* GeometryShader = R"(#version 330 core
 layout(lines_adjacency) in;
 layout(triangle_strip, max_vertices = 4) out;
 in vec4 vClip[];
+in vec3 vEyeRelative[];
 in float vDepth[];
 flat in int vPlane[];
 uniform float MinDepth;
 uniform vec2 Dilation;
+uniform float EyeDistance;
+uniform bool Parallel;
+uniform vec3 ViewDirection;
+uniform vec3 RayBase[3];
+uniform vec3 RayDirection[3];
 flat out vec2 gDepthRange;
+flat out vec3 gDepthNumerator;
+flat out vec3 gDepthDenominator;
+flat out float gFaceScale;
 flat out int gPlane;
 vec2 lo = vec2(3.0e38);
 vec2 hi = vec2(-3.0e38);
@@ -89,6 +108,30 @@ void main()
   lo -= Dilation;
   hi += Dilation;
   gDepthRange = vec2(zlo, zhi);
+  // The face's plane dot(n, x) = w (eye-relative world coordinates). The ray through NDC
+  // (x, y) starts at b = RayBase . (1, x, y) and runs along u = RayDirection . (1, x, y);
+  // it meets the plane at view depth dot(b, v) + (w - dot(n, b)) dot(u, v) / dot(n, u),
+  // a ratio of two affine functions of (x, y) since b = 0 (perspective) or u is constant
+  // (parallel). gFaceScale bounds the magnitudes the depth is computed from.
+  vec3 e1 = vEyeRelative[1] - vEyeRelative[0];
+  vec3 e3 = vEyeRelative[3] - vEyeRelative[0];
+  vec3 n = normalize(cross(e1, e3));
+  float w = dot(n, vEyeRelative[0]);
+  gDepthDenominator = vec3(dot(n, RayDirection[0]), dot(n, RayDirection[1]), dot(n, RayDirection[2]));
+  vec3 uv = vec3(dot(RayDirection[0], ViewDirection), dot(RayDirection[1], ViewDirection),
+    dot(RayDirection[2], ViewDirection));
+  gDepthNumerator = w * uv;
+  if (Parallel)
+  {
+    float d = gDepthDenominator.x;
+    for (int i = 0; i < 3; ++i)
+    {
+      gDepthNumerator[i] = dot(RayBase[i], ViewDirection) * d - dot(n, RayBase[i]) * uv.x;
+    }
+    gDepthNumerator.x += w * uv.x;
+  }
+  gFaceScale = length(vEyeRelative[0]) + EyeDistance + length(e1) + length(e3) +
+    length(RayBase[0]) + length(RayBase[1]) + length(RayBase[2]);
   gPlane = vPlane[0];
   gl_Position = vec4(lo.x, lo.y, 0.0, 1.0);
   EmitVertex();
@@ -102,13 +145,30 @@ void main()
 }
 )";
 
+// Narrows the face's depth range to where the ray through the pixel centre meets the
+// face's plane (the ratio the geometry shader set up), widened by a rounding margin that
+// grows as the ray grazes the face; a grazing face keeps its whole range.
 const char* DepthFragmentShader = R"(#version 330 core
 flat in vec2 gDepthRange;
+flat in vec3 gDepthNumerator;
+flat in vec3 gDepthDenominator;
+flat in float gFaceScale;
 flat in int gPlane;
+uniform vec2 PixelToNDC;
+uniform float MarginScale;
 layout(location = 0) out vec4 NearFar;
 void main()
 {
-  NearFar = vec4(gDepthRange.x, -gDepthRange.y, 0.0, 0.0);
+  vec2 range = gDepthRange;
+  vec3 ndc = vec3(1.0, gl_FragCoord.xy * PixelToNDC - 1.0);
+  float denominator = abs(dot(gDepthDenominator, ndc));
+  if (denominator > 0.0)
+  {
+    float depth = clamp(dot(gDepthNumerator, ndc) / dot(gDepthDenominator, ndc), range.x, range.y);
+    float margin = MarginScale * (gFaceScale + abs(depth)) / denominator;
+    range = vec2(max(range.x, depth - margin), min(range.y, depth + margin));
+  }
+  NearFar = vec4(range.x, -range.y, 0.0, 0.0);
 }
 )";
 
@@ -187,6 +247,25 @@ GLuint BuildProgram(const char* fragment, std::string& error)
     return 0;
   }
   return program;
+}
+
+void SetVector(GLuint program, const char* name, const parc::Vec3& v)
+{
+  glUniform3f(glGetUniformLocation(program, name), static_cast<float>(v.X),
+    static_cast<float>(v.Y), static_cast<float>(v.Z));
+}
+
+void SetVectors(GLuint program, const char* name, const parc::Vec3 (&v)[3])
+{
+  float values[9];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      values[3 * i + c] = static_cast<float>(v[i][c]);
+    }
+  }
+  glUniform3fv(glGetUniformLocation(program, name), 3, values);
 }
 
 /// Row-major double matrix -> column-major float uniform.
@@ -303,6 +382,7 @@ public:
   GPUModel Models[2]; ///< depth, colour
   GLuint Framebuffer = 0;
   std::vector<GLuint> Renderbuffers;
+  std::vector<std::uint32_t> Texels; ///< read-back of one plane attachment
   GLenum RenderbufferFormat = 0;
   int Size[2] = { 0, 0 };
 
@@ -472,11 +552,18 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
   glUseProgram(program);
   SetMatrix(program, "IndexToWorld", indexToWorld);
   SetMatrix(program, "WorldToClip", view.WorldToClip);
-  const parc::Vec3& d = view.Pass.Direction;
-  glUniform3f(glGetUniformLocation(program, "Eye"), static_cast<float>(view.Eye.X),
-    static_cast<float>(view.Eye.Y), static_cast<float>(view.Eye.Z));
-  glUniform3f(glGetUniformLocation(program, "ViewDirection"), static_cast<float>(d.X),
-    static_cast<float>(d.Y), static_cast<float>(d.Z));
+  SetVector(program, "Eye", view.Eye);
+  SetVector(program, "ViewDirection", view.Pass.Direction);
+  glUniform1f(glGetUniformLocation(program, "EyeDistance"), static_cast<float>(parc::Length(view.Eye)));
+  SetVectors(program, "RayBase", view.RayBase);
+  SetVectors(program, "RayDirection", view.RayDirection);
+  glUniform1i(glGetUniformLocation(program, "Parallel"), view.Pass.Parallel ? 1 : 0);
+  glUniform2f(glGetUniformLocation(program, "PixelToNDC"), 2.0f / view.Pass.Width,
+    2.0f / view.Pass.Height);
+  // Without affine rays an infinite margin keeps every face's whole depth range.
+  glUniform1f(glGetUniformLocation(program, "MarginScale"),
+    view.AffineRays ? static_cast<float>(FaceDepthMargin * view.MaxRayDirectionLength)
+                    : std::numeric_limits<float>::infinity());
   const float minDepth =
     view.Pass.Parallel ? -3.0e38f : static_cast<float>(NearClipFraction * view.NearDistance);
   glUniform1f(glGetUniformLocation(program, "MinDepth"), minDepth);
@@ -555,7 +642,48 @@ bool vtkPARCRasterizer::MakeViews(
   const double* direction = camera->GetDirectionOfProjection();
   pass.Pass.Direction = parc::Normalized({ direction[0], direction[1], direction[2] });
   pass.NearDistance = camera->GetClippingRange()[0];
-  return parc::Invert(pass.WorldToClip, rays.NDCToWorld);
+  if (!parc::Invert(pass.WorldToClip, rays.NDCToWorld))
+  {
+    return false;
+  }
+  SetRayCoefficients(rays, pass);
+  return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCRasterizer::SetRayCoefficients(const parc::ViewGeometry& rays, View& pass)
+{
+  // With the camera's projections the homogeneous w of a point of NDC depth z does not
+  // depend on NDC x, y, so ray start and (unnormalized) direction are affine in x, y.
+  const parc::Matrix4& m = rays.NDCToWorld;
+  auto start = [&](double x, double y) {
+    return rays.Parallel ? m.TransformHomogeneous({ x, y, -1.0 }) - rays.Eye : parc::Vec3();
+  };
+  auto direction = [&](double x, double y) {
+    return m.TransformHomogeneous({ x, y, 1.0 }) - m.TransformHomogeneous({ x, y, -1.0 });
+  };
+  pass.RayBase[0] = start(0.0, 0.0);
+  pass.RayBase[1] = start(1.0, 0.0) - pass.RayBase[0];
+  pass.RayBase[2] = start(0.0, 1.0) - pass.RayBase[0];
+  pass.RayDirection[0] = direction(0.0, 0.0);
+  pass.RayDirection[1] = direction(1.0, 0.0) - pass.RayDirection[0];
+  pass.RayDirection[2] = direction(0.0, 1.0) - pass.RayDirection[0];
+  if (rays.Parallel)
+  {
+    pass.RayDirection[1] = pass.RayDirection[2] = parc::Vec3();
+  }
+  // |u| is convex in (x, y): its largest value on the image is at a corner.
+  pass.MaxRayDirectionLength = 0.0;
+  for (double x : { -1.0, 1.0 })
+  {
+    for (double y : { -1.0, 1.0 })
+    {
+      pass.MaxRayDirectionLength = std::max(pass.MaxRayDirectionLength,
+        parc::Length(pass.RayDirection[0] + x * pass.RayDirection[1] + y * pass.RayDirection[2]));
+    }
+  }
+  const double wScale = std::fabs(m(3, 2)) + std::fabs(m(3, 3));
+  pass.AffineRays = std::fabs(m(3, 0)) + std::fabs(m(3, 1)) <= AffineTolerance * wScale;
 }
 
 //------------------------------------------------------------------------------
@@ -603,7 +731,8 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
     const int attachmentsTotal = (planeWords + 3) / 4;
     wordsPerPixel = 4 * attachmentsTotal;
     bits.assign(pixels * wordsPerPixel, 0u);
-    std::vector<std::uint32_t> texels(4 * pixels);
+    std::vector<std::uint32_t>& texels = in.Texels;
+    texels.resize(4 * pixels);
     state->vtkglDisable(GL_BLEND);
     for (int pass = 0; pass < passes; ++pass)
     {

@@ -19,8 +19,11 @@
  * the part in front of the eye (half the near distance, perspective only) and replaces it
  * by the screen-space bounding box of its projection, dilated by 3/4 of a pixel, so every
  * pixel whose centre ray touches the quad, including grazing rays and sub-pixel quads, gets
- * a fragment; the fragment carries the quad's depth range, so near is never too far and far
- * never too near. Depth clamping keeps faces beyond the near/far planes.
+ * a fragment. The fragment carries the quad's depth range, narrowed in the depth pass to
+ * the depth where the ray through the pixel centre meets the quad's plane, widened by a
+ * rounding margin that grows as the ray grazes the face (the depth is a ratio of two affine
+ * functions of the pixel's NDC, set up once per quad): near is never too far and far never
+ * too near. Depth clamping keeps faces beyond the near/far planes.
  *
  * Every piece of GL state it changes is saved and restored (through vtkOpenGLState where
  * VTK tracks it), so the rest of the scene renders unchanged. Programs, framebuffers and
@@ -62,12 +65,22 @@ public:
     parc::Matrix4 WorldToClip; ///< the camera's composite projection (NDC z in [-1, 1])
     parc::Vec3 Eye;
     double NearDistance = 0.0; ///< near clipping distance along the view direction
+    /// The ray through NDC (x, y) in eye-relative world coordinates: it starts at
+    /// RayBase[0] + x RayBase[1] + y RayBase[2] (0 in perspective) and runs along
+    /// RayDirection[0] + x RayDirection[1] + y RayDirection[2] (not normalized).
+    parc::Vec3 RayBase[3];
+    parc::Vec3 RayDirection[3];
+    double MaxRayDirectionLength = 0.0; ///< the largest |direction| over the image
+    bool AffineRays = false; ///< false: the coefficients do not describe the rays
   };
 
   /// The rays of a width x height ray image of the renderer's active camera, and the
   /// matching pass camera. False when the projection is singular.
   static bool MakeViews(vtkRenderer* ren, int width, int height, parc::ViewGeometry& rays,
     View& pass);
+
+  /// Fills the ray coefficients of pass from the rays' inverse projection.
+  static void SetRayCoefficients(const parc::ViewGeometry& rays, View& pass);
 
   /// Near/far view depths of the depth model (2 floats per pixel, see class comment).
   bool RenderDepth(vtkRenderWindow* window, const parc::PolygonModel& model,

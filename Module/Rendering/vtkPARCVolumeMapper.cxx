@@ -445,7 +445,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(
   bool ok = true;
   if (depth)
   {
-    std::vector<float> nearFar;
+    std::vector<float> nearFar = in.DepthSource.ReleaseBuffer();
     ok = in.Rasterizer->RenderDepth(window, in.DepthModel, in.ModelVersion, indexToWorld, passView, nearFar);
     in.DepthSource.Set(passView.Pass, std::move(nearFar), &in.Grid, in.Parameters.WorldToIndex);
     in.PolygonCount += static_cast<vtkIdType>(in.DepthModel.GetNumberOfQuads());
@@ -460,7 +460,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(
       in.ColorModelBuilt[axis] = true;
       ++in.ModelBuilds;
     }
-    std::vector<std::uint32_t> bits;
+    std::vector<std::uint32_t> bits = in.PlaneSource.ReleaseBuffer();
     int words = 0;
     ok = in.Rasterizer->RenderPlanes(window, model, 4 * in.ModelVersion + axis, indexToWorld,
       passView, bits, words, in.PassCount);

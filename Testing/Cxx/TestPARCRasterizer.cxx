@@ -257,5 +257,13 @@ int TestPARCRasterizer(int argc, char* argv[])
             << "Plane bits: " << tally.Planes << " true planes, " << tally.ExtraPlanes
             << " extra (" << 100.0 * tally.ExtraPlanes / std::max<std::size_t>(1, tally.Planes)
             << "%).\n";
+  // Whole face depth ranges leave about 12.7% here; the per-pixel plane depths about 6%.
+  constexpr double MaxExtraLength = 0.08;
+  if (!(tally.ExtraLength <= MaxExtraLength * tally.IdealLength))
+  {
+    std::cerr << "The depth buffers are looser than " << 100 * MaxExtraLength
+              << "% of the ideal ray length: the per-pixel narrowing is not working.\n";
+    return EXIT_FAILURE;
+  }
   return EXIT_SUCCESS;
 }
