@@ -63,13 +63,14 @@ flat in int vPlane[];
 uniform float MinDepth;
 uniform vec2 Dilation;
 uniform float EyeDistance;
-uniform bool Parallel;
 uniform vec3 ViewDirection;
 uniform vec3 RayBase[3];
 uniform vec3 RayDirection[3];
 flat out vec2 gDepthRange;
+flat out vec3 gDenominator;
 flat out vec3 gDepthNumerator;
-flat out vec3 gDepthDenominator;
+flat out vec3 gEdgeNumerator[2];
+flat out vec2 gInverseEdgeLength;
 flat out float gFaceScale;
 flat out int gPlane;
 vec2 lo = vec2(3.0e38);
@@ -83,6 +84,15 @@ void include(vec4 c, float depth)
   hi = max(hi, ndc);
   zlo = min(zlo, depth);
   zhi = max(zhi, depth);
+}
+// The affine coefficients of (dot(b, q) - c) dot(n, u) + m dot(u, q), m = w - dot(n, b).
+vec3 Numerator(vec3 q, float c, vec3 m)
+{
+  vec3 l = vec3(dot(RayBase[0], q) - c, dot(RayBase[1], q), dot(RayBase[2], q));
+  vec3 k = vec3(dot(RayDirection[0], q), dot(RayDirection[1], q), dot(RayDirection[2], q));
+  vec3 d = gDenominator;
+  return vec3(l.x * d.x + m.x * k.x, l.x * d.y + l.y * d.x + m.x * k.y + m.y * k.x,
+    l.x * d.z + l.z * d.x + m.x * k.z + m.z * k.x);
 }
 void main()
 {
@@ -109,27 +119,25 @@ void main()
   hi += Dilation;
   gDepthRange = vec2(zlo, zhi);
   // The face's plane dot(n, x) = w (eye-relative world coordinates). The ray through NDC
-  // (x, y) starts at b = RayBase . (1, x, y) and runs along u = RayDirection . (1, x, y);
-  // it meets the plane at view depth dot(b, v) + (w - dot(n, b)) dot(u, v) / dot(n, u),
-  // a ratio of two affine functions of (x, y) since b = 0 (perspective) or u is constant
-  // (parallel). gFaceScale bounds the magnitudes the depth is computed from.
+  // (x, y) starts at b = RayBase . (1, x, y) and runs along u = RayDirection . (1, x, y); it
+  // meets the plane at p = b + u (w - dot(n, b)) / dot(n, u). For a vector q and offset c,
+  // (dot(p, q) - c) dot(n, u) = (dot(b, q) - c) dot(n, u) + (w - dot(n, b)) dot(u, q) is
+  // affine in (x, y) because b = 0 (perspective) or u is constant (parallel): the depth
+  // (q = view direction) and the face coordinates along both edges are ratios of affine
+  // functions with the common denominator dot(n, u). gFaceScale bounds the magnitudes
+  // they are computed from.
   vec3 e1 = vEyeRelative[1] - vEyeRelative[0];
   vec3 e3 = vEyeRelative[3] - vEyeRelative[0];
   vec3 n = normalize(cross(e1, e3));
   float w = dot(n, vEyeRelative[0]);
-  gDepthDenominator = vec3(dot(n, RayDirection[0]), dot(n, RayDirection[1]), dot(n, RayDirection[2]));
-  vec3 uv = vec3(dot(RayDirection[0], ViewDirection), dot(RayDirection[1], ViewDirection),
-    dot(RayDirection[2], ViewDirection));
-  gDepthNumerator = w * uv;
-  if (Parallel)
-  {
-    float d = gDepthDenominator.x;
-    for (int i = 0; i < 3; ++i)
-    {
-      gDepthNumerator[i] = dot(RayBase[i], ViewDirection) * d - dot(n, RayBase[i]) * uv.x;
-    }
-    gDepthNumerator.x += w * uv.x;
-  }
+  vec3 m = vec3(w - dot(n, RayBase[0]), -dot(n, RayBase[1]), -dot(n, RayBase[2]));
+  gDenominator = vec3(dot(n, RayDirection[0]), dot(n, RayDirection[1]), dot(n, RayDirection[2]));
+  gDepthNumerator = Numerator(ViewDirection, 0.0, m);
+  vec3 q1 = e1 / dot(e1, e1);
+  vec3 q3 = e3 / dot(e3, e3);
+  gEdgeNumerator[0] = Numerator(q1, dot(vEyeRelative[0], q1), m);
+  gEdgeNumerator[1] = Numerator(q3, dot(vEyeRelative[0], q3), m);
+  gInverseEdgeLength = vec2(inversesqrt(dot(e1, e1)), inversesqrt(dot(e3, e3)));
   gFaceScale = length(vEyeRelative[0]) + EyeDistance + length(e1) + length(e3) +
     length(RayBase[0]) + length(RayBase[1]) + length(RayBase[2]);
   gPlane = vPlane[0];
@@ -145,13 +153,16 @@ void main()
 }
 )";
 
-// Narrows the face's depth range to where the ray through the pixel centre meets the
-// face's plane (the ratio the geometry shader set up), widened by a rounding margin that
-// grows as the ray grazes the face; a grazing face keeps its whole range.
+// Discards the fragment when the ray through the pixel centre surely misses the face;
+// otherwise narrows the face's depth range to where that ray meets the face's plane. Both
+// use the ratios the geometry shader set up and a rounding margin that grows as the ray
+// grazes the face; without a usable denominator the face keeps its whole range.
 const char* DepthFragmentShader = R"(#version 330 core
 flat in vec2 gDepthRange;
+flat in vec3 gDenominator;
 flat in vec3 gDepthNumerator;
-flat in vec3 gDepthDenominator;
+flat in vec3 gEdgeNumerator[2];
+flat in vec2 gInverseEdgeLength;
 flat in float gFaceScale;
 flat in int gPlane;
 uniform vec2 PixelToNDC;
@@ -161,11 +172,17 @@ void main()
 {
   vec2 range = gDepthRange;
   vec3 ndc = vec3(1.0, gl_FragCoord.xy * PixelToNDC - 1.0);
-  float denominator = abs(dot(gDepthDenominator, ndc));
-  if (denominator > 0.0)
+  float denominator = dot(gDenominator, ndc);
+  if (denominator != 0.0)
   {
-    float depth = clamp(dot(gDepthNumerator, ndc) / dot(gDepthDenominator, ndc), range.x, range.y);
-    float margin = MarginScale * (gFaceScale + abs(depth)) / denominator;
+    float depth = clamp(dot(gDepthNumerator, ndc) / denominator, range.x, range.y);
+    float margin = MarginScale * (gFaceScale + abs(depth)) / abs(denominator);
+    vec2 face = vec2(dot(gEdgeNumerator[0], ndc), dot(gEdgeNumerator[1], ndc)) / denominator;
+    vec2 tolerance = margin * gInverseEdgeLength;
+    if (any(lessThan(face, -tolerance)) || any(greaterThan(face, 1.0 + tolerance)))
+    {
+      discard;
+    }
     range = vec2(max(range.x, depth - margin), min(range.y, depth + margin));
   }
   NearFar = vec4(range.x, -range.y, 0.0, 0.0);
@@ -557,7 +574,6 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
   glUniform1f(glGetUniformLocation(program, "EyeDistance"), static_cast<float>(parc::Length(view.Eye)));
   SetVectors(program, "RayBase", view.RayBase);
   SetVectors(program, "RayDirection", view.RayDirection);
-  glUniform1i(glGetUniformLocation(program, "Parallel"), view.Pass.Parallel ? 1 : 0);
   glUniform2f(glGetUniformLocation(program, "PixelToNDC"), 2.0f / view.Pass.Width,
     2.0f / view.Pass.Height);
   // Without affine rays an infinite margin keeps every face's whole depth range.

@@ -19,11 +19,13 @@
  * the part in front of the eye (half the near distance, perspective only) and replaces it
  * by the screen-space bounding box of its projection, dilated by 3/4 of a pixel, so every
  * pixel whose centre ray touches the quad, including grazing rays and sub-pixel quads, gets
- * a fragment. The fragment carries the quad's depth range, narrowed in the depth pass to
- * the depth where the ray through the pixel centre meets the quad's plane, widened by a
- * rounding margin that grows as the ray grazes the face (the depth is a ratio of two affine
- * functions of the pixel's NDC, set up once per quad): near is never too far and far never
- * too near. Depth clamping keeps faces beyond the near/far planes.
+ * a fragment. In the depth pass the fragment shader then tests whether the ray through the
+ * pixel centre meets the face, within a rounding margin that grows as the ray grazes it
+ * (the face coordinates and the depth of the hit are ratios of affine functions of the
+ * pixel's NDC, set up once per quad), discards the fragment when it surely does not, and
+ * otherwise writes the depth of the hit, widened by the margin and clamped to the quad's
+ * depth range. So near is never too far and far never too near. Depth clamping keeps
+ * faces beyond the near/far planes.
  *
  * Every piece of GL state it changes is saved and restored (through vtkOpenGLState where
  * VTK tracks it), so the rest of the scene renders unchanged. Programs, framebuffers and
