@@ -30,94 +30,94 @@ constexpr double AffineTolerance = 1e-12;
 /// enter it (about 800 float ulps, far above the handful of roundings in the shader).
 constexpr float FaceDepthMargin = 1.0e-4f;
 
-const char* VertexShader = R"(#version 330 core
-layout(location = 0) in vec3 IndexPosition;
-layout(location = 1) in int Plane;
+// Four vertices a quad, each with the quad's corner, its two edges and its plane (voxel-index
+// coordinates); vertex gl_VertexID % 4 becomes that corner of the quad's dilated screen
+// bounding box (two indexed triangles), each vertex computing the same flat outputs. The quad is first
+// clipped to the part in front of MinDepth. The depth pass (DEPTH_PASS) also sets up the
+// ratios its fragment shader evaluates.
+const char* VertexShader = R"(
+layout(location = 0) in vec3 Corner;
+layout(location = 1) in vec3 Edge1;
+layout(location = 2) in vec3 Edge3;
+layout(location = 3) in int Plane;
 uniform mat4 IndexToWorld;
 uniform mat4 WorldToClip;
 uniform vec3 Eye;
 uniform vec3 ViewDirection;
-out vec4 vClip;
-out vec3 vEyeRelative;
-out float vDepth;
-flat out int vPlane;
-void main()
-{
-  vec4 world = IndexToWorld * vec4(IndexPosition, 1.0);
-  vClip = WorldToClip * world;
-  vEyeRelative = world.xyz - Eye;
-  vDepth = dot(vEyeRelative, ViewDirection);
-  vPlane = Plane;
-  gl_Position = vClip;
-}
-)";
-
-// One quad (4 vertices, drawn as lines_adjacency) in, its dilated screen bounding box out.
-const char* GeometryShader = R"(#version 330 core
-layout(lines_adjacency) in;
-layout(triangle_strip, max_vertices = 4) out;
-in vec4 vClip[];
-in vec3 vEyeRelative[];
-in float vDepth[];
-flat in int vPlane[];
 uniform float MinDepth;
 uniform vec2 Dilation;
+flat out vec2 gDepthRange;
+flat out int gPlane;
+#ifdef DEPTH_PASS
 uniform float EyeDistance;
-uniform vec3 ViewDirection;
 uniform vec3 RayBase[3];
 uniform vec3 RayDirection[3];
-flat out vec2 gDepthRange;
 flat out vec3 gDenominator;
 flat out vec3 gDepthNumerator;
 flat out vec3 gEdgeNumerator[2];
 flat out vec2 gInverseEdgeLength;
 flat out float gFaceScale;
-flat out int gPlane;
-vec2 lo = vec2(3.0e38);
-vec2 hi = vec2(-3.0e38);
-float zlo = 3.0e38;
-float zhi = -3.0e38;
-void include(vec4 c, float depth)
-{
-  vec2 ndc = c.xy / c.w;
-  lo = min(lo, ndc);
-  hi = max(hi, ndc);
-  zlo = min(zlo, depth);
-  zhi = max(zhi, depth);
-}
-// The affine coefficients of (dot(b, q) - c) dot(n, u) + m dot(u, q), m = w - dot(n, b).
-vec3 Numerator(vec3 q, float c, vec3 m)
+// The affine coefficients of (dot(b, q) - c) d + m dot(u, q) for affine d and m.
+vec3 Numerator(vec3 q, float c, vec3 d, vec3 m)
 {
   vec3 l = vec3(dot(RayBase[0], q) - c, dot(RayBase[1], q), dot(RayBase[2], q));
   vec3 k = vec3(dot(RayDirection[0], q), dot(RayDirection[1], q), dot(RayDirection[2], q));
-  vec3 d = gDenominator;
   return vec3(l.x * d.x + m.x * k.x, l.x * d.y + l.y * d.x + m.x * k.y + m.y * k.x,
     l.x * d.z + l.z * d.x + m.x * k.z + m.z * k.x);
 }
+#endif
 void main()
 {
+  vec3 corners[4] = vec3[4](Corner, Corner + Edge1, Corner + Edge1 + Edge3, Corner + Edge3);
+  vec3 relative[4];
+  vec4 clip[4];
+  float depth[4];
+  for (int i = 0; i < 4; ++i)
+  {
+    vec4 world = IndexToWorld * vec4(corners[i], 1.0);
+    relative[i] = world.xyz - Eye;
+    clip[i] = WorldToClip * world;
+    depth[i] = dot(relative[i], ViewDirection);
+  }
+  vec2 lo = vec2(3.0e38);
+  vec2 hi = vec2(-3.0e38);
+  float zlo = 3.0e38;
+  float zhi = -3.0e38;
   for (int i = 0; i < 4; ++i)
   {
     int j = (i + 1) % 4;
-    bool inI = vDepth[i] >= MinDepth;
-    bool inJ = vDepth[j] >= MinDepth;
+    bool inI = depth[i] >= MinDepth;
+    bool inJ = depth[j] >= MinDepth;
     if (inI)
     {
-      include(vClip[i], vDepth[i]);
+      vec2 ndc = clip[i].xy / clip[i].w;
+      lo = min(lo, ndc);
+      hi = max(hi, ndc);
+      zlo = min(zlo, depth[i]);
+      zhi = max(zhi, depth[i]);
     }
     if (inI != inJ)
     {
-      float s = (MinDepth - vDepth[i]) / (vDepth[j] - vDepth[i]);
-      include(mix(vClip[i], vClip[j], s), MinDepth);
+      vec4 c = mix(clip[i], clip[j], (MinDepth - depth[i]) / (depth[j] - depth[i]));
+      vec2 ndc = c.xy / c.w;
+      lo = min(lo, ndc);
+      hi = max(hi, ndc);
+      zlo = min(zlo, MinDepth);
+      zhi = max(zhi, MinDepth);
     }
   }
+  gPlane = Plane;
+  gDepthRange = vec2(zlo, zhi);
   if (zlo > zhi)
   {
+    gl_Position = vec4(0.0, 0.0, 0.0, 1.0); // nothing in front: a degenerate strip
     return;
   }
   lo -= Dilation;
   hi += Dilation;
-  gDepthRange = vec2(zlo, zhi);
+  int box = gl_VertexID & 3;
+  gl_Position = vec4((box & 1) != 0 ? hi.x : lo.x, (box & 2) != 0 ? hi.y : lo.y, 0.0, 1.0);
+#ifdef DEPTH_PASS
   // The face's plane dot(n, x) = w (eye-relative world coordinates). The ray through NDC
   // (x, y) starts at b = RayBase . (1, x, y) and runs along u = RayDirection . (1, x, y); it
   // meets the plane at p = b + u (w - dot(n, b)) / dot(n, u). For a vector q and offset c,
@@ -126,38 +126,30 @@ void main()
   // (q = view direction) and the face coordinates along both edges are ratios of affine
   // functions with the common denominator dot(n, u). gFaceScale bounds the magnitudes
   // they are computed from.
-  vec3 e1 = vEyeRelative[1] - vEyeRelative[0];
-  vec3 e3 = vEyeRelative[3] - vEyeRelative[0];
+  vec3 e1 = relative[1] - relative[0];
+  vec3 e3 = relative[3] - relative[0];
   vec3 n = normalize(cross(e1, e3));
-  float w = dot(n, vEyeRelative[0]);
+  float w = dot(n, relative[0]);
   vec3 m = vec3(w - dot(n, RayBase[0]), -dot(n, RayBase[1]), -dot(n, RayBase[2]));
-  gDenominator = vec3(dot(n, RayDirection[0]), dot(n, RayDirection[1]), dot(n, RayDirection[2]));
-  gDepthNumerator = Numerator(ViewDirection, 0.0, m);
+  vec3 d = vec3(dot(n, RayDirection[0]), dot(n, RayDirection[1]), dot(n, RayDirection[2]));
+  gDenominator = d;
+  gDepthNumerator = Numerator(ViewDirection, 0.0, d, m);
   vec3 q1 = e1 / dot(e1, e1);
   vec3 q3 = e3 / dot(e3, e3);
-  gEdgeNumerator[0] = Numerator(q1, dot(vEyeRelative[0], q1), m);
-  gEdgeNumerator[1] = Numerator(q3, dot(vEyeRelative[0], q3), m);
+  gEdgeNumerator[0] = Numerator(q1, dot(relative[0], q1), d, m);
+  gEdgeNumerator[1] = Numerator(q3, dot(relative[0], q3), d, m);
   gInverseEdgeLength = vec2(inversesqrt(dot(e1, e1)), inversesqrt(dot(e3, e3)));
-  gFaceScale = length(vEyeRelative[0]) + EyeDistance + length(e1) + length(e3) +
+  gFaceScale = length(relative[0]) + EyeDistance + length(e1) + length(e3) +
     length(RayBase[0]) + length(RayBase[1]) + length(RayBase[2]);
-  gPlane = vPlane[0];
-  gl_Position = vec4(lo.x, lo.y, 0.0, 1.0);
-  EmitVertex();
-  gl_Position = vec4(hi.x, lo.y, 0.0, 1.0);
-  EmitVertex();
-  gl_Position = vec4(lo.x, hi.y, 0.0, 1.0);
-  EmitVertex();
-  gl_Position = vec4(hi.x, hi.y, 0.0, 1.0);
-  EmitVertex();
-  EndPrimitive();
+#endif
 }
 )";
 
-// Discards the fragment when the ray through the pixel centre surely misses the face;
-// otherwise narrows the face's depth range to where that ray meets the face's plane. Both
-// use the ratios the geometry shader set up and a rounding margin that grows as the ray
-// grazes the face; without a usable denominator the face keeps its whole range.
-const char* DepthFragmentShader = R"(#version 330 core
+// Writes the blending's neutral value when the ray through the pixel centre surely misses
+// the face; otherwise narrows the face's depth range to where that ray meets the face's
+// plane. Both use the ratios the vertex shader set up and a rounding margin that grows as
+// the ray grazes the face; without a usable denominator the face keeps its whole range.
+const char* DepthFragmentShader = R"(
 flat in vec2 gDepthRange;
 flat in vec3 gDenominator;
 flat in vec3 gDepthNumerator;
@@ -167,6 +159,7 @@ flat in float gFaceScale;
 flat in int gPlane;
 uniform vec2 PixelToNDC;
 uniform float MarginScale;
+uniform float Empty;
 layout(location = 0) out vec4 NearFar;
 void main()
 {
@@ -181,7 +174,8 @@ void main()
     vec2 tolerance = margin * gInverseEdgeLength;
     if (any(lessThan(face, -tolerance)) || any(greaterThan(face, 1.0 + tolerance)))
     {
-      discard;
+      NearFar = vec4(Empty, Empty, 0.0, 0.0); // leaves the pixel unchanged (faster than discard)
+      return;
     }
     range = vec2(max(range.x, depth - margin), min(range.y, depth + margin));
   }
@@ -189,7 +183,7 @@ void main()
 }
 )";
 
-const char* PlaneFragmentShader = R"(#version 330 core
+const char* PlaneFragmentShader = R"(
 flat in vec2 gDepthRange;
 flat in int gPlane;
 uniform int PlaneBase;
@@ -222,17 +216,19 @@ void main()
 }
 )";
 
-/// A compiled and linked program; 0 and a message on failure.
-GLuint BuildProgram(const char* fragment, std::string& error)
+/// A compiled and linked program of the vertex shader and fragment, both preceded by
+/// header; 0 and a message on failure.
+GLuint BuildProgram(const char* header, const char* fragment, std::string& error)
 {
-  const GLenum types[3] = { GL_VERTEX_SHADER, GL_GEOMETRY_SHADER, GL_FRAGMENT_SHADER };
-  const char* sources[3] = { VertexShader, GeometryShader, fragment };
+  const GLenum types[2] = { GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
+  const char* bodies[2] = { VertexShader, fragment };
   const GLuint program = glCreateProgram();
-  GLuint shaders[3];
-  for (int s = 0; s < 3; ++s)
+  GLuint shaders[2];
+  for (int s = 0; s < 2; ++s)
   {
     shaders[s] = glCreateShader(types[s]);
-    glShaderSource(shaders[s], 1, &sources[s], nullptr);
+    const char* sources[2] = { header, bodies[s] };
+    glShaderSource(shaders[s], 2, sources, nullptr);
     glCompileShader(shaders[s]);
     GLint ok = 0;
     glGetShaderiv(shaders[s], GL_COMPILE_STATUS, &ok);
@@ -318,7 +314,8 @@ struct GPUModel
   GLuint VertexArray = 0;
   GLuint Positions = 0;
   GLuint Planes = 0;
-  GLsizei Count = 0;
+  GLuint Indices = 0;
+  GLsizei Count = 0; ///< indices
   std::uint64_t Version = ~std::uint64_t(0);
 
   void Release()
@@ -328,6 +325,7 @@ struct GPUModel
       glDeleteVertexArrays(1, &this->VertexArray);
       glDeleteBuffers(1, &this->Positions);
       glDeleteBuffers(1, &this->Planes);
+      glDeleteBuffers(1, &this->Indices);
     }
     *this = GPUModel();
   }
@@ -472,8 +470,11 @@ bool vtkPARCRasterizer::vtkInternals::Prepare(vtkRenderWindow* window, std::stri
       error = "the OpenGL context is older than 3.3";
       return false;
     }
-    this->DepthProgram = BuildProgram(DepthFragmentShader, error);
-    this->PlaneProgram = this->DepthProgram ? BuildProgram(PlaneFragmentShader, error) : 0;
+    this->DepthProgram =
+      BuildProgram("#version 330 core\n#define DEPTH_PASS\n", DepthFragmentShader, error);
+    this->PlaneProgram = this->DepthProgram
+      ? BuildProgram("#version 330 core\n", PlaneFragmentShader, error)
+      : 0;
     if (!this->PlaneProgram)
     {
       return false;
@@ -491,30 +492,52 @@ void vtkPARCRasterizer::vtkInternals::Upload(
     glGenVertexArrays(1, &gpu.VertexArray);
     glGenBuffers(1, &gpu.Positions);
     glGenBuffers(1, &gpu.Planes);
+    glGenBuffers(1, &gpu.Indices);
   }
-  std::vector<float> positions;
-  positions.reserve(3 * model.Vertices.size());
-  for (const parc::Vec3& v : model.Vertices)
+  // Per vertex: its quad's first corner and the edges to the quad's second and fourth
+  // corners (the model's quads are parallelograms), then the quad's plane.
+  const std::size_t quads = model.GetNumberOfQuads();
+  std::vector<float> geometry;
+  geometry.reserve(4 * 9 * quads);
+  std::vector<GLint> planes(4 * quads, 0);
+  std::vector<GLuint> indices;
+  indices.reserve(6 * quads);
+  for (std::size_t q = 0; q < quads; ++q)
   {
-    positions.insert(positions.end(),
-      { static_cast<float>(v.X), static_cast<float>(v.Y), static_cast<float>(v.Z) });
-  }
-  std::vector<GLint> planes(model.Vertices.size(), 0);
-  for (std::size_t q = 0; q < model.Planes.size(); ++q)
-  {
-    std::fill_n(planes.begin() + 4 * q, 4, model.Planes[q]);
+    const parc::Vec3* v = model.Vertices.data() + 4 * q;
+    for (int corner = 0; corner < 4; ++corner)
+    {
+      for (const parc::Vec3& x : { v[0], v[1] - v[0], v[3] - v[0] })
+      {
+        geometry.insert(geometry.end(),
+          { static_cast<float>(x.X), static_cast<float>(x.Y), static_cast<float>(x.Z) });
+      }
+    }
+    if (q < model.Planes.size())
+    {
+      std::fill_n(planes.begin() + 4 * q, 4, model.Planes[q]);
+    }
+    const GLuint first = static_cast<GLuint>(4 * q);
+    indices.insert(indices.end(), { first, first + 1, first + 2, first + 1, first + 3, first + 2 });
   }
   glBindVertexArray(gpu.VertexArray);
   glBindBuffer(GL_ARRAY_BUFFER, gpu.Positions);
-  glBufferData(GL_ARRAY_BUFFER, positions.size() * sizeof(float), positions.data(), GL_STATIC_DRAW);
-  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 0, nullptr);
-  glEnableVertexAttribArray(0);
+  glBufferData(GL_ARRAY_BUFFER, geometry.size() * sizeof(float), geometry.data(), GL_STATIC_DRAW);
+  for (GLuint a = 0; a < 3; ++a)
+  {
+    glVertexAttribPointer(a, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float),
+      reinterpret_cast<const void*>(3 * a * sizeof(float)));
+    glEnableVertexAttribArray(a);
+  }
   glBindBuffer(GL_ARRAY_BUFFER, gpu.Planes);
   glBufferData(GL_ARRAY_BUFFER, planes.size() * sizeof(GLint), planes.data(), GL_STATIC_DRAW);
-  glVertexAttribIPointer(1, 1, GL_INT, 0, nullptr);
-  glEnableVertexAttribArray(1);
+  glVertexAttribIPointer(3, 1, GL_INT, 0, nullptr);
+  glEnableVertexAttribArray(3);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.Indices);
+  glBufferData(GL_ELEMENT_ARRAY_BUFFER, indices.size() * sizeof(GLuint), indices.data(),
+    GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
-  gpu.Count = static_cast<GLsizei>(model.Vertices.size());
+  gpu.Count = static_cast<GLsizei>(indices.size());
   gpu.Version = version;
 }
 
@@ -587,7 +610,7 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
     static_cast<float>(2.0 * DilationPixels / view.Pass.Width),
     static_cast<float>(2.0 * DilationPixels / view.Pass.Height));
   glBindVertexArray(gpu.VertexArray);
-  glDrawArrays(GL_LINES_ADJACENCY, 0, gpu.Count);
+  glDrawElements(GL_TRIANGLES, gpu.Count, GL_UNSIGNED_INT, nullptr);
 }
 
 void vtkPARCRasterizer::vtkInternals::Release()
@@ -723,6 +746,8 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
     state->vtkglEnable(GL_BLEND);
     state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
     state->vtkglBlendEquation(GL_MIN);
+    glUseProgram(in.DepthProgram);
+    glUniform1f(glGetUniformLocation(in.DepthProgram, "Empty"), parc::DepthBufferSource::Empty);
     in.Draw(in.DepthProgram, gpu, indexToWorld, view);
     nearFar.resize(2 * static_cast<std::size_t>(w) * h);
     glReadBuffer(GL_COLOR_ATTACHMENT0);

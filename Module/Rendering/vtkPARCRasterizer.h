@@ -15,14 +15,15 @@
  *   many attachments as the planes need are attached; more than 1024 planes take several
  *   passes.
  *
- * Conservative by construction (DESIGN.md section 2): a geometry shader clips each quad to
- * the part in front of the eye (half the near distance, perspective only) and replaces it
- * by the screen-space bounding box of its projection, dilated by 3/4 of a pixel, so every
+ * Conservative by construction (DESIGN.md section 2): the vertex shader (each of a quad's
+ * four vertices carries the whole quad) clips each quad to the part in front of the eye
+ * (half the near distance, perspective only) and replaces it by the screen-space bounding
+ * box of its projection, dilated by 3/4 of a pixel, so every
  * pixel whose centre ray touches the quad, including grazing rays and sub-pixel quads, gets
  * a fragment. In the depth pass the fragment shader then tests whether the ray through the
  * pixel centre meets the face, within a rounding margin that grows as the ray grazes it
  * (the face coordinates and the depth of the hit are ratios of affine functions of the
- * pixel's NDC, set up once per quad), discards the fragment when it surely does not, and
+ * pixel's NDC, set up per quad), leaves the pixel unchanged when it surely does not, and
  * otherwise writes the depth of the hit, widened by the margin and clamped to the quad's
  * depth range. So near is never too far and far never too near. Depth clamping keeps
  * faces beyond the near/far planes.
