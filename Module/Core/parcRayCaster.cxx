@@ -624,11 +624,12 @@ struct TileCaster
       {
         for (int px = tx * TileSize; px < x1; ++px)
         {
+          const std::size_t pixel = static_cast<std::size_t>(py) * this->View.Width + px;
           if (!this->Source.MayHaveSegments(px, py))
           {
+            std::fill_n(this->Image + 4 * pixel, 4, 0.f);
             continue;
           }
-          const std::size_t pixel = static_cast<std::size_t>(py) * this->View.Width + px;
           Ray ray = this->View.MakeRay(px, py);
           if (this->Depth && this->Depth[pixel] < 1.f)
           {
@@ -649,8 +650,7 @@ bool RayCaster::CastImage(const ViewGeometry& view, const float* depth,
   const SegmentSource& source, float* rgba, CastStatistics& stats,
   const std::function<bool(double)>& progress) const
 {
-  const std::size_t pixels = static_cast<std::size_t>(view.Width) * view.Height;
-  std::fill(rgba, rgba + 4 * pixels, 0.f);
+  // Every pixel of a cast band is written by its tile (zero when no ray is cast).
   const int tilesX = (view.Width + TileSize - 1) / TileSize;
   const int tilesY = (view.Height + TileSize - 1) / TileSize;
   bool completed = true;
@@ -662,6 +662,9 @@ bool RayCaster::CastImage(const ViewGeometry& view, const float* depth,
     vtkSMPTools::For(0, static_cast<vtkIdType>(tilesX) * rows, 1, caster);
     if (progress && !progress(static_cast<double>(row + rows) / tilesY))
     {
+      const std::size_t castRows = std::min(view.Height, (row + rows) * TileSize);
+      std::fill(rgba + 4 * castRows * view.Width,
+        rgba + 4 * static_cast<std::size_t>(view.Height) * view.Width, 0.f);
       completed = false;
       break;
     }

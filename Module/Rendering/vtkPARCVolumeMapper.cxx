@@ -20,6 +20,7 @@
 #include "vtkPropCollection.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
+#include "vtkSMPTools.h"
 #include "vtkTimerLog.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -543,11 +544,16 @@ void vtkPARCVolumeMapper::DisplayImage(vtkRenderer* ren, vtkVolume* vol)
     return;
   }
   in.Display.resize(in.Image.size());
-  for (std::size_t i = 0; i < in.Image.size(); ++i)
-  {
-    const float v = std::min(std::max(in.Image[i], 0.f), 1.f);
-    in.Display[i] = static_cast<unsigned char>(v * 255.f + 0.5f);
-  }
+  const float* image = in.Image.data();
+  unsigned char* display = in.Display.data();
+  vtkSMPTools::For(0, static_cast<vtkIdType>(in.Image.size()),
+    [image, display](vtkIdType begin, vtkIdType end) {
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const float v = std::min(std::max(image[i], 0.f), 1.f);
+        display[i] = static_cast<unsigned char>(v * 255.f + 0.5f);
+      }
+    });
   int origin[2] = { 0, 0 };
   in.DisplayHelper->RenderTexture(vol, ren, in.ImageSize, in.ImageSize, in.ImageSize, origin,
     DisplayDepth, in.Display.data());
