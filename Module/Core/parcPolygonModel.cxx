@@ -121,7 +121,7 @@ void BuildDepthModel(const SupercellGrid& grid, bool merge, PolygonModel& model)
   }
 }
 
-void BuildColorModel(const SupercellGrid& grid, int axis, PolygonModel& model)
+void BuildColorModel(const SupercellGrid& grid, int axis, bool merge, PolygonModel& model)
 {
   model = PolygonModel();
   model.MajorAxis = axis;
@@ -134,7 +134,10 @@ void BuildColorModel(const SupercellGrid& grid, int axis, PolygonModel& model)
   model.FirstPlane = first;
   model.PlaneCount = last - first + 1;
   const int* n = grid.GetCounts();
-  const int nu = n[(axis + 1) % 3], nv = n[(axis + 2) % 3];
+  const int b = (axis + 1) % 3, c = (axis + 2) % 3; // in-plane axes, indices u and v
+  const int nu = n[b], nv = n[c];
+  std::vector<char> pc(static_cast<std::size_t>(nu) * nv), mask(pc.size());
+  auto at = [nu](int u, int v) { return u + static_cast<std::size_t>(nu) * v; };
   for (int i = first; i <= last; ++i)
   {
     for (int v = 0; v < nv; ++v)
@@ -143,31 +146,60 @@ void BuildColorModel(const SupercellGrid& grid, int axis, PolygonModel& model)
       {
         int idx[3];
         Compose(axis, i, u, v, idx);
-        if (!grid.IsContributing(idx[0], idx[1], idx[2]))
-        {
-          continue;
-        }
-        // Across the axis: always (the neighbour is in another plane).
-        AddQuad(grid, axis, 0, i, u, u, v, v, model);
-        AddQuad(grid, axis, 1, i, u, u, v, v, model);
-        // Within the plane: only towards an empty supercell or the outside.
-        for (int along = 1; along < 3; ++along)
-        {
-          const int a = (axis + along) % 3;
-          for (int side = 0; side < 2; ++side)
-          {
-            int other[3] = { idx[0], idx[1], idx[2] };
-            other[a] += side ? 1 : -1;
-            if (!grid.IsContributingOrOutside(other[0], other[1], other[2]))
-            {
-              const int fu = idx[(a + 1) % 3], fv = idx[(a + 2) % 3];
-              AddQuad(grid, a, side, idx[a], fu, fu, fv, fv, model);
-            }
-          }
-        }
-        model.Planes.resize(model.GetNumberOfQuads(), i - first);
+        pc[at(u, v)] = grid.IsContributing(idx[0], idx[1], idx[2]);
       }
     }
+    // Across the axis: both faces of every PC supercell (the neighbours are in other planes).
+    mask = pc;
+    CoverMask(mask, nu, nv, merge, [&](int u0, int u1, int v0, int v1) {
+      AddQuad(grid, axis, 0, i, u0, u1, v0, v1, model);
+      AddQuad(grid, axis, 1, i, u0, u1, v0, v1, model);
+    });
+    // Within the plane: only towards an empty supercell or the outside. A face normal to b
+    // spans (c, axis), one normal to c spans (axis, b); runs along the free in-plane axis
+    // merge.
+    for (int side = 0; side < 2; ++side)
+    {
+      const int step = side ? 1 : -1;
+      auto exposed = [&](int u, int v, int du, int dv) {
+        int other[3];
+        Compose(axis, i, u + du, v + dv, other);
+        return pc[at(u, v)] && !grid.IsContributingOrOutside(other[0], other[1], other[2]);
+      };
+      for (int u = 0; u < nu; ++u)
+      {
+        for (int v = 0; v < nv; ++v)
+        {
+          if (exposed(u, v, step, 0))
+          {
+            int v1 = v;
+            while (merge && v1 + 1 < nv && exposed(u, v1 + 1, step, 0))
+            {
+              ++v1;
+            }
+            AddQuad(grid, b, side, u, v, v1, i, i, model);
+            v = v1;
+          }
+        }
+      }
+      for (int v = 0; v < nv; ++v)
+      {
+        for (int u = 0; u < nu; ++u)
+        {
+          if (exposed(u, v, 0, step))
+          {
+            int u1 = u;
+            while (merge && u1 + 1 < nu && exposed(u1 + 1, v, 0, step))
+            {
+              ++u1;
+            }
+            AddQuad(grid, c, side, v, i, i, u, u1, model);
+            u = u1;
+          }
+        }
+      }
+    }
+    model.Planes.resize(model.GetNumberOfQuads(), i - first);
   }
 }
 

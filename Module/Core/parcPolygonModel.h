@@ -43,8 +43,9 @@ struct ModelStatistics
 
 /// Outer faces of the PC union; merge joins coplanar neighbouring faces into rectangles.
 void BuildDepthModel(const SupercellGrid& grid, bool merge, PolygonModel& model);
-/// Per-plane faces along axis (0, 1, 2).
-void BuildColorModel(const SupercellGrid& grid, int axis, PolygonModel& model);
+/// Per-plane faces along axis (0, 1, 2); merge joins coplanar neighbouring faces of the same
+/// plane into rectangles.
+void BuildColorModel(const SupercellGrid& grid, int axis, bool merge, PolygonModel& model);
 ModelStatistics ComputeStatistics(const SupercellGrid& grid, const PolygonModel& model);
 
 } // namespace parc

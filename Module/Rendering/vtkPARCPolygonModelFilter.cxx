@@ -142,7 +142,7 @@ int vtkPARCPolygonModelFilter::RequestData(
   parc::PolygonModel model;
   if (this->Model == COLOR_MODEL)
   {
-    parc::BuildColorModel(grid, this->MajorAxis, model);
+    parc::BuildColorModel(grid, this->MajorAxis, this->MergeFaces, model);
   }
   else
   {

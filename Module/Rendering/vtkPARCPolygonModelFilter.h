@@ -9,8 +9,9 @@
  * polygon model PARC projects (Sobierajski & Avila 1995, sections 2-4; Figure 9):
  *
  * - Depth model (default): the outer faces of the union of possibly contributing (PC)
- *   supercells. MergeFaces joins coplanar neighbouring faces into larger rectangles (same
- *   area, fewer polygons); off by default so the counts compare with the paper's.
+ *   supercells. MergeFaces (both models) joins coplanar neighbouring faces into larger
+ *   rectangles (same area, fewer polygons; the mapper merges); off by default so the counts
+ *   compare with the paper's.
  * - Colour model: for MajorAxis (0, 1, 2), every face of every PC supercell except those
  *   shared with a PC supercell of the same plane, with the cell array "PlaneIndex" (0 for
  *   the first plane along +axis holding a PC supercell).

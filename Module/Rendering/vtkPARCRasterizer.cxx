@@ -32,9 +32,9 @@ constexpr float FaceDepthMargin = 1.0e-4f;
 
 // Four vertices a quad, each with the quad's corner, its two edges and its plane (voxel-index
 // coordinates); vertex gl_VertexID % 4 becomes that corner of the quad's dilated screen
-// bounding box (two indexed triangles), each vertex computing the same flat outputs. The quad is first
-// clipped to the part in front of MinDepth. The depth pass (DEPTH_PASS) also sets up the
-// ratios its fragment shader evaluates.
+// bounding box (two indexed triangles), each vertex computing the same flat outputs. The
+// quad is first clipped to the part in front of MinDepth. The shader also sets up the
+// ratios the fragment shaders evaluate (FaceFragment).
 const char* VertexShader = R"(
 layout(location = 0) in vec3 Corner;
 layout(location = 1) in vec3 Edge1;
@@ -46,12 +46,11 @@ uniform vec3 Eye;
 uniform vec3 ViewDirection;
 uniform float MinDepth;
 uniform vec2 Dilation;
-flat out vec2 gDepthRange;
-flat out int gPlane;
-#ifdef DEPTH_PASS
 uniform float EyeDistance;
 uniform vec3 RayBase[3];
 uniform vec3 RayDirection[3];
+flat out vec2 gDepthRange;
+flat out int gPlane;
 flat out vec3 gDenominator;
 flat out vec3 gDepthNumerator;
 flat out vec3 gEdgeNumerator[2];
@@ -65,7 +64,6 @@ vec3 Numerator(vec3 q, float c, vec3 d, vec3 m)
   return vec3(l.x * d.x + m.x * k.x, l.x * d.y + l.y * d.x + m.x * k.y + m.y * k.x,
     l.x * d.z + l.z * d.x + m.x * k.z + m.z * k.x);
 }
-#endif
 void main()
 {
   vec3 corners[4] = vec3[4](Corner, Corner + Edge1, Corner + Edge1 + Edge3, Corner + Edge3);
@@ -117,7 +115,6 @@ void main()
   hi += Dilation;
   int box = gl_VertexID & 3;
   gl_Position = vec4((box & 1) != 0 ? hi.x : lo.x, (box & 2) != 0 ? hi.y : lo.y, 0.0, 1.0);
-#ifdef DEPTH_PASS
   // The face's plane dot(n, x) = w (eye-relative world coordinates). The ray through NDC
   // (x, y) starts at b = RayBase . (1, x, y) and runs along u = RayDirection . (1, x, y); it
   // meets the plane at p = b + u (w - dot(n, b)) / dot(n, u). For a vector q and offset c,
@@ -141,15 +138,14 @@ void main()
   gInverseEdgeLength = vec2(inversesqrt(dot(e1, e1)), inversesqrt(dot(e3, e3)));
   gFaceScale = length(relative[0]) + EyeDistance + length(e1) + length(e3) +
     length(RayBase[0]) + length(RayBase[1]) + length(RayBase[2]);
-#endif
 }
 )";
 
-// Writes the blending's neutral value when the ray through the pixel centre surely misses
-// the face; otherwise narrows the face's depth range to where that ray meets the face's
-// plane. Both use the ratios the vertex shader set up and a rounding margin that grows as
-// the ray grazes the face; without a usable denominator the face keeps its whole range.
-const char* DepthFragmentShader = R"(
+// What both fragment shaders share: MeetsFace tests whether the ray through the pixel
+// centre meets the face, within a rounding margin that grows as the ray grazes the face, and
+// narrows the face's depth range to the depth of the hit (both from the ratios the vertex
+// shader set up). Without a usable denominator the face keeps its whole range.
+const char* FaceFragment = R"(
 flat in vec2 gDepthRange;
 flat in vec3 gDenominator;
 flat in vec3 gDepthNumerator;
@@ -159,33 +155,42 @@ flat in float gFaceScale;
 flat in int gPlane;
 uniform vec2 PixelToNDC;
 uniform float MarginScale;
+bool MeetsFace(inout vec2 range)
+{
+  vec3 ndc = vec3(1.0, gl_FragCoord.xy * PixelToNDC - 1.0);
+  float denominator = dot(gDenominator, ndc);
+  if (denominator == 0.0)
+  {
+    return true;
+  }
+  float depth = clamp(dot(gDepthNumerator, ndc) / denominator, range.x, range.y);
+  float margin = MarginScale * (gFaceScale + abs(depth)) / abs(denominator);
+  vec2 face = vec2(dot(gEdgeNumerator[0], ndc), dot(gEdgeNumerator[1], ndc)) / denominator;
+  vec2 tolerance = margin * gInverseEdgeLength;
+  if (any(lessThan(face, -tolerance)) || any(greaterThan(face, 1.0 + tolerance)))
+  {
+    return false;
+  }
+  range = vec2(max(range.x, depth - margin), min(range.y, depth + margin));
+  return true;
+}
+)";
+
+// A fragment whose ray misses the face writes the blending's neutral value (faster than
+// discard on llvmpipe).
+const char* DepthFragmentShader = R"(
 uniform float Empty;
 layout(location = 0) out vec4 NearFar;
 void main()
 {
   vec2 range = gDepthRange;
-  vec3 ndc = vec3(1.0, gl_FragCoord.xy * PixelToNDC - 1.0);
-  float denominator = dot(gDenominator, ndc);
-  if (denominator != 0.0)
-  {
-    float depth = clamp(dot(gDepthNumerator, ndc) / denominator, range.x, range.y);
-    float margin = MarginScale * (gFaceScale + abs(depth)) / abs(denominator);
-    vec2 face = vec2(dot(gEdgeNumerator[0], ndc), dot(gEdgeNumerator[1], ndc)) / denominator;
-    vec2 tolerance = margin * gInverseEdgeLength;
-    if (any(lessThan(face, -tolerance)) || any(greaterThan(face, 1.0 + tolerance)))
-    {
-      NearFar = vec4(Empty, Empty, 0.0, 0.0); // leaves the pixel unchanged (faster than discard)
-      return;
-    }
-    range = vec2(max(range.x, depth - margin), min(range.y, depth + margin));
-  }
-  NearFar = vec4(range.x, -range.y, 0.0, 0.0);
+  NearFar = MeetsFace(range) ? vec4(range.x, -range.y, 0.0, 0.0) : vec4(Empty, Empty, 0.0, 0.0);
 }
 )";
 
+// The face's plane bit when its ray meets the face and the plane is in this pass; zero
+// (neutral for OR) otherwise.
 const char* PlaneFragmentShader = R"(
-flat in vec2 gDepthRange;
-flat in int gPlane;
 uniform int PlaneBase;
 layout(location = 0) out uvec4 Bits0;
 layout(location = 1) out uvec4 Bits1;
@@ -198,12 +203,12 @@ layout(location = 7) out uvec4 Bits7;
 void main()
 {
   int p = gPlane - PlaneBase;
-  if (p < 0 || p >= 1024)
-  {
-    discard;
-  }
+  vec2 range = gDepthRange;
   uvec4 word = uvec4(0u);
-  word[(p >> 5) & 3] = 1u << uint(p & 31);
+  if (p >= 0 && p < 1024 && MeetsFace(range))
+  {
+    word[(p >> 5) & 3] = 1u << uint(p & 31);
+  }
   int a = p >> 7;
   Bits0 = a == 0 ? word : uvec4(0u);
   Bits1 = a == 1 ? word : uvec4(0u);
@@ -216,19 +221,19 @@ void main()
 }
 )";
 
-/// A compiled and linked program of the vertex shader and fragment, both preceded by
-/// header; 0 and a message on failure.
-GLuint BuildProgram(const char* header, const char* fragment, std::string& error)
+/// A compiled and linked program of the vertex shader and FaceFragment + fragment.
+GLuint BuildProgram(const char* fragment, std::string& error)
 {
+  const char* version = "#version 330 core\n";
   const GLenum types[2] = { GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
-  const char* bodies[2] = { VertexShader, fragment };
+  const std::array<const char*, 3> sources[2] = { { version, VertexShader, "" },
+    { version, FaceFragment, fragment } };
   const GLuint program = glCreateProgram();
   GLuint shaders[2];
   for (int s = 0; s < 2; ++s)
   {
     shaders[s] = glCreateShader(types[s]);
-    const char* sources[2] = { header, bodies[s] };
-    glShaderSource(shaders[s], 2, sources, nullptr);
+    glShaderSource(shaders[s], 3, sources[s].data(), nullptr);
     glCompileShader(shaders[s]);
     GLint ok = 0;
     glGetShaderiv(shaders[s], GL_COMPILE_STATUS, &ok);
@@ -470,11 +475,8 @@ bool vtkPARCRasterizer::vtkInternals::Prepare(vtkRenderWindow* window, std::stri
       error = "the OpenGL context is older than 3.3";
       return false;
     }
-    this->DepthProgram =
-      BuildProgram("#version 330 core\n#define DEPTH_PASS\n", DepthFragmentShader, error);
-    this->PlaneProgram = this->DepthProgram
-      ? BuildProgram("#version 330 core\n", PlaneFragmentShader, error)
-      : 0;
+    this->DepthProgram = BuildProgram(DepthFragmentShader, error);
+    this->PlaneProgram = this->DepthProgram ? BuildProgram(PlaneFragmentShader, error) : 0;
     if (!this->PlaneProgram)
     {
       return false;

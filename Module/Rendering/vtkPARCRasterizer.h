@@ -20,13 +20,14 @@
  * (half the near distance, perspective only) and replaces it by the screen-space bounding
  * box of its projection, dilated by 3/4 of a pixel, so every
  * pixel whose centre ray touches the quad, including grazing rays and sub-pixel quads, gets
- * a fragment. In the depth pass the fragment shader then tests whether the ray through the
- * pixel centre meets the face, within a rounding margin that grows as the ray grazes it
- * (the face coordinates and the depth of the hit are ratios of affine functions of the
- * pixel's NDC, set up per quad), leaves the pixel unchanged when it surely does not, and
- * otherwise writes the depth of the hit, widened by the margin and clamped to the quad's
- * depth range. So near is never too far and far never too near. Depth clamping keeps
- * faces beyond the near/far planes.
+ * a fragment. The fragment shader then tests whether the ray through the pixel centre
+ * meets the face, within a rounding margin that grows as the ray grazes it (the face
+ * coordinates and the depth of the hit are ratios of affine functions of the pixel's NDC,
+ * set up per quad). When it surely does not, the fragment writes the neutral value (Empty,
+ * or no bit); otherwise the depth pass writes the depth of the hit, widened by the margin
+ * and clamped to the quad's depth range, and the plane pass the face's bit. So near is never
+ * too far, far never too near and no plane is missed. Depth clamping keeps faces beyond the
+ * near/far planes.
  *
  * Every piece of GL state it changes is saved and restored (through vtkOpenGLState where
  * VTK tracks it), so the rest of the scene renders unchanged. Programs, framebuffers and

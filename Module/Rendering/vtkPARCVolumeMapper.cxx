@@ -32,6 +32,10 @@
 
 namespace
 {
+/// Both models join coplanar neighbouring faces: fewer primitives, and the depth pass is as
+/// tight on a large face as on a small one (it tests each pixel's ray against the face).
+constexpr bool MergeFaces = true;
+
 constexpr float DisplayDepth = 1e-6f; ///< window depth of the displayed image quad
 
 void ConvertLights(vtkRenderer* ren, std::vector<parc::Light>& lights)
@@ -457,7 +461,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(
     parc::PolygonModel& model = in.ColorModels[axis];
     if (!in.ColorModelBuilt[axis])
     {
-      parc::BuildColorModel(in.Grid, axis, model);
+      parc::BuildColorModel(in.Grid, axis, MergeFaces, model);
       in.ColorModelBuilt[axis] = true;
       ++in.ModelBuilds;
     }
@@ -524,10 +528,7 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolume* vol)
   rule.Set(in.Parameters, in.Field.GetRange());
   in.Grid.Classify(in.Pyramid, rule, in.Parameters.Interp);
   in.ClassificationTime = vtkTimerLog::GetUniversalTime() - start;
-  // Merged faces: fewer primitives, and the depth pass is as tight on a large face as on
-  // a small one (it tests each pixel's ray against the face).
-  constexpr bool MergeDepthFaces = true;
-  parc::BuildDepthModel(in.Grid, MergeDepthFaces, in.DepthModel);
+  parc::BuildDepthModel(in.Grid, MergeFaces, in.DepthModel);
   std::fill_n(in.ColorModelBuilt, 3, false);
   ++in.ModelVersion;
   ++in.Classifications;

@@ -411,7 +411,7 @@ TEST(PolygonModel, ColorModelIsClosedPerPlane)
     for (int axis = 0; axis < 3; ++axis)
     {
       parc::PolygonModel model;
-      parc::BuildColorModel(s.Grid, axis, model);
+      parc::BuildColorModel(s.Grid, axis, false, model);
       ASSERT_EQ(model.Planes.size(), model.GetNumberOfQuads());
       int first, last;
       s.Grid.ContributingPlanes(axis, first, last);
@@ -451,6 +451,28 @@ TEST(PolygonModel, ColorModelIsClosedPerPlane)
               }
           }
       EXPECT_EQ(model.GetNumberOfQuads(), faces);
+
+      // Merged: the same area in every plane with at most as many quads.
+      parc::PolygonModel merged;
+      parc::BuildColorModel(s.Grid, axis, true, merged);
+      ASSERT_EQ(merged.Planes.size(), merged.GetNumberOfQuads());
+      EXPECT_EQ(merged.FirstPlane, model.FirstPlane);
+      EXPECT_EQ(merged.PlaneCount, model.PlaneCount);
+      EXPECT_LE(merged.GetNumberOfQuads(), model.GetNumberOfQuads());
+      std::map<int, parc::PolygonModel> mergedPerPlane;
+      for (std::size_t q = 0; q < merged.GetNumberOfQuads(); ++q)
+      {
+        auto& m = mergedPerPlane[merged.Planes[q]];
+        m.Vertices.insert(m.Vertices.end(), merged.Vertices.begin() + 4 * q,
+          merged.Vertices.begin() + 4 * q + 4);
+      }
+      ASSERT_EQ(mergedPerPlane.size(), perPlane.size());
+      for (const auto& plane : perPlane)
+      {
+        EXPECT_NEAR(mergedPerPlane[plane.first].GetArea(), plane.second.GetArea(),
+          1e-9 * plane.second.GetArea())
+          << "plane " << plane.first;
+      }
     }
   }
 }
