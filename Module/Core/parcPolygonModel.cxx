@@ -133,6 +133,8 @@ void BuildColorModel(const SupercellGrid& grid, int axis, bool merge, PolygonMod
   }
   model.FirstPlane = first;
   model.PlaneCount = last - first + 1;
+  model.PlanesLow = grid.Boundary(axis, first);
+  model.PlanesHigh = grid.Boundary(axis, last + 1);
   const int* n = grid.GetCounts();
   const int b = (axis + 1) % 3, c = (axis + 2) % 3; // in-plane axes, indices u and v
   const int nu = n[b], nv = n[c];
@@ -201,6 +203,29 @@ void BuildColorModel(const SupercellGrid& grid, int axis, bool merge, PolygonMod
     }
     model.Planes.resize(model.GetNumberOfQuads(), i - first);
   }
+}
+
+int RayAxisSign(const PolygonModel& model, const std::vector<Vec3>& starts,
+  const std::vector<Vec3>& directions)
+{
+  const int axis = model.MajorAxis;
+  if (axis < 0 || directions.empty())
+  {
+    return 0;
+  }
+  for (const int sign : { 1, -1 })
+  {
+    const bool along = std::all_of(directions.begin(), directions.end(),
+      [&](const Vec3& d) { return sign * d[axis] > 0.0; });
+    const bool before = std::all_of(starts.begin(), starts.end(), [&](const Vec3& p) {
+      return sign > 0 ? p[axis] < model.PlanesLow : p[axis] > model.PlanesHigh;
+    });
+    if (along && before)
+    {
+      return sign;
+    }
+  }
+  return 0;
 }
 
 ModelStatistics ComputeStatistics(const SupercellGrid& grid, const PolygonModel& model)

@@ -25,6 +25,8 @@ struct PolygonModel
   int MajorAxis = -1;         ///< colour model: 0, 1 or 2; depth model: -1
   int FirstPlane = 0;         ///< supercell index along MajorAxis of plane 0
   int PlaneCount = 0;         ///< colour model: planes from the first to the last PC one
+  double PlanesLow = 0.0;     ///< colour model: index coordinate where plane 0 begins
+  double PlanesHigh = 0.0;    ///< colour model: index coordinate where the last plane ends
 
   std::size_t GetNumberOfQuads() const { return this->Vertices.size() / 4; }
   /// Total area in voxel-index units.
@@ -46,6 +48,14 @@ void BuildDepthModel(const SupercellGrid& grid, bool merge, PolygonModel& model)
 /// Per-plane faces along axis (0, 1, 2); merge joins coplanar neighbouring faces of the same
 /// plane into rectangles.
 void BuildColorModel(const SupercellGrid& grid, int axis, bool merge, PolygonModel& model);
+/// For a colour model: +1 (-1) when every ray, given by the corners of the convex set of its
+/// start points and the directions at the image corners (voxel-index coordinates), runs
+/// along +axis (-axis) and starts before all planes. Such rays enter each plane's PC region
+/// through a face towards the eye, so the plane pass may leave out the faces across the
+/// axis that face along the rays. 0 otherwise (every face is needed).
+int RayAxisSign(const PolygonModel& model, const std::vector<Vec3>& starts,
+  const std::vector<Vec3>& directions);
+
 ModelStatistics ComputeStatistics(const SupercellGrid& grid, const PolygonModel& model);
 
 } // namespace parc

@@ -58,6 +58,27 @@ double ViewGeometry::DepthToParameter(const Ray& ray, int px, int py, double z) 
   return Dot(p - ray.Origin, ray.Direction);
 }
 
+void ViewGeometry::RayBounds(
+  const Matrix4& transform, std::vector<Vec3>& starts, std::vector<Vec3>& directions) const
+{
+  starts.clear();
+  directions.clear();
+  if (!this->Parallel)
+  {
+    starts.push_back(transform.TransformPoint(this->Eye));
+  }
+  for (const double x : { -1.0, 1.0 })
+  {
+    for (const double y : { -1.0, 1.0 })
+    {
+      const Vec3 nearPoint = this->NDCToWorld.TransformHomogeneous({ x, y, -1.0 });
+      const Vec3 farPoint = this->NDCToWorld.TransformHomogeneous({ x, y, 1.0 });
+      starts.push_back(transform.TransformPoint(nearPoint));
+      directions.push_back(transform.TransformVector(farPoint - nearPoint));
+    }
+  }
+}
+
 bool RayCaster::Prepare(const ScalarField* field, const CastParameters* parameters)
 {
   this->Field = field;

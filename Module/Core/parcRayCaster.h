@@ -104,6 +104,11 @@ struct ViewGeometry
   Ray MakeRay(int px, int py) const;
   /// The ray parameter of the point at window depth z (in [0, 1]) on that ray.
   double DepthToParameter(const Ray& ray, int px, int py, double z) const;
+  /// Bounds of all rays in the coordinates of transform (affine): the corners of the convex
+  /// set of their start points (the near plane's corners, and the eye in perspective) and
+  /// the directions whose positive combinations hold every ray's (at the image corners).
+  void RayBounds(const Matrix4& transform, std::vector<Vec3>& starts,
+    std::vector<Vec3>& directions) const;
 };
 
 /// Casts rays through one scalar field.

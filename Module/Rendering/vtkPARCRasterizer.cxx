@@ -46,6 +46,7 @@ uniform vec3 Eye;
 uniform vec3 ViewDirection;
 uniform float MinDepth;
 uniform vec2 Dilation;
+uniform vec3 SkipNormal;
 uniform float EyeDistance;
 uniform vec3 RayBase[3];
 uniform vec3 RayDirection[3];
@@ -106,9 +107,11 @@ void main()
   }
   gPlane = Plane;
   gDepthRange = vec2(zlo, zhi);
-  if (zlo > zhi)
+  // Nothing in front, or a face the rays cannot enter through (its outward normal, the
+  // edges' cross product, along SkipNormal): a degenerate strip.
+  if (zlo > zhi || dot(cross(Edge1, Edge3), SkipNormal) > 0.0)
   {
-    gl_Position = vec4(0.0, 0.0, 0.0, 1.0); // nothing in front: a degenerate strip
+    gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
     return;
   }
   lo -= Dilation;
@@ -446,8 +449,10 @@ public:
     return gpu;
   }
   bool Target(GLenum format, int attachments, int width, int height, std::string& error);
+  /// Draws the model's quads, except those whose outward normal (voxel-index coordinates)
+  /// points along skipNormal.
   void Draw(GLuint program, const GPUModel& gpu, const parc::Matrix4& indexToWorld,
-    const vtkPARCRasterizer::View& view);
+    const vtkPARCRasterizer::View& view, const parc::Vec3& skipNormal);
   void Release();
 };
 
@@ -589,9 +594,11 @@ bool vtkPARCRasterizer::vtkInternals::Target(
 }
 
 void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
-  const parc::Matrix4& indexToWorld, const vtkPARCRasterizer::View& view)
+  const parc::Matrix4& indexToWorld, const vtkPARCRasterizer::View& view,
+  const parc::Vec3& skipNormal)
 {
   glUseProgram(program);
+  SetVector(program, "SkipNormal", skipNormal);
   SetMatrix(program, "IndexToWorld", indexToWorld);
   SetMatrix(program, "WorldToClip", view.WorldToClip);
   SetVector(program, "Eye", view.Eye);
@@ -750,7 +757,7 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
     state->vtkglBlendEquation(GL_MIN);
     glUseProgram(in.DepthProgram);
     glUniform1f(glGetUniformLocation(in.DepthProgram, "Empty"), parc::DepthBufferSource::Empty);
-    in.Draw(in.DepthProgram, gpu, indexToWorld, view);
+    in.Draw(in.DepthProgram, gpu, indexToWorld, view, parc::Vec3());
     nearFar.resize(2 * static_cast<std::size_t>(w) * h);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
     glReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, nearFar.data());
@@ -760,9 +767,14 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
 
 //------------------------------------------------------------------------------
 bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::PolygonModel& model,
-  std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view,
+  std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view, int raySign,
   std::vector<std::uint32_t>& bits, int& wordsPerPixel, int& passes)
 {
+  parc::Vec3 skipNormal;
+  if (model.MajorAxis >= 0)
+  {
+    skipNormal[model.MajorAxis] = raySign;
+  }
   vtkInternals& in = *this->Internals;
   return in.Run(window, "plane", this->LastError, [&](vtkOpenGLState* state) {
     const GPUModel& gpu = in.Use(1, model, modelVersion, this->UploadCount);
@@ -794,7 +806,7 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
       glLogicOp(GL_OR);
       glUseProgram(in.PlaneProgram);
       glUniform1i(glGetUniformLocation(in.PlaneProgram, "PlaneBase"), pass * PlanesPerPass);
-      in.Draw(in.PlaneProgram, gpu, indexToWorld, view);
+      in.Draw(in.PlaneProgram, gpu, indexToWorld, view, skipNormal);
       for (int a = 0; a < attachments; ++a)
       {
         glReadBuffer(GL_COLOR_ATTACHMENT0 + a);

@@ -91,9 +91,11 @@ public:
     std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view,
     std::vector<float>& nearFar);
 
-  /// Plane bit sets of the colour model (wordsPerPixel 32-bit words per pixel).
+  /// Plane bit sets of the colour model (wordsPerPixel 32-bit words per pixel). raySign is
+  /// parc::RayAxisSign for the view: when not 0, the faces across the axis that face along
+  /// the rays (+raySign * axis) are left out.
   bool RenderPlanes(vtkRenderWindow* window, const parc::PolygonModel& model,
-    std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view,
+    std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view, int raySign,
     std::vector<std::uint32_t>& bits, int& wordsPerPixel, int& passes);
 
   const std::string& GetLastError() const { return this->LastError; }

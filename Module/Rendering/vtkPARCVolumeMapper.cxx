@@ -169,7 +169,7 @@ public:
   int ChooseMode(int requested) const;
   /// Runs the PARC passes of the requested mode; the segment source the caster uses.
   const parc::SegmentSource& RunPasses(vtkPARCVolumeMapper* self, vtkRenderer* ren,
-    vtkVolume* vol, const vtkPARCRasterizer::View& passView);
+    vtkVolume* vol, const parc::ViewGeometry& view, const vtkPARCRasterizer::View& passView);
 };
 
 vtkStandardNewMacro(vtkPARCVolumeMapper);
@@ -389,7 +389,7 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
   }
 
   const double projectionStart = vtkTimerLog::GetUniversalTime();
-  const parc::SegmentSource& source = in.RunPasses(this, ren, vol, passView);
+  const parc::SegmentSource& source = in.RunPasses(this, ren, vol, view, passView);
   in.ProjectionTime = vtkTimerLog::GetUniversalTime() - projectionStart;
   in.Image.resize(4 * pixels);
   in.ImageSize[0] = view.Width;
@@ -423,8 +423,9 @@ int vtkPARCVolumeMapper::vtkInternals::ChooseMode(int requested) const
 }
 
 //------------------------------------------------------------------------------
-const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(
-  vtkPARCVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol, const vtkPARCRasterizer::View& passView)
+const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(vtkPARCVolumeMapper* self,
+  vtkRenderer* ren, vtkVolume* vol, const parc::ViewGeometry& view,
+  const vtkPARCRasterizer::View& passView)
 {
   vtkInternals& in = *this;
   const int requested = self->AccelerationMode;
@@ -467,8 +468,10 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(
     }
     std::vector<std::uint32_t> bits = in.PlaneSource.ReleaseBuffer();
     int words = 0;
+    std::vector<parc::Vec3> starts, directions;
+    view.RayBounds(in.Parameters.WorldToIndex, starts, directions);
     ok = in.Rasterizer->RenderPlanes(window, model, 4 * in.ModelVersion + axis, indexToWorld,
-      passView, bits, words, in.PassCount);
+      passView, parc::RayAxisSign(model, starts, directions), bits, words, in.PassCount);
     in.PlaneSource.Set(passView.Pass, std::move(bits), words, &in.Grid, axis, model.FirstPlane,
       in.Parameters.WorldToIndex);
     in.PlaneCount = model.PlaneCount;

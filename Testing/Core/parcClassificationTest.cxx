@@ -646,3 +646,26 @@ TEST(SegmentOracle, CastingWithTheOracleIsBitIdentical)
   }
   EXPECT_LT(oracleSamples, wholeSamples) << "the oracle skips empty samples";
 }
+
+// The sign of the rays along a colour model's axis: only when every ray runs the same way
+// and starts before every plane.
+TEST(PolygonModel, RayAxisSign)
+{
+  parc::PolygonModel model;
+  model.MajorAxis = 0;
+  model.PlanesLow = 2.0;
+  model.PlanesHigh = 10.0;
+  const std::vector<parc::Vec3> forward = { { 1, 0.2, 0 }, { 0.5, -1, 0 }, { 2, 0, 1 } };
+  const std::vector<parc::Vec3> backward = { { -1, 0.2, 0 }, { -0.5, -1, 0 } };
+  EXPECT_EQ(parc::RayAxisSign(model, { { 0, 5, 5 }, { 1.9, -3, 8 } }, forward), 1);
+  EXPECT_EQ(parc::RayAxisSign(model, { { 12, 5, 5 }, { 10.1, 0, 0 } }, backward), -1);
+  EXPECT_EQ(parc::RayAxisSign(model, { { 0, 5, 5 }, { 2.5, 0, 0 } }, forward), 0); // inside
+  EXPECT_EQ(parc::RayAxisSign(model, { { 12, 5, 5 } }, forward), 0);               // behind
+  std::vector<parc::Vec3> mixed = forward;
+  mixed.push_back({ -0.1, 1, 0 });
+  EXPECT_EQ(parc::RayAxisSign(model, { { 0, 5, 5 } }, mixed), 0);
+  mixed.back() = { 0, 1, 0 }; // parallel to the planes
+  EXPECT_EQ(parc::RayAxisSign(model, { { 0, 5, 5 } }, mixed), 0);
+  model.MajorAxis = -1; // a depth model
+  EXPECT_EQ(parc::RayAxisSign(model, { { 0, 5, 5 } }, forward), 0);
+}

@@ -16,6 +16,7 @@ namespace
 struct Tally
 {
   std::size_t Rays = 0, Misses = 0, ExtraPlanes = 0, Planes = 0;
+  int FrontOnly = 0; ///< cameras whose plane pass left out the faces facing along the rays
   double IdealLength = 0.0, ExtraLength = 0.0;
 };
 
@@ -52,7 +53,12 @@ bool CheckCamera(vtkRenderWindow* window, vtkRenderer* ren, vtkPARCRasterizer* r
   const parc::PolygonModel& colorModel = colorModels[axis];
   std::vector<std::uint32_t> bits;
   int words = 0, passes = 0;
-  if (!rasterizer->RenderPlanes(window, colorModel, version, indexToWorld, view, bits, words, passes))
+  std::vector<parc::Vec3> starts, directions;
+  rays.RayBounds(worldToIndex, starts, directions);
+  const int raySign = parc::RayAxisSign(colorModel, starts, directions);
+  tally.FrontOnly += raySign != 0 ? 1 : 0;
+  if (!rasterizer->RenderPlanes(
+        window, colorModel, version, indexToWorld, view, raySign, bits, words, passes))
   {
     std::cerr << name << ": " << rasterizer->GetLastError() << "\n";
     return false;
@@ -259,7 +265,12 @@ int TestPARCRasterizer(int argc, char* argv[])
             << 100.0 * tally.ExtraLength / tally.IdealLength << "%).\n"
             << "Plane bits: " << tally.Planes << " true planes, " << tally.ExtraPlanes
             << " extra (" << 100.0 * tally.ExtraPlanes / std::max<std::size_t>(1, tally.Planes)
-            << "%).\n";
+            << "%); " << tally.FrontOnly << " cameras drew only the faces towards the eye.\n";
+  if (tally.FrontOnly == 0 || tally.FrontOnly == cameras)
+  {
+    std::cerr << "Expected cameras both with and without the faces facing along the rays.\n";
+    return EXIT_FAILURE;
+  }
   // Whole face depth ranges leave about 13% here; per-pixel plane depths with the
   // hit test about 1%.
   constexpr double MaxExtraLength = 0.04;
