@@ -339,6 +339,85 @@ struct GPUModel
   }
 };
 
+/// An offscreen framebuffer with its colour renderbuffers (one per pass, so that passes
+/// alternating in one frame do not reallocate each other's storage).
+struct RenderTarget
+{
+  GLuint Framebuffer = 0;
+  std::vector<GLuint> Renderbuffers;
+  GLenum Format = 0;
+  int Size[2] = { 0, 0 };
+
+  /// Binds the framebuffer with attachments renderbuffers of format, (re)allocating
+  /// storage when anything changed; false with a message when it is incomplete.
+  bool Bind(GLenum format, int attachments, int width, int height, std::string& error);
+  void Release()
+  {
+    this->Detach();
+    if (this->Framebuffer)
+    {
+      glDeleteFramebuffers(1, &this->Framebuffer);
+    }
+    *this = RenderTarget();
+  }
+
+private:
+  void Detach()
+  {
+    if (!this->Renderbuffers.empty())
+    {
+      glDeleteRenderbuffers(
+        static_cast<GLsizei>(this->Renderbuffers.size()), this->Renderbuffers.data());
+    }
+    this->Renderbuffers.clear();
+  }
+};
+
+bool RenderTarget::Bind(GLenum format, int attachments, int width, int height, std::string& error)
+{
+  if (!this->Framebuffer)
+  {
+    glGenFramebuffers(1, &this->Framebuffer);
+  }
+  glBindFramebuffer(GL_FRAMEBUFFER, this->Framebuffer);
+  if (format != this->Format || width != this->Size[0] || height != this->Size[1] ||
+    static_cast<int>(this->Renderbuffers.size()) != attachments)
+  {
+    for (int a = 0; a < static_cast<int>(this->Renderbuffers.size()); ++a)
+    {
+      glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + a, GL_RENDERBUFFER, 0);
+    }
+    this->Detach();
+    this->Renderbuffers.assign(attachments, 0);
+    glGenRenderbuffers(attachments, this->Renderbuffers.data());
+    for (int a = 0; a < attachments; ++a)
+    {
+      glBindRenderbuffer(GL_RENDERBUFFER, this->Renderbuffers[a]);
+      glRenderbufferStorage(GL_RENDERBUFFER, format, width, height);
+      glFramebufferRenderbuffer(
+        GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + a, GL_RENDERBUFFER, this->Renderbuffers[a]);
+    }
+    glBindRenderbuffer(GL_RENDERBUFFER, 0);
+    this->Format = format;
+    this->Size[0] = width;
+    this->Size[1] = height;
+  }
+  std::array<GLenum, MaxAttachments> buffers;
+  for (int a = 0; a < attachments; ++a)
+  {
+    buffers[a] = GL_COLOR_ATTACHMENT0 + a;
+  }
+  glDrawBuffers(attachments, buffers.data());
+  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  if (status != GL_FRAMEBUFFER_COMPLETE)
+  {
+    error = "the PARC framebuffer is incomplete (status " + std::to_string(status) + ")";
+    this->Size[0] = this->Size[1] = 0; // rebuild next time
+    return false;
+  }
+  return true;
+}
+
 /// Saves the GL state the passes change and restores it when destroyed.
 class ScopedPassState
 {
@@ -402,12 +481,9 @@ public:
   vtkWeakPointer<vtkOpenGLRenderWindow> Context;
   GLuint DepthProgram = 0;
   GLuint PlaneProgram = 0;
-  GPUModel Models[2]; ///< depth, colour
-  GLuint Framebuffer = 0;
-  std::vector<GLuint> Renderbuffers;
+  GPUModel Models[2];        ///< depth, colour
+  RenderTarget Targets[2];   ///< depth, colour
   std::vector<std::uint32_t> Texels; ///< read-back of one plane attachment
-  GLenum RenderbufferFormat = 0;
-  int Size[2] = { 0, 0 };
 
   bool Prepare(vtkRenderWindow* window, std::string& error);
   /// One pass: makes the context current (building the programs the first time), saves
@@ -448,7 +524,6 @@ public:
     }
     return gpu;
   }
-  bool Target(GLenum format, int attachments, int width, int height, std::string& error);
   /// Draws the model's quads, except those whose outward normal (voxel-index coordinates)
   /// points along skipNormal.
   void Draw(GLuint program, const GPUModel& gpu, const parc::Matrix4& indexToWorld,
@@ -486,7 +561,6 @@ bool vtkPARCRasterizer::vtkInternals::Prepare(vtkRenderWindow* window, std::stri
     {
       return false;
     }
-    glGenFramebuffers(1, &this->Framebuffer);
   }
   return true;
 }
@@ -548,51 +622,6 @@ void vtkPARCRasterizer::vtkInternals::Upload(
   gpu.Version = version;
 }
 
-bool vtkPARCRasterizer::vtkInternals::Target(
-  GLenum format, int attachments, int width, int height, std::string& error)
-{
-  glBindFramebuffer(GL_FRAMEBUFFER, this->Framebuffer);
-  if (format != this->RenderbufferFormat || width != this->Size[0] || height != this->Size[1] ||
-    static_cast<int>(this->Renderbuffers.size()) != attachments)
-  {
-    for (int a = 0; a < static_cast<int>(this->Renderbuffers.size()); ++a)
-    {
-      glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + a, GL_RENDERBUFFER, 0);
-    }
-    if (!this->Renderbuffers.empty())
-    {
-      glDeleteRenderbuffers(static_cast<GLsizei>(this->Renderbuffers.size()), this->Renderbuffers.data());
-    }
-    this->Renderbuffers.assign(attachments, 0);
-    glGenRenderbuffers(attachments, this->Renderbuffers.data());
-    for (int a = 0; a < attachments; ++a)
-    {
-      glBindRenderbuffer(GL_RENDERBUFFER, this->Renderbuffers[a]);
-      glRenderbufferStorage(GL_RENDERBUFFER, format, width, height);
-      glFramebufferRenderbuffer(
-        GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0 + a, GL_RENDERBUFFER, this->Renderbuffers[a]);
-    }
-    glBindRenderbuffer(GL_RENDERBUFFER, 0);
-    this->RenderbufferFormat = format;
-    this->Size[0] = width;
-    this->Size[1] = height;
-  }
-  std::array<GLenum, MaxAttachments> buffers;
-  for (int a = 0; a < attachments; ++a)
-  {
-    buffers[a] = GL_COLOR_ATTACHMENT0 + a;
-  }
-  glDrawBuffers(attachments, buffers.data());
-  const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-  if (status != GL_FRAMEBUFFER_COMPLETE)
-  {
-    error = "the PARC framebuffer is incomplete (status " + std::to_string(status) + ")";
-    this->Size[0] = this->Size[1] = 0; // rebuild next time
-    return false;
-  }
-  return true;
-}
-
 void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
   const parc::Matrix4& indexToWorld, const vtkPARCRasterizer::View& view,
   const parc::Vec3& skipNormal)
@@ -633,16 +662,16 @@ void vtkPARCRasterizer::vtkInternals::Release()
     {
       m.Release();
     }
-    if (!this->Renderbuffers.empty())
+    for (RenderTarget& t : this->Targets)
     {
-      glDeleteRenderbuffers(static_cast<GLsizei>(this->Renderbuffers.size()), this->Renderbuffers.data());
+      t.Release();
     }
-    glDeleteFramebuffers(1, &this->Framebuffer);
   }
-  this->DepthProgram = this->PlaneProgram = this->Framebuffer = 0;
-  this->Renderbuffers.clear();
-  this->RenderbufferFormat = 0;
-  this->Size[0] = this->Size[1] = 0;
+  this->DepthProgram = this->PlaneProgram = 0;
+  for (RenderTarget& t : this->Targets)
+  {
+    t = RenderTarget();
+  }
   for (GPUModel& m : this->Models)
   {
     m = GPUModel();
@@ -743,7 +772,7 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
   return in.Run(window, "depth", this->LastError, [&](vtkOpenGLState* state) {
     const GPUModel& gpu = in.Use(0, model, modelVersion, this->UploadCount);
     const int w = view.Pass.Width, h = view.Pass.Height;
-    if (!in.Target(GL_RG32F, 1, w, h, this->LastError))
+    if (!in.Targets[0].Bind(GL_RG32F, 1, w, h, this->LastError))
     {
       return false;
     }
@@ -792,7 +821,7 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
     for (int pass = 0; pass < passes; ++pass)
     {
       const int attachments = std::min(MaxAttachments, attachmentsTotal - pass * MaxAttachments);
-      if (!in.Target(GL_RGBA32UI, attachments, w, h, this->LastError))
+      if (!in.Targets[1].Bind(GL_RGBA32UI, attachments, w, h, this->LastError))
       {
         return false;
       }

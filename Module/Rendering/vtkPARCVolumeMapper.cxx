@@ -165,8 +165,51 @@ public:
   vtkIdType PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
   double ClassificationTime = 0.0;
 
-  /// The mode Auto resolves to for the current classification and ray function.
-  int ChooseMode(int requested) const;
+  /// Auto among the passes: each candidate is tried on one frame per model version and
+  /// ray image size, then the one whose frame (projection + casting) was fastest is kept.
+  struct AutoTrials
+  {
+    static constexpr int Candidates[3] = { ACCELERATION_DEPTH_BUFFER, ACCELERATION_COLOR_BUFFER,
+      ACCELERATION_BOTH };
+    std::uint64_t ModelVersion = ~std::uint64_t(0);
+    int Size[2] = { 0, 0 };
+    double Time[3] = { 0.0, 0.0, 0.0 };
+    int Tried = 0;        ///< candidates measured so far
+    bool Pending = false; ///< the current frame is a trial of Candidates[Tried]
+
+    /// The mode for this frame; starts over when the model or the image size changed.
+    int Mode(std::uint64_t modelVersion, int width, int height)
+    {
+      if (modelVersion != this->ModelVersion || width != this->Size[0] || height != this->Size[1])
+      {
+        *this = AutoTrials();
+        this->ModelVersion = modelVersion;
+        this->Size[0] = width;
+        this->Size[1] = height;
+      }
+      this->Pending = this->Tried < 3;
+      if (this->Pending)
+      {
+        return Candidates[this->Tried];
+      }
+      return Candidates[std::min_element(this->Time, this->Time + 3) - this->Time];
+    }
+    /// The time of the frame Mode chose, if it was a trial. A frame that was aborted or
+    /// also did set-up work (building or uploading a model) does not count: the candidate
+    /// is tried again on the next frame.
+    void Record(double seconds, bool representative)
+    {
+      if (this->Pending && representative)
+      {
+        this->Time[this->Tried++] = seconds;
+      }
+      this->Pending = false;
+    }
+    int Remaining() const { return 3 - this->Tried; }
+  } Trials;
+
+  /// The mode Auto resolves to for the current classification, ray function and view.
+  int ChooseMode(int requested, const vtkPARCRasterizer::View& passView);
   /// Runs the PARC passes of the requested mode; the segment source the caster uses.
   const parc::SegmentSource& RunPasses(vtkPARCVolumeMapper* self, vtkRenderer* ren,
     vtkVolume* vol, const parc::ViewGeometry& view, const vtkPARCRasterizer::View& passView);
@@ -388,6 +431,9 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
     depth = in.Depth.data();
   }
 
+  const vtkIdType buildsBefore = in.ModelBuilds + in.Classifications;
+  const std::uint64_t uploadsBefore = in.Rasterizer->GetUploadCount();
+  in.Trials.Pending = false;
   const double projectionStart = vtkTimerLog::GetUniversalTime();
   const parc::SegmentSource& source = in.RunPasses(this, ren, vol, view, passView);
   in.ProjectionTime = vtkTimerLog::GetUniversalTime() - projectionStart;
@@ -400,14 +446,19 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
     return !this->GetAbortExecute() && !window->CheckAbortStatus();
   };
   const double castStart = vtkTimerLog::GetUniversalTime();
-  in.Caster.CastImage(view, depth, source, in.Image.data(), in.Stats, progress);
+  const bool completed =
+    in.Caster.CastImage(view, depth, source, in.Image.data(), in.Stats, progress);
   in.CastingTime = vtkTimerLog::GetUniversalTime() - castStart;
+  const bool setUp = in.ModelBuilds + in.Classifications != buildsBefore ||
+    in.Rasterizer->GetUploadCount() != uploadsBefore;
+  in.Trials.Record(in.ProjectionTime + in.CastingTime, completed && !setUp);
 }
 
 //------------------------------------------------------------------------------
-int vtkPARCVolumeMapper::vtkInternals::ChooseMode(int requested) const
+int vtkPARCVolumeMapper::vtkInternals::ChooseMode(
+  int requested, const vtkPARCRasterizer::View& passView)
 {
-  const vtkInternals& in = *this;
+  vtkInternals& in = *this;
   if (requested != ACCELERATION_AUTO)
   {
     return requested;
@@ -417,9 +468,9 @@ int vtkPARCVolumeMapper::vtkInternals::ChooseMode(int requested) const
   {
     return ACCELERATION_NONE; // every supercell may contribute: no pass can help
   }
-  // Measured on Mesa llvmpipe (scripts/benchmark.sh): the plane pass costs more than the
-  // samples it saves inside [near, far] for every ray function, so depth it is.
-  return ACCELERATION_DEPTH_BUFFER;
+  // Which pass pays off depends on the GL implementation (software GL makes the plane pass
+  // dear), the data, the ray function and the view: measure.
+  return in.Trials.Mode(in.ModelVersion, passView.Pass.Width, passView.Pass.Height);
 }
 
 //------------------------------------------------------------------------------
@@ -439,7 +490,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(vtkPARCV
     in.LastMode = requested;
     return in.NoRays; // nothing can show: no pass, no sample
   }
-  const int mode = in.ChooseMode(requested);
+  const int mode = in.ChooseMode(requested, passView);
   if (mode == ACCELERATION_NONE)
   {
     return in.WholeRays;
@@ -604,6 +655,12 @@ vtkIdType vtkPARCVolumeMapper::GetLastGradientCount()
 {
   return static_cast<vtkIdType>(this->Internals->Stats.GradientEvaluations);
 }
+int vtkPARCVolumeMapper::GetAutoTrialsRemaining()
+{
+  return this->Internals->Trials.Remaining();
+}
+
+//------------------------------------------------------------------------------
 double vtkPARCVolumeMapper::GetLastCastingTime()
 {
   return this->Internals->CastingTime;

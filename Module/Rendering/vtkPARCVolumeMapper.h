@@ -74,11 +74,13 @@ public:
    * DepthBuffer projects the outer faces of the possibly contributing (PC) supercells into
    * near/far buffers and casts each ray only between them; ColorBuffer projects per-plane
    * faces into bit planes and casts only inside the planes a ray's bits name; Both
-   * intersects the two. Auto picks per volume and ray function: no pass when every
-   * supercell may contribute (none can help), no sample when none may, and otherwise
-   * depth, which measured fastest for every ray function on Mesa llvmpipe (software GL
-   * makes the plane pass dear); GetLastAccelerationMode says which it used. The image is bit-identical in every mode. When no OpenGL
-   * 3.3 context or framebuffer is available, the mapper warns once and casts unaccelerated.
+   * intersects the two. Auto picks per volume, ray function and view: no pass when every
+   * supercell may contribute (none can help), no sample when none may, and otherwise the
+   * fastest of DepthBuffer, ColorBuffer and Both, measured: each is tried on one frame
+   * after the classification or the ray image size changes (GetAutoTrialsRemaining), then
+   * the one whose frame took least time is kept. GetLastAccelerationMode says which mode a
+   * frame used. The image is bit-identical in every mode. When no OpenGL 3.3 context or
+   * framebuffer is available, the mapper warns once and casts unaccelerated.
    * Default: Auto.
    */
   vtkSetClampMacro(AccelerationMode, int, ACCELERATION_NONE, ACCELERATION_BOTH);
@@ -167,6 +169,8 @@ public:
   double GetLastRenderTime();
   /** The acceleration mode the last render used (after any fallback). */
   int GetLastAccelerationMode();
+  /** Auto: frames still to be rendered before the fastest pass is known (0 when settled). */
+  int GetAutoTrialsRemaining();
   /** Polygons projected by the last render's PARC passes (0 without acceleration). */
   vtkIdType GetLastPolygonCount();
   /** Cells the cast ray segments crossed (the paper's "cells considered"). */

@@ -8,6 +8,7 @@ from parc import vtkPARCVolumeMapper
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
 from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
+from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderWindow,
                                          vtkRenderer, vtkVolume, vtkVolumeProperty)
 
@@ -58,11 +59,50 @@ class TestPARCPipeline(unittest.TestCase):
         alpha = rgba.GetRange(3)
         self.assertGreater(alpha[1], 0.1)
         self.assertLessEqual(alpha[1], 1.0)
-        # Auto: depth PARC unless every supercell may contribute (then no pass can help).
+        # Auto: no pass when every supercell may contribute (none can help); otherwise the
+        # first frame tries depth PARC.
         all_pc = mapper.GetLastContributingSupercellCount() == mapper.GetLastSupercellCount()
         self.assertEqual(vtkPARCVolumeMapper.GetAccelerationModeAsString(
             mapper.GetLastAccelerationMode()), "None" if all_pc else "DepthBuffer")
         self.assertGreater(mapper.GetLastSupercellCount(), 0)
+
+    def test_auto_tries_each_pass(self):
+        """Auto tries depth, colour and both in turn (a frame that also builds or uploads a
+        model is tried again), then keeps one; every frame gives the same float image; a
+        transfer-function change starts the trials over."""
+        mapper, window = make_scene()
+        volume = window.GetRenderers().GetFirstRenderer().GetVolumes().GetItemAsObject(0)
+        opacity = volume.GetProperty().GetScalarOpacity()
+        opacity.RemoveAllPoints()
+        opacity.AddPoint(200, 0.0)  # only the wavelet's centre may contribute
+        opacity.AddPoint(270, 0.5)
+        order = ["DepthBuffer", "ColorBuffer", "DepthAndColorBuffer"]
+        used, images = [], []
+        for _ in range(10):
+            window.Render()
+            used.append(vtkPARCVolumeMapper.GetAccelerationModeAsString(
+                mapper.GetLastAccelerationMode()))
+            image = vtkImageData()
+            mapper.GetLastRayCastImage(image)
+            images.append(vtk_to_numpy(image.GetPointData().GetScalars()).tobytes())
+            if mapper.GetAutoTrialsRemaining() == 0:
+                break
+        self.assertLess(mapper.GetLastContributingSupercellCount(), mapper.GetLastSupercellCount())
+        self.assertEqual(mapper.GetAutoTrialsRemaining(), 0, used)
+        self.assertEqual(sorted(set(used), key=order.index), order, used)
+        self.assertEqual(used, sorted(used, key=order.index), "trials in order")
+        for _ in range(3):
+            window.Render()
+            chosen = vtkPARCVolumeMapper.GetAccelerationModeAsString(mapper.GetLastAccelerationMode())
+            self.assertIn(chosen, order)
+            used.append(chosen)
+        self.assertEqual(len(set(used[-3:])), 1, "the choice is kept")
+        self.assertTrue(all(i == images[0] for i in images), "every pass gives the same image")
+        opacity.AddPoint(240, 0.2)
+        window.Render()
+        self.assertEqual(mapper.GetAutoTrialsRemaining(), 3)
+        self.assertEqual(vtkPARCVolumeMapper.GetAccelerationModeAsString(
+            mapper.GetLastAccelerationMode()), "DepthBuffer")
 
     def test_progress_and_abort(self):
         mapper, window = make_scene(size=256)
