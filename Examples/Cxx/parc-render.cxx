@@ -218,7 +218,7 @@ double TimedRender(vtkRenderWindow* window)
 /// the trial frames that pick the pass.
 void WarmUp(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper)
 {
-  constexpr int MaxWarmUpRenders = 8;
+  constexpr int MaxWarmUpRenders = 12;
   int renders = 0;
   do
   {

@@ -165,15 +165,17 @@ public:
   vtkIdType PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
   double ClassificationTime = 0.0;
 
-  /// Auto among the passes: each candidate is tried on one frame per model version and
-  /// ray image size, then the one whose frame (projection + casting) was fastest is kept.
+  /// Auto: each candidate (the passes, and none at all) is tried on one frame per model
+  /// version and ray image size, then the one whose frame (projection + casting) was
+  /// fastest is kept.
   struct AutoTrials
   {
-    static constexpr int Candidates[3] = { ACCELERATION_DEPTH_BUFFER, ACCELERATION_COLOR_BUFFER,
-      ACCELERATION_BOTH };
+    static constexpr int Count = 4;
+    static constexpr int Candidates[Count] = { ACCELERATION_DEPTH_BUFFER,
+      ACCELERATION_COLOR_BUFFER, ACCELERATION_BOTH, ACCELERATION_NONE };
     std::uint64_t ModelVersion = ~std::uint64_t(0);
     int Size[2] = { 0, 0 };
-    double Time[3] = { 0.0, 0.0, 0.0 };
+    double Time[Count] = { 0.0, 0.0, 0.0, 0.0 };
     int Tried = 0;        ///< candidates measured so far
     bool Pending = false; ///< the current frame is a trial of Candidates[Tried]
 
@@ -187,12 +189,12 @@ public:
         this->Size[0] = width;
         this->Size[1] = height;
       }
-      this->Pending = this->Tried < 3;
+      this->Pending = this->Tried < Count;
       if (this->Pending)
       {
         return Candidates[this->Tried];
       }
-      return Candidates[std::min_element(this->Time, this->Time + 3) - this->Time];
+      return Candidates[std::min_element(this->Time, this->Time + Count) - this->Time];
     }
     /// The time of the frame Mode chose, if it was a trial. A frame that was aborted or
     /// also did set-up work (building or uploading a model) does not count: the candidate
@@ -205,7 +207,7 @@ public:
       }
       this->Pending = false;
     }
-    int Remaining() const { return 3 - this->Tried; }
+    int Remaining() const { return Count - this->Tried; }
   } Trials;
 
   /// The mode Auto resolves to for the current classification, ray function and view.
@@ -468,8 +470,8 @@ int vtkPARCVolumeMapper::vtkInternals::ChooseMode(
   {
     return ACCELERATION_NONE; // every supercell may contribute: no pass can help
   }
-  // Which pass pays off depends on the GL implementation (software GL makes the plane pass
-  // dear), the data, the ray function and the view: measure.
+  // Which pass pays off, if any, depends on the GL implementation (software GL makes the
+  // passes dear), the data, the ray function and the view: measure.
   return in.Trials.Mode(in.ModelVersion, passView.Pass.Width, passView.Pass.Height);
 }
 

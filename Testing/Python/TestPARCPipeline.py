@@ -67,16 +67,16 @@ class TestPARCPipeline(unittest.TestCase):
         self.assertGreater(mapper.GetLastSupercellCount(), 0)
 
     def test_auto_tries_each_pass(self):
-        """Auto tries depth, colour and both in turn (a frame that also builds or uploads a
-        model is tried again), then keeps one; every frame gives the same float image; a
-        transfer-function change starts the trials over."""
+        """Auto tries depth, colour, both and none in turn (a frame that also builds or
+        uploads a model is tried again), then keeps one; every frame gives the same float
+        image; a transfer-function change starts the trials over."""
         mapper, window = make_scene()
         volume = window.GetRenderers().GetFirstRenderer().GetVolumes().GetItemAsObject(0)
         opacity = volume.GetProperty().GetScalarOpacity()
         opacity.RemoveAllPoints()
         opacity.AddPoint(200, 0.0)  # only the wavelet's centre may contribute
         opacity.AddPoint(270, 0.5)
-        order = ["DepthBuffer", "ColorBuffer", "DepthAndColorBuffer"]
+        order = ["DepthBuffer", "ColorBuffer", "DepthAndColorBuffer", "None"]
         used, images = [], []
         for _ in range(10):
             window.Render()
@@ -100,7 +100,7 @@ class TestPARCPipeline(unittest.TestCase):
         self.assertTrue(all(i == images[0] for i in images), "every pass gives the same image")
         opacity.AddPoint(240, 0.2)
         window.Render()
-        self.assertEqual(mapper.GetAutoTrialsRemaining(), 3)
+        self.assertEqual(mapper.GetAutoTrialsRemaining(), 4)
         self.assertEqual(vtkPARCVolumeMapper.GetAccelerationModeAsString(
             mapper.GetLastAccelerationMode()), "DepthBuffer")
 
