@@ -58,6 +58,9 @@ public:
 
 private:
   void ReplaceNonFinite(std::size_t& replaced);
+  /// Trilinear interpolation in cell (i, j, k) at fractions (fx, fy, fz) of its edges.
+  float Trilinear(const int cell[3], const float fraction[3]) const;
+  Vec3 GradientLinear(const Vec3& p) const;
 
   int Dims[3] = { 0, 0, 0 };
   std::vector<float> Values;

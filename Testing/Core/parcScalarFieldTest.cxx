@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -81,4 +82,34 @@ TEST(ScalarField, ConvertsTypesAndReplacesNonFiniteValues)
   EXPECT_EQ(field.Assign(s8, n, 2), 0u) << "every second value of a 2-component array";
   EXPECT_EQ(field.GetValues()[1], 1.f);
   EXPECT_EQ(field.GetValues()[3], 5.f);
+}
+
+// The linear gradient (each coordinate located once) equals central differences of
+// SampleLinear exactly, inside, on the faces and outside the box.
+TEST(ScalarField, LinearGradientIsCentralDifferencesOfSamples)
+{
+  const int n[3] = { 6, 5, 2 };
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> value(-50.f, 200.f);
+  const parc::ScalarField field = parctest::MakeField(n, [&](int, int, int) { return value(rng); });
+  std::uniform_real_distribution<double> u(-1.5, 7.0);
+  for (int s = 0; s < 4000; ++s)
+  {
+    parc::Vec3 p{ u(rng), u(rng), u(rng) };
+    if (s % 4 == 0)
+    {
+      p[s % 3] = std::floor(p[s % 3]); // on a voxel plane
+    }
+    const parc::Vec3 g = field.Gradient(p, parc::Interpolation::Linear);
+    for (int a = 0; a < 3; ++a)
+    {
+      parc::Vec3 lo = p, hi = p;
+      lo[a] = std::max(p[a] - 1.0, 0.0);
+      hi[a] = std::min(p[a] + 1.0, static_cast<double>(n[a] - 1));
+      const double h = hi[a] - lo[a];
+      const double expected =
+        h > 0.0 ? (field.SampleLinear(hi) - field.SampleLinear(lo)) / h : 0.0;
+      ASSERT_EQ(g[a], expected) << "axis " << a << " at " << p.X << " " << p.Y << " " << p.Z;
+    }
+  }
 }
