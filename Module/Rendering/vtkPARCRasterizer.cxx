@@ -26,8 +26,9 @@ constexpr double NearClipFraction = 0.5; ///< perspective: clip at this fraction
 /// Relative size of the x, y terms of the inverse projection's w row below which the rays
 /// count as affine in NDC x, y (otherwise the depth pass keeps whole face ranges).
 constexpr double AffineTolerance = 1e-12;
-/// Depth pass: the rounding margin of a fragment's depth, relative to the magnitudes that
-/// enter it (about 800 float ulps, far above the handful of roundings in the shader).
+/// The rounding margin of a fragment's hit depth and face coordinates, relative to the
+/// magnitudes that enter them (about 800 float ulps, far above the handful of roundings in
+/// the shaders; the rasterizer test fails without it).
 constexpr float FaceDepthMargin = 1.0e-4f;
 
 // Four vertices a quad, each with the quad's corner, its two edges and its plane (voxel-index
