@@ -49,7 +49,7 @@ scene() { # title, file, options...
               "$head --tf $tf/mri-scalp.txt --elevation -80 --azimuth 30"; do
     set -- $args
     [ -f "$1" ] || continue
-    echo; echo "### $(basename "$1") ${*:2}"; echo
+    echo; echo "### $(basename "$1") $(echo "${*:2}" | sed "s|$here/||g")"; echo
     render "$@" --size 600 --acceleration auto --sweep-supercells 1,1.5,2,3,4
   done
   echo
