@@ -730,6 +730,7 @@ void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
   const vtkInternals& in = *this->Internals;
   os << "Ray image: " << in.ImageSize[0] << " x " << in.ImageSize[1] << "\n"
      << "Acceleration: " << GetAccelerationModeAsString(in.LastMode) << "\n"
+     << "Auto trials remaining: " << in.Trials.Remaining() << "\n"
      << "Rays: " << in.Stats.Rays << "\n"
      << "Segments: " << in.Stats.Segments << "\n"
      << "Samples: " << in.Stats.Samples << "\n"
