@@ -165,34 +165,42 @@ public:
   vtkIdType PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
   double ClassificationTime = 0.0;
 
-  /// Auto: each candidate (the passes, and none at all) is tried on one frame per model
-  /// version and ray image size, then the one whose frame (projection + casting) was
-  /// fastest is kept.
+  /// Auto: each candidate (the passes, and none at all) is tried on one frame, then the one
+  /// whose frame (projection + casting) was fastest is kept. The passes are tried again
+  /// when the model or the ray image size changes; casting without a pass, whose cost does
+  /// not depend on the model, only when the size changes (so editing a transfer function
+  /// does not bring back slow unaccelerated frames).
   struct AutoTrials
   {
     static constexpr int Count = 4;
     static constexpr int Candidates[Count] = { ACCELERATION_DEPTH_BUFFER,
       ACCELERATION_COLOR_BUFFER, ACCELERATION_BOTH, ACCELERATION_NONE };
+    static constexpr int Unaccelerated = Count - 1;
     std::uint64_t ModelVersion = ~std::uint64_t(0);
     int Size[2] = { 0, 0 };
     double Time[Count] = { 0.0, 0.0, 0.0, 0.0 };
-    int Tried = 0;        ///< candidates measured so far
-    bool Pending = false; ///< the current frame is a trial of Candidates[Tried]
+    bool Measured[Count] = { false, false, false, false };
+    int Trial = -1; ///< the candidate the current frame tries, or -1
 
-    /// The mode for this frame; starts over when the model or the image size changed.
+    /// The mode for this frame.
     int Mode(std::uint64_t modelVersion, int width, int height)
     {
-      if (modelVersion != this->ModelVersion || width != this->Size[0] || height != this->Size[1])
+      if (width != this->Size[0] || height != this->Size[1])
       {
         *this = AutoTrials();
-        this->ModelVersion = modelVersion;
         this->Size[0] = width;
         this->Size[1] = height;
       }
-      this->Pending = this->Tried < Count;
-      if (this->Pending)
+      if (modelVersion != this->ModelVersion)
       {
-        return Candidates[this->Tried];
+        this->ModelVersion = modelVersion;
+        std::fill_n(this->Measured, Unaccelerated, false);
+      }
+      const bool* next = std::find(this->Measured, this->Measured + Count, false);
+      this->Trial = next != this->Measured + Count ? static_cast<int>(next - this->Measured) : -1;
+      if (this->Trial >= 0)
+      {
+        return Candidates[this->Trial];
       }
       return Candidates[std::min_element(this->Time, this->Time + Count) - this->Time];
     }
@@ -201,13 +209,17 @@ public:
     /// is tried again on the next frame.
     void Record(double seconds, bool representative)
     {
-      if (this->Pending && representative)
+      if (this->Trial >= 0 && representative)
       {
-        this->Time[this->Tried++] = seconds;
+        this->Time[this->Trial] = seconds;
+        this->Measured[this->Trial] = true;
       }
-      this->Pending = false;
+      this->Trial = -1;
     }
-    int Remaining() const { return Count - this->Tried; }
+    int Remaining() const
+    {
+      return static_cast<int>(std::count(this->Measured, this->Measured + Count, false));
+    }
   } Trials;
 
   /// The mode Auto resolves to for the current classification, ray function and view.
@@ -435,7 +447,7 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
 
   const vtkIdType buildsBefore = in.ModelBuilds + in.Classifications;
   const std::uint64_t uploadsBefore = in.Rasterizer->GetUploadCount();
-  in.Trials.Pending = false;
+  in.Trials.Trial = -1;
   const double projectionStart = vtkTimerLog::GetUniversalTime();
   const parc::SegmentSource& source = in.RunPasses(this, ren, vol, view, passView);
   in.ProjectionTime = vtkTimerLog::GetUniversalTime() - projectionStart;

@@ -77,8 +77,9 @@ public:
    * intersects the two. Auto picks per volume, ray function and view: no pass when every
    * supercell may contribute (none can help), no sample when none may, and otherwise the
    * fastest of DepthBuffer, ColorBuffer, Both and None, measured: each is tried on one
-   * frame after the classification or the ray image size changes
-   * (GetAutoTrialsRemaining), then the one whose frame took least time is kept. GetLastAccelerationMode says which mode a
+   * frame (GetAutoTrialsRemaining), then the one whose frame took least time is kept. The
+   * passes are tried again after the classification or the ray image size changes, None
+   * only after the size changes. GetLastAccelerationMode says which mode a
    * frame used. The image is bit-identical in every mode. When no OpenGL 3.3 context or
    * framebuffer is available, the mapper warns once and casts unaccelerated.
    * Default: Auto.
