@@ -8,6 +8,7 @@
 #include <vtkRendererCollection.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <random>
 
@@ -162,11 +163,41 @@ int TestPARCRasterizer(int argc, char* argv[])
   const double sizes[][3] = { { 1, 1, 1 }, { 3, 5, 5 }, { 2.5, 1.5, 0.7 } };
   Tally tally;
   int cameras = 0;
-  for (int run = 0; run < 6; ++run)
+  // The last run places the volume with anisotropic spacing, a rotation by 20 degrees about
+  // (1, 2, 2) / 3 and a shift, all about the volume's centre so the cameras still see it.
+  parc::Matrix4 placed;
   {
-    // Each size with separate faces and with merged faces (the mapper's models).
-    const double* size = sizes[run / 2];
-    const bool merge = (run % 2) == 1;
+    const double angle = 20.0 * M_PI / 180.0, c = std::cos(angle), s = std::sin(angle);
+    const parc::Vec3 a = parc::Normalized({ 1, 2, 2 });
+    const double spacing[3] = { 1.2, 0.9, 1.1 };
+    const double rotation[3][3] = {
+      { c + a.X * a.X * (1 - c), a.X * a.Y * (1 - c) - a.Z * s, a.X * a.Z * (1 - c) + a.Y * s },
+      { a.Y * a.X * (1 - c) + a.Z * s, c + a.Y * a.Y * (1 - c), a.Y * a.Z * (1 - c) - a.X * s },
+      { a.Z * a.X * (1 - c) - a.Y * s, a.Z * a.Y * (1 - c) + a.X * s, c + a.Z * a.Z * (1 - c) }
+    };
+    const double centre = 16.0, shift[3] = { 0.7, -1.3, 0.4 };
+    for (int r = 0; r < 3; ++r)
+    {
+      double offset = centre + shift[r];
+      for (int k = 0; k < 3; ++k)
+      {
+        placed(r, k) = rotation[r][k] * spacing[k];
+        offset -= placed(r, k) * centre;
+      }
+      placed(r, 3) = offset;
+    }
+  }
+  parc::Matrix4 unplaced;
+  parc::Invert(placed, unplaced);
+  for (int run = 0; run < 7; ++run)
+  {
+    // Each size with separate faces and with merged faces (the mapper's models), then the
+    // placed volume with merged 2x2x2 supercells.
+    const double twos[3] = { 2, 2, 2 };
+    const double* size = run < 6 ? sizes[run / 2] : twos;
+    const bool merge = run >= 6 || (run % 2) == 1;
+    const parc::Matrix4& indexToWorld = run < 6 ? identity : placed;
+    const parc::Matrix4& worldToIndex = run < 6 ? identity : unplaced;
     parc::SupercellGrid grid;
     grid.Configure(pyramid.GetCellDimensions(), size);
     grid.Classify(pyramid, rule, parc::Interpolation::Linear);
@@ -179,8 +210,8 @@ int TestPARCRasterizer(int argc, char* argv[])
     auto check = [&](const char* name) {
       ren->ResetCameraClippingRange();
       ++cameras;
-      return CheckCamera(window, ren, rasterizer, grid, depthModel, colorModels, identity,
-        identity, name, tally);
+      return CheckCamera(window, ren, rasterizer, grid, depthModel, colorModels, indexToWorld,
+        worldToIndex, name, tally);
     };
     // Axis-aligned parallel views with pixel centres exactly on cell planes: 64 x 48
     // pixels of one voxel each, centres on integer coordinates.
