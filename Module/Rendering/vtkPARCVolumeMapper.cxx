@@ -271,8 +271,7 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   in.CastingTime = in.ProjectionTime = 0.0;
   in.PolygonCount = 0;
   in.PlaneCount = in.PassCount = 0;
-  in.ImageSize[0] = in.ImageSize[1] = 0;
-  in.Image.clear();
+  in.ImageSize[0] = in.ImageSize[1] = 0; // no image until a cast fills one
 
   if (!this->PrepareField() || !this->PrepareParameters(ren, vol))
   {
@@ -445,7 +444,7 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
     depth = in.Depth.data();
   }
 
-  const vtkIdType buildsBefore = in.ModelBuilds + in.Classifications;
+  const vtkIdType buildsBefore = in.ModelBuilds; // every classification builds a model
   const std::uint64_t uploadsBefore = in.Rasterizer->GetUploadCount();
   in.Trials.Trial = -1;
   const double projectionStart = vtkTimerLog::GetUniversalTime();
@@ -463,7 +462,7 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
   const bool completed =
     in.Caster.CastImage(view, depth, source, in.Image.data(), in.Stats, progress);
   in.CastingTime = vtkTimerLog::GetUniversalTime() - castStart;
-  const bool setUp = in.ModelBuilds + in.Classifications != buildsBefore ||
+  const bool setUp = in.ModelBuilds != buildsBefore ||
     in.Rasterizer->GetUploadCount() != uploadsBefore;
   in.Trials.Record(in.ProjectionTime + in.CastingTime, completed && !setUp);
 }
@@ -612,10 +611,11 @@ void vtkPARCVolumeMapper::DisplayImage(vtkRenderer* ren, vtkVolume* vol)
   {
     return;
   }
-  in.Display.resize(in.Image.size());
+  const vtkIdType values = 4 * static_cast<vtkIdType>(in.ImageSize[0]) * in.ImageSize[1];
+  in.Display.resize(static_cast<std::size_t>(values));
   const float* image = in.Image.data();
   unsigned char* display = in.Display.data();
-  vtkSMPTools::For(0, static_cast<vtkIdType>(in.Image.size()),
+  vtkSMPTools::For(0, values,
     [image, display](vtkIdType begin, vtkIdType end) {
       for (vtkIdType i = begin; i < end; ++i)
       {
@@ -648,8 +648,9 @@ void vtkPARCVolumeMapper::GetLastRayCastImage(vtkImageData* image)
   vtkNew<vtkFloatArray> rgba;
   rgba->SetName("RGBA");
   rgba->SetNumberOfComponents(4);
-  rgba->SetNumberOfTuples(static_cast<vtkIdType>(in.ImageSize[0]) * in.ImageSize[1]);
-  std::copy(in.Image.begin(), in.Image.end(), rgba->GetPointer(0));
+  const vtkIdType pixels = static_cast<vtkIdType>(in.ImageSize[0]) * in.ImageSize[1];
+  rgba->SetNumberOfTuples(pixels);
+  std::copy_n(in.Image.data(), 4 * pixels, rgba->GetPointer(0));
   image->GetPointData()->SetScalars(rgba);
 }
 
