@@ -633,6 +633,7 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
   SetMatrix(program, "WorldToClip", view.WorldToClip);
   SetVector(program, "Eye", view.Eye);
   SetVector(program, "ViewDirection", view.Pass.Direction);
+  glUniform1f(glGetUniformLocation(program, "Empty"), parc::DepthBufferSource::Empty);
   glUniform1f(glGetUniformLocation(program, "EyeDistance"), static_cast<float>(parc::Length(view.Eye)));
   SetVectors(program, "RayBase", view.RayBase);
   SetVectors(program, "RayDirection", view.RayDirection);
@@ -785,8 +786,6 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
     state->vtkglEnable(GL_BLEND);
     state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
     state->vtkglBlendEquation(GL_MIN);
-    glUseProgram(in.DepthProgram);
-    glUniform1f(glGetUniformLocation(in.DepthProgram, "Empty"), parc::DepthBufferSource::Empty);
     in.Draw(in.DepthProgram, gpu, indexToWorld, view, parc::Vec3());
     nearFar.resize(2 * static_cast<std::size_t>(w) * h);
     glReadBuffer(GL_COLOR_ATTACHMENT0);
