@@ -4,6 +4,7 @@
 #include <vtkSMPTools.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -15,6 +16,22 @@ namespace
 constexpr int TileSize = 16;        ///< ray-image pixels per tile edge
 constexpr int TileRowsPerBand = 4;  ///< tile rows cast between two progress reports
 constexpr int RegulaFalsiSteps = 2; ///< isosurface refinement steps
+/// Specular powers up to this whole number are computed by repeated squaring.
+constexpr double MaxIntegerSpecularPower = 1024.0;
+/// Directional lights whose half vectors are computed once per ray.
+constexpr std::size_t MaxHoistedLights = 8;
+
+/// The ray-parameter interval of the ray (origin o, direction d in voxel-index
+/// coordinates) inside the field's box and [ray.TMin, ray.TMax].
+bool ClipToField(const ScalarField& field, const Vec3& o, const Vec3& d, const Ray& ray,
+  double& tEnter, double& tExit)
+{
+  const int* dims = field.GetDimensions();
+  tEnter = ray.TMin;
+  tExit = ray.TMax;
+  return ClipToBox(o, d, { 0.0, 0.0, 0.0 }, { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 },
+    tEnter, tExit);
+}
 }
 
 CastStatistics& CastStatistics::operator+=(const CastStatistics& o)
@@ -93,8 +110,32 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   {
     return false;
   }
-  this->OpacityExponent = parameters->SampleDistance / parameters->OpacityUnitDistance;
-  this->GradientNeeded = parameters->Shade || parameters->UseGradientOpacity;
+  this->OpacityExponent =
+    static_cast<float>(parameters->SampleDistance / parameters->OpacityUnitDistance);
+  double constant = 1.0;
+  this->GradientOpacityConstant =
+    parameters->UseGradientOpacity && parameters->GradientOpacity.IsConstant(constant);
+  this->GradientOpacityValue = static_cast<float>(constant);
+  this->GradientNeeded = parameters->Shade ||
+    (parameters->UseGradientOpacity && !this->GradientOpacityConstant);
+  const double power = parameters->SpecularPower;
+  this->IntegerSpecularPower = (power >= 0.0 && power <= MaxIntegerSpecularPower &&
+                                 power == std::floor(power))
+    ? static_cast<int>(power)
+    : -1;
+  this->DirectionalLights.clear();
+  this->PositionalLights.clear();
+  for (const Light& light : parameters->Lights)
+  {
+    if (light.Positional)
+    {
+      this->PositionalLights.push_back(&light);
+    }
+    else
+    {
+      this->DirectionalLights.push_back({ Normalized(light.Position - light.FocalPoint), light.Color });
+    }
+  }
   this->SortedIsoValues = parameters->IsoValues;
   std::sort(this->SortedIsoValues.begin(), this->SortedIsoValues.end());
   if (this->SortedIsoValues.size() > MaxIsoValues)
@@ -106,32 +147,65 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
 
 bool RayCaster::ClipRay(const Ray& ray, double& tEnter, double& tExit) const
 {
-  const int* dims = this->Field->GetDimensions();
   const Matrix4& w2i = this->Params->WorldToIndex;
-  const Vec3 o = w2i.TransformPoint(ray.Origin);
-  const Vec3 d = w2i.TransformVector(ray.Direction);
-  tEnter = ray.TMin;
-  tExit = ray.TMax;
-  return ClipToBox(o, d, { 0.0, 0.0, 0.0 },
-    { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 }, tEnter, tExit);
+  return ClipToField(*this->Field, w2i.TransformPoint(ray.Origin),
+    w2i.TransformVector(ray.Direction), ray, tEnter, tExit);
 }
 
 namespace
 {
 
+/// x^n for a whole n >= 0 by repeated squaring.
+double IntegerPower(double x, int n)
+{
+  double result = 1.0;
+  while (n > 0)
+  {
+    if (n & 1)
+    {
+      result *= x;
+    }
+    x *= x;
+    n >>= 1;
+  }
+  return result;
+}
+
 /// Per-ray constants shared by the ray functions.
+template <class View>
 struct RayContext
 {
-  const ScalarField& Field;
+  const View& Field;
   const CastParameters& P;
+  const RayCaster& Caster;
   const Ray& WorldRay;
   Vec3 IndexOrigin;
   Vec3 IndexDirection;
   double Dt;
-  double OpacityExponent;
+  float OpacityExponent;
   bool GradientNeeded;
+  bool GradientOpacityConstant;
+  float GradientOpacityValue;
+  int IntegerSpecularPower;
+  const std::vector<RayCaster::DirectionalLight>& DirectionalLights;
+  const std::vector<const Light*>& PositionalLights;
   CastStatistics& Stats;
   double FirstHit = std::numeric_limits<double>::infinity();
+  /// Half vectors of the first directional lights for this ray (Blinn-Phong).
+  std::array<Vec3, MaxHoistedLights> HalfVectors;
+
+  void Begin()
+  {
+    const std::size_t n = std::min(this->DirectionalLights.size(), MaxHoistedLights);
+    for (std::size_t i = 0; this->P.Shade && i < n; ++i)
+    {
+      this->HalfVectors[i] = this->HalfVector(this->DirectionalLights[i].ToLight);
+    }
+  }
+  Vec3 HalfVector(const Vec3& toLight) const
+  {
+    return Normalized(toLight - this->WorldRay.Direction);
+  }
 
   void RecordHit(double t)
   {
@@ -154,23 +228,60 @@ struct RayContext
     const Vec3 g = this->Field.Gradient(this->IndexPosition(t), this->P.Interp);
     return this->P.WorldToIndex.TransposeTransformVector(g);
   }
+  /// Scales opacity a by the gradient opacity of gradient g (computed only when needed);
+  /// false when the result is 0.
+  bool ApplyGradientOpacity(float& a, double t, Vec3& g, bool& haveGradient) const
+  {
+    if (!this->P.UseGradientOpacity)
+    {
+      return true;
+    }
+    if (this->GradientOpacityConstant)
+    {
+      a *= this->GradientOpacityValue;
+    }
+    else
+    {
+      if (!haveGradient)
+      {
+        g = this->WorldGradient(t);
+        haveGradient = true;
+      }
+      a *= this->P.GradientOpacity.Evaluate(Length(g));
+    }
+    return a != 0.f;
+  }
   float CorrectOpacity(float a) const
   {
-    if (this->OpacityExponent == 1.0 || a >= 1.f)
+    if (this->OpacityExponent == 1.f || a >= 1.f)
     {
       return a;
     }
-    return static_cast<float>(1.0 - std::pow(1.0 - a, this->OpacityExponent));
+    return 1.f - std::pow(1.f - a, this->OpacityExponent);
+  }
+  double SpecularTerm(double ndh) const
+  {
+    return this->IntegerSpecularPower >= 0 ? IntegerPower(ndh, this->IntegerSpecularPower)
+                                           : std::pow(ndh, this->P.SpecularPower);
   }
   /// Shades rgb in place at ray parameter t with world gradient g (Blinn-Phong, two-sided).
   void Shade(float rgb[3], double t, const Vec3& g) const;
 };
 
-void RayContext::Shade(float rgb[3], double t, const Vec3& g) const
+template <class View>
+void RayContext<View>::Shade(float rgb[3], double t, const Vec3& g) const
 {
   const double len = Length(g);
   double diffuse[3] = { 0.0, 0.0, 0.0 };
   double specular[3] = { 0.0, 0.0, 0.0 };
+  auto add = [&](const Vec3& color, double attenuation, double ndl, double ndh) {
+    const double spec = ndh > 0.0 ? this->SpecularTerm(ndh) : 0.0;
+    for (int c = 0; c < 3; ++c)
+    {
+      diffuse[c] += attenuation * color[c] * ndl;
+      specular[c] += attenuation * color[c] * spec;
+    }
+  };
   if (len > 0.0)
   {
     const Vec3 toEye = -this->WorldRay.Direction;
@@ -179,42 +290,37 @@ void RayContext::Shade(float rgb[3], double t, const Vec3& g) const
     {
       n = -n;
     }
-    const Vec3 x = this->WorldRay.Origin + t * this->WorldRay.Direction;
-    for (const Light& light : this->P.Lights)
+    for (std::size_t i = 0; i < this->DirectionalLights.size(); ++i)
     {
-      Vec3 l;
-      double attenuation = 1.0;
-      if (light.Positional)
+      const RayCaster::DirectionalLight& light = this->DirectionalLights[i];
+      const double ndl = Dot(n, light.ToLight);
+      if (ndl > 0.0)
       {
-        const Vec3 toLight = light.Position - x;
-        const double dist = Length(toLight);
-        l = Normalized(toLight);
-        const double denom = light.Attenuation.X + dist * (light.Attenuation.Y +
-          dist * light.Attenuation.Z);
-        attenuation = denom > 0.0 ? 1.0 / denom : 1.0;
-        if (light.ConeAngle < 90.0)
-        {
-          const Vec3 spot = Normalized(light.FocalPoint - light.Position);
-          const double c = Dot(-l, spot);
-          attenuation *= (c < std::cos(light.ConeAngle * (M_PI / 180.0)))
-            ? 0.0 : std::pow(std::max(c, 0.0), light.Exponent);
-        }
+        const Vec3 h = i < MaxHoistedLights ? this->HalfVectors[i] : this->HalfVector(light.ToLight);
+        add(light.Color, 1.0, ndl, Dot(n, h));
       }
-      else
+    }
+    for (const Light* light : this->PositionalLights)
+    {
+      const Vec3 x = this->WorldRay.Origin + t * this->WorldRay.Direction;
+      const Vec3 toLight = light->Position - x;
+      const double dist = Length(toLight);
+      const Vec3 l = Normalized(toLight);
+      const double denom =
+        light->Attenuation.X + dist * (light->Attenuation.Y + dist * light->Attenuation.Z);
+      double attenuation = denom > 0.0 ? 1.0 / denom : 1.0;
+      if (light->ConeAngle < 90.0)
       {
-        l = Normalized(light.Position - light.FocalPoint);
+        const Vec3 spot = Normalized(light->FocalPoint - light->Position);
+        const double c = Dot(-l, spot);
+        attenuation *= (c < std::cos(light->ConeAngle * (M_PI / 180.0)))
+          ? 0.0
+          : std::pow(std::max(c, 0.0), light->Exponent);
       }
       const double ndl = Dot(n, l);
-      if (ndl <= 0.0 || attenuation == 0.0)
+      if (ndl > 0.0 && attenuation != 0.0)
       {
-        continue;
-      }
-      const double ndh = Dot(n, Normalized(l + toEye));
-      const double spec = ndh > 0.0 ? std::pow(ndh, this->P.SpecularPower) : 0.0;
-      for (int c = 0; c < 3; ++c)
-      {
-        diffuse[c] += attenuation * light.Color[c] * ndl;
-        specular[c] += attenuation * light.Color[c] * spec;
+        add(light->Color, attenuation, ndl, Dot(n, Normalized(l + toEye)));
       }
     }
   }
@@ -244,9 +350,10 @@ void Premultiply(const float rgb[3], float a, float rgba[4])
 // Each ray function: bool operator()(long k, bool previousSampled) visits lattice sample
 // k (false stops the ray) and Finish(rgba) writes the result.
 
+template <class Context>
 struct CompositeFunction
 {
-  RayContext& C;
+  Context& C;
   float Rgb[3] = { 0.f, 0.f, 0.f };
   float Alpha = 0.f;
 
@@ -260,17 +367,10 @@ struct CompositeFunction
       return true;
     }
     Vec3 g;
-    if (this->C.GradientNeeded)
+    bool haveGradient = false;
+    if (!this->C.ApplyGradientOpacity(a, t, g, haveGradient))
     {
-      g = this->C.WorldGradient(t);
-      if (this->C.P.UseGradientOpacity)
-      {
-        a *= this->C.P.GradientOpacity.Evaluate(Length(g));
-        if (a == 0.f)
-        {
-          return true;
-        }
-      }
+      return true;
     }
     a = this->C.CorrectOpacity(a);
     ++this->C.Stats.ContributingSamples;
@@ -279,7 +379,7 @@ struct CompositeFunction
     this->C.P.Color.Lookup(s, rgb);
     if (this->C.P.Shade)
     {
-      this->C.Shade(rgb, t, g);
+      this->C.Shade(rgb, t, haveGradient ? g : this->C.WorldGradient(t));
     }
     const float w = (1.f - this->Alpha) * a;
     for (int c = 0; c < 3; ++c)
@@ -300,10 +400,10 @@ struct CompositeFunction
 };
 
 /// Maximum (Sign = 1) or minimum (Sign = -1) intensity.
-template <int Sign>
+template <class Context, int Sign>
 struct ExtremeFunction
 {
-  const RayContext& C;
+  Context& C;
   float Extreme = 0.f;
   bool Found = false;
 
@@ -331,9 +431,10 @@ struct ExtremeFunction
   }
 };
 
+template <class Context>
 struct AverageFunction
 {
-  const RayContext& C;
+  Context& C;
   double Sum = 0.0;
   std::uint64_t Count = 0;
 
@@ -362,9 +463,10 @@ struct AverageFunction
   }
 };
 
+template <class Context>
 struct AdditiveFunction
 {
-  RayContext& C;
+  Context& C;
   float Rgb[3] = { 0.f, 0.f, 0.f };
   float Alpha = 0.f;
 
@@ -376,13 +478,11 @@ struct AdditiveFunction
     {
       return true;
     }
-    if (this->C.P.UseGradientOpacity)
+    Vec3 g;
+    bool haveGradient = false;
+    if (!this->C.ApplyGradientOpacity(a, k * this->C.Dt, g, haveGradient))
     {
-      a *= this->C.P.GradientOpacity.Evaluate(Length(this->C.WorldGradient(k * this->C.Dt)));
-      if (a == 0.f)
-      {
-        return true;
-      }
+      return true;
     }
     a = this->C.CorrectOpacity(a);
     ++this->C.Stats.ContributingSamples;
@@ -406,9 +506,10 @@ struct AdditiveFunction
   }
 };
 
+template <class Context>
 struct IsoSurfaceFunction
 {
-  RayContext& C;
+  Context& C;
   const std::vector<double>& IsoValues; // sorted
   float Rgb[3] = { 0.f, 0.f, 0.f };
   float Alpha = 0.f;
@@ -542,7 +643,7 @@ void Run(Function&& fn, const std::vector<LatticeRange>& ranges, float rgba[4])
 {
   const long last = Walk(ranges, fn);
   fn.Finish(rgba);
-  const RayContext& c = fn.C;
+  const auto& c = fn.C;
   for (const LatticeRange& r : ranges)
   {
     if (r.First > last)
@@ -560,13 +661,26 @@ void RayCaster::CastRay(const Ray& ray, int px, int py, const SegmentSource& sou
   std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
   CastStatistics& stats, double* firstHit) const
 {
+  this->Field->Dispatch([&](const auto& field) {
+    this->CastRayIn(field, ray, px, py, source, segments, ranges, rgba, stats, firstHit);
+  });
+}
+
+template <class View>
+void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
+  const SegmentSource& source, std::vector<Segment>& segments, std::vector<LatticeRange>& ranges,
+  float rgba[4], CastStatistics& stats, double* firstHit) const
+{
   rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0.f;
   if (firstHit)
   {
     *firstHit = std::numeric_limits<double>::infinity();
   }
+  const Matrix4& w2i = this->Params->WorldToIndex;
+  const Vec3 indexOrigin = w2i.TransformPoint(ray.Origin);
+  const Vec3 indexDirection = w2i.TransformVector(ray.Direction);
   double tEnter, tExit;
-  if (!this->ClipRay(ray, tEnter, tExit))
+  if (!ClipToField(*this->Field, indexOrigin, indexDirection, ray, tEnter, tExit))
   {
     return;
   }
@@ -580,28 +694,31 @@ void RayCaster::CastRay(const Ray& ray, int px, int py, const SegmentSource& sou
   {
     return;
   }
-  const Matrix4& w2i = this->Params->WorldToIndex;
-  RayContext context{ *this->Field, *this->Params, ray, w2i.TransformPoint(ray.Origin),
-    w2i.TransformVector(ray.Direction), dt, this->OpacityExponent, this->GradientNeeded, stats };
+  using Context = RayContext<View>;
+  Context context{ field, *this->Params, *this, ray, indexOrigin, indexDirection, dt,
+    this->OpacityExponent, this->GradientNeeded, this->GradientOpacityConstant,
+    this->GradientOpacityValue, this->IntegerSpecularPower, this->DirectionalLights,
+    this->PositionalLights, stats };
+  context.Begin();
   switch (this->Params->Blend)
   {
     case BlendMode::Composite:
-      Run(CompositeFunction{ context }, ranges, rgba);
+      Run(CompositeFunction<Context>{ context }, ranges, rgba);
       break;
     case BlendMode::MaximumIntensity:
-      Run(ExtremeFunction<1>{ context }, ranges, rgba);
+      Run(ExtremeFunction<Context, 1>{ context }, ranges, rgba);
       break;
     case BlendMode::MinimumIntensity:
-      Run(ExtremeFunction<-1>{ context }, ranges, rgba);
+      Run(ExtremeFunction<Context, -1>{ context }, ranges, rgba);
       break;
     case BlendMode::AverageIntensity:
-      Run(AverageFunction{ context }, ranges, rgba);
+      Run(AverageFunction<Context>{ context }, ranges, rgba);
       break;
     case BlendMode::Additive:
-      Run(AdditiveFunction{ context }, ranges, rgba);
+      Run(AdditiveFunction<Context>{ context }, ranges, rgba);
       break;
     case BlendMode::IsoSurface:
-      Run(IsoSurfaceFunction{ context, this->SortedIsoValues }, ranges, rgba);
+      Run(IsoSurfaceFunction<Context>{ context, this->SortedIsoValues }, ranges, rgba);
       break;
   }
   if (firstHit)
@@ -613,9 +730,10 @@ void RayCaster::CastRay(const Ray& ray, int px, int py, const SegmentSource& sou
 namespace
 {
 /// Casts the tiles of one band of rows; vtkSMPTools functor.
+template <class Cast>
 struct TileCaster
 {
-  const RayCaster& Caster;
+  const Cast& CastOne; ///< casts one ray: (ray, px, py, scratch, rgba)
   const ViewGeometry& View;
   const float* Depth;
   const SegmentSource& Source;
@@ -657,8 +775,7 @@ struct TileCaster
             ray.TMax =
               std::min(ray.TMax, this->View.DepthToParameter(ray, px, py, this->Depth[pixel]));
           }
-          this->Caster.CastRay(ray, px, py, this->Source, scratch.Segments, scratch.Ranges,
-            this->Image + 4 * pixel, scratch.Stats);
+          this->CastOne(ray, px, py, scratch, this->Image + 4 * pixel);
         }
       }
     }
@@ -671,11 +788,25 @@ bool RayCaster::CastImage(const ViewGeometry& view, const float* depth,
   const SegmentSource& source, float* rgba, CastStatistics& stats,
   const std::function<bool(double)>& progress) const
 {
+  return this->Field->Dispatch([&](const auto& field) {
+    return this->CastImageIn(field, view, depth, source, rgba, stats, progress);
+  });
+}
+
+template <class View>
+bool RayCaster::CastImageIn(const View& field, const ViewGeometry& view, const float* depth,
+  const SegmentSource& source, float* rgba, CastStatistics& stats,
+  const std::function<bool(double)>& progress) const
+{
   // Every pixel of a cast band is written by its tile (zero when no ray is cast).
   const int tilesX = (view.Width + TileSize - 1) / TileSize;
   const int tilesY = (view.Height + TileSize - 1) / TileSize;
   bool completed = true;
-  TileCaster caster{ *this, view, depth, source, rgba, tilesX, 0, {} };
+  auto castOne = [&](const Ray& ray, int px, int py, auto& scratch, float* pixel) {
+    this->CastRayIn(field, ray, px, py, source, scratch.Segments, scratch.Ranges, pixel,
+      scratch.Stats, nullptr);
+  };
+  TileCaster<decltype(castOne)> caster{ castOne, view, depth, source, rgba, tilesX, 0, {} };
   for (int row = 0; row < tilesY; row += TileRowsPerBand)
   {
     const int rows = std::min(TileRowsPerBand, tilesY - row);

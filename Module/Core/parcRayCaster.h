@@ -8,7 +8,8 @@
 //
 // Ray functions (one functor each, dispatched in one switch):
 // - Composite: front-to-back "over" with opacity correction
-//   a' = 1 - (1 - a)^(dt / unit distance), gradient opacity, shading, early termination.
+//   a' = 1 - (1 - a)^(dt / unit distance) (in float), gradient opacity, shading, early
+//   termination.
 // - Maximum / minimum intensity: the extreme scalar along the ray, then its colour and
 //   (uncorrected) opacity.
 // - Average intensity: the mean of the samples inside AverageRange, then colour/opacity.
@@ -140,13 +141,35 @@ public:
 
   const CastParameters* GetParameters() const { return this->Params; }
   const ScalarField* GetField() const { return this->Field; }
+  /// Whether samples need gradients: shading, or a gradient opacity that is not constant.
   bool NeedsGradient() const { return this->GradientNeeded; }
 
+  /// Per-render constants of the lights (derived from the parameters by Prepare).
+  struct DirectionalLight
+  {
+    Vec3 ToLight; ///< unit vector towards the light
+    Vec3 Color;
+  };
+
 private:
+  template <class View>
+  void CastRayIn(const View& field, const Ray& ray, int px, int py, const SegmentSource& source,
+    std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
+    CastStatistics& stats, double* firstHit) const;
+  template <class View>
+  bool CastImageIn(const View& field, const ViewGeometry& view, const float* depth,
+    const SegmentSource& source, float* rgba, CastStatistics& stats,
+    const std::function<bool(double)>& progress) const;
+
   const ScalarField* Field = nullptr;
   const CastParameters* Params = nullptr;
-  double OpacityExponent = 1.0; ///< dt / unit distance
+  float OpacityExponent = 1.f; ///< dt / unit distance
   bool GradientNeeded = false;
+  bool GradientOpacityConstant = false; ///< then every sample's factor is GradientOpacityValue
+  float GradientOpacityValue = 1.f;
+  int IntegerSpecularPower = -1; ///< SpecularPower when it is a small whole number
+  std::vector<DirectionalLight> DirectionalLights;
+  std::vector<const Light*> PositionalLights;
   std::vector<double> SortedIsoValues;
 };
 

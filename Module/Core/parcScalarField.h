@@ -1,17 +1,27 @@
 // PARC for VTK: a scalar volume in voxel-index space, sampled by the ray caster.
 //
-// Values are kept as float (converted once per data change from any scalar type). Voxel
-// (i, j, k) sits at index coordinates (i, j, k); the field is defined on the box
+// Voxel (i, j, k) sits at index coordinates (i, j, k); the field is defined on the box
 // [0, nx-1] x [0, ny-1] x [0, nz-1]. Positions outside the box are clamped to it.
-// Non-finite input values are replaced when converted (see Assign) so that the field is
-// finite everywhere.
+//
+// The values stay in their native type, usually in the caller's memory (no copy of 8-,
+// 16- or 32-bit data): every value is converted to float when it is loaded, so a sample is
+// the same float arithmetic whatever the type. The hot loops use FieldView<T>, a typed
+// view obtained once per image through ScalarField::Dispatch. Non-finite floating-point
+// input is the one case that is copied, with NaN replaced by the smallest finite value,
+// -inf by the smallest and +inf by the largest, so that the field is finite everywhere.
 #ifndef parcScalarField_h
 #define parcScalarField_h
 
 #include "parcMath.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
+#include <limits>
+#include <memory>
+#include <type_traits>
 #include <vector>
 
 namespace parc
@@ -23,67 +33,394 @@ enum class Interpolation
   Linear
 };
 
-class ScalarField
+enum class ScalarType
+{
+  Int8,
+  UInt8,
+  Int16,
+  UInt16,
+  Int32,
+  UInt32,
+  Float32,
+  Float64
+};
+
+template <typename T>
+constexpr ScalarType ScalarTypeOf()
+{
+  static_assert(std::is_arithmetic<T>::value, "scalar fields hold numbers");
+  if (std::is_floating_point<T>::value)
+  {
+    return sizeof(T) == 4 ? ScalarType::Float32 : ScalarType::Float64;
+  }
+  switch (sizeof(T))
+  {
+    case 1:
+      return std::is_signed<T>::value ? ScalarType::Int8 : ScalarType::UInt8;
+    case 2:
+      return std::is_signed<T>::value ? ScalarType::Int16 : ScalarType::UInt16;
+    default:
+      return std::is_signed<T>::value ? ScalarType::Int32 : ScalarType::UInt32;
+  }
+}
+
+/// Typed, non-owning read access to a field's values (see the file comment).
+template <typename T>
+class FieldView
 {
 public:
-  /// Copies n = nx*ny*nz values (x fastest) converting them to float, reading every
-  /// `stride`-th value (for multi-component arrays). NaN becomes the smallest finite
-  /// value, -inf the smallest and +inf the largest. Returns the number replaced.
-  template <typename T>
-  std::size_t Assign(const T* values, const int dims[3], int stride = 1);
+  FieldView(const T* data, const int dims[3], std::ptrdiff_t stride)
+    : Data(data)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Dims[a] = dims[a];
+    }
+    this->Step[0] = stride;
+    this->Step[1] = stride * dims[0];
+    this->Step[2] = this->Step[1] * dims[1];
+  }
 
   const int* GetDimensions() const { return this->Dims; }
-  std::size_t GetNumberOfValues() const { return this->Values.size(); }
-  const float* GetValues() const { return this->Values.data(); }
-  float GetValue(int i, int j, int k) const
+  float Value(int i, int j, int k) const
   {
-    return this->Values[static_cast<std::size_t>(i) +
-      static_cast<std::size_t>(this->Dims[0]) *
-        (static_cast<std::size_t>(j) + static_cast<std::size_t>(this->Dims[1]) * k)];
+    return static_cast<float>(this->Data[i * this->Step[0] + j * this->Step[1] + k * this->Step[2]]);
   }
-  /// The finite range of the values.
-  const double* GetRange() const { return this->Range; }
 
   /// Trilinear interpolation at index coordinates p (clamped to the box).
-  float SampleLinear(const Vec3& p) const;
+  float SampleLinear(const Vec3& p) const
+  {
+    int cell[3];
+    float f[3];
+    this->Locate(p, cell, f);
+    return this->Trilinear(cell, f);
+  }
   /// The value of the nearest voxel to p (ties round up; clamped to the box).
-  float SampleNearest(const Vec3& p) const;
+  float SampleNearest(const Vec3& p) const
+  {
+    int idx[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      double x = std::floor(p[a] + 0.5);
+      if (!(x > 0.0))
+      {
+        x = 0.0;
+      }
+      idx[a] = std::min(static_cast<int>(x), this->Dims[a] - 1);
+    }
+    return this->Value(idx[0], idx[1], idx[2]);
+  }
   float Sample(const Vec3& p, Interpolation mode) const
   {
     return mode == Interpolation::Linear ? this->SampleLinear(p) : this->SampleNearest(p);
   }
-  /// Central-difference gradient of the interpolated field at p, in scalar units per voxel
-  /// index (one-sided at the box faces).
-  Vec3 Gradient(const Vec3& p, Interpolation mode) const;
+
+  /// Central-difference gradient of the interpolated field at p (offsets of one voxel), in
+  /// scalar units per voxel index; one-sided where p is within one voxel of a box face.
+  Vec3 Gradient(const Vec3& p, Interpolation mode) const
+  {
+    return mode == Interpolation::Linear ? this->GradientLinear(p) : this->GradientNearest(p);
+  }
 
 private:
-  void ReplaceNonFinite(std::size_t& replaced);
-  /// Trilinear interpolation in cell (i, j, k) at fractions (fx, fy, fz) of its edges.
-  float Trilinear(const int cell[3], const float fraction[3]) const;
-  Vec3 GradientLinear(const Vec3& p) const;
+  /// The cell along one axis and the fraction inside it, for a clamped coordinate.
+  static void LocateAxis(double x, int n, int& i, float& f)
+  {
+    if (!(x > 0.0)) // also NaN
+    {
+      x = 0.0;
+    }
+    const double last = n - 1;
+    if (x >= last)
+    {
+      x = last;
+    }
+    i = static_cast<int>(x);
+    if (i >= n - 1)
+    {
+      i = n - 2;
+    }
+    f = static_cast<float>(x - i);
+  }
+  void Locate(const Vec3& p, int cell[3], float f[3]) const
+  {
+    LocateAxis(p.X, this->Dims[0], cell[0], f[0]);
+    LocateAxis(p.Y, this->Dims[1], cell[1], f[1]);
+    LocateAxis(p.Z, this->Dims[2], cell[2], f[2]);
+  }
+  static float Lerp(float a, float b, float t) { return a + t * (b - a); }
+  /// Interpolates 8 corner values (x fastest) at fractions f.
+  static float Interpolate(const float c[8], const float f[3])
+  {
+    const float c00 = Lerp(c[0], c[1], f[0]);
+    const float c10 = Lerp(c[2], c[3], f[0]);
+    const float c01 = Lerp(c[4], c[5], f[0]);
+    const float c11 = Lerp(c[6], c[7], f[0]);
+    return Lerp(Lerp(c00, c10, f[1]), Lerp(c01, c11, f[1]), f[2]);
+  }
+  const T* CellPointer(const int cell[3]) const
+  {
+    return this->Data + cell[0] * this->Step[0] + cell[1] * this->Step[1] +
+      cell[2] * this->Step[2];
+  }
+  float Trilinear(const int cell[3], const float f[3]) const
+  {
+    const T* v = this->CellPointer(cell);
+    const std::ptrdiff_t sx = this->Step[0], sy = this->Step[1], sz = this->Step[2];
+    const float c[8] = { static_cast<float>(v[0]), static_cast<float>(v[sx]),
+      static_cast<float>(v[sy]), static_cast<float>(v[sy + sx]), static_cast<float>(v[sz]),
+      static_cast<float>(v[sz + sx]), static_cast<float>(v[sz + sy]),
+      static_cast<float>(v[sz + sy + sx]) };
+    return Interpolate(c, f);
+  }
 
-  int Dims[3] = { 0, 0, 0 };
-  std::vector<float> Values;
-  double Range[2] = { 0.0, 0.0 };
+  Vec3 GradientLinear(const Vec3& p) const
+  {
+    int cell[3];
+    float f[3];
+    this->Locate(p, cell, f);
+    bool interior = true;
+    for (int a = 0; a < 3; ++a)
+    {
+      interior = interior && cell[a] >= 1 && cell[a] + 3 <= this->Dims[a];
+    }
+    if (!interior)
+    {
+      return this->GradientNearFaces(p, cell, f);
+    }
+    // Inside, f(p + e_a) - f(p - e_a) is the trilinear interpolation, in p's own cell, of
+    // the voxel differences v(c + e_a) - v(c - e_a) at its 8 corners.
+    const T* v = this->CellPointer(cell);
+    Vec3 g;
+    for (int a = 0; a < 3; ++a)
+    {
+      const std::ptrdiff_t s = this->Step[a];
+      float d[8];
+      for (int n = 0; n < 8; ++n)
+      {
+        const T* corner = v + ((n & 1) ? this->Step[0] : 0) + ((n & 2) ? this->Step[1] : 0) +
+          ((n & 4) ? this->Step[2] : 0);
+        d[n] = static_cast<float>(corner[s]) - static_cast<float>(corner[-s]);
+      }
+      g[a] = 0.5 * Interpolate(d, f);
+    }
+    return g;
+  }
+  /// Central differences of SampleLinear with the offsets clamped to the box.
+  Vec3 GradientNearFaces(const Vec3& p, const int cell[3], const float f[3]) const
+  {
+    Vec3 g;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double lo = std::max(p[a] - 1.0, 0.0);
+      const double hi = std::min(p[a] + 1.0, static_cast<double>(this->Dims[a] - 1));
+      const double h = hi - lo;
+      if (!(h > 0.0))
+      {
+        g[a] = 0.0;
+        continue;
+      }
+      int shifted[3] = { cell[0], cell[1], cell[2] };
+      float shiftedF[3] = { f[0], f[1], f[2] };
+      LocateAxis(hi, this->Dims[a], shifted[a], shiftedF[a]);
+      const float high = this->Trilinear(shifted, shiftedF);
+      LocateAxis(lo, this->Dims[a], shifted[a], shiftedF[a]);
+      const float low = this->Trilinear(shifted, shiftedF);
+      g[a] = (high - low) / h;
+    }
+    return g;
+  }
+  Vec3 GradientNearest(const Vec3& p) const
+  {
+    Vec3 g;
+    for (int a = 0; a < 3; ++a)
+    {
+      Vec3 lo = p, hi = p;
+      lo[a] = std::max(p[a] - 1.0, 0.0);
+      hi[a] = std::min(p[a] + 1.0, static_cast<double>(this->Dims[a] - 1));
+      const double h = hi[a] - lo[a];
+      g[a] = h > 0.0 ? (this->SampleNearest(hi) - this->SampleNearest(lo)) / h : 0.0;
+    }
+    return g;
+  }
+
+  const T* Data;
+  std::ptrdiff_t Step[3]; ///< elements between neighbours along x, y, z
+  int Dims[3];
 };
+
+/// A field of any scalar type, referencing the caller's values or holding a copy.
+class ScalarField
+{
+public:
+  /// Refers to n = nx*ny*nz values (x fastest) without copying them, reading every
+  /// `stride`-th value (for multi-component arrays); values must outlive the field's use.
+  /// Floating-point values with non-finite entries are copied with those replaced (see the
+  /// file comment). Returns the number replaced.
+  template <typename T>
+  std::size_t Wrap(const T* values, const int dims[3], int stride = 1);
+  /// Like Wrap, but always keeps a copy of the values (in their type).
+  template <typename T>
+  std::size_t Assign(const T* values, const int dims[3], int stride = 1);
+
+  ScalarType GetScalarType() const { return this->Type; }
+  const int* GetDimensions() const { return this->Dims; }
+  std::size_t GetNumberOfValues() const
+  {
+    return static_cast<std::size_t>(this->Dims[0]) * static_cast<std::size_t>(this->Dims[1]) *
+      static_cast<std::size_t>(this->Dims[2]);
+  }
+  /// The finite range of the values.
+  const double* GetRange() const { return this->Range; }
+  /// Bytes of values the field holds itself (0 when it refers to the caller's values).
+  std::size_t GetMemorySize() const { return this->Owned ? this->Owned->size() : 0; }
+
+  /// Calls f(FieldView<T>) for the field's value type T and returns its result.
+  template <class F>
+  decltype(auto) Dispatch(F&& f) const
+  {
+    switch (this->Type)
+    {
+      case ScalarType::Int8:
+        return f(this->View<std::int8_t>());
+      case ScalarType::UInt8:
+        return f(this->View<std::uint8_t>());
+      case ScalarType::Int16:
+        return f(this->View<std::int16_t>());
+      case ScalarType::UInt16:
+        return f(this->View<std::uint16_t>());
+      case ScalarType::Int32:
+        return f(this->View<std::int32_t>());
+      case ScalarType::UInt32:
+        return f(this->View<std::uint32_t>());
+      case ScalarType::Float64:
+        return f(this->View<double>());
+      case ScalarType::Float32:
+      default:
+        return f(this->View<float>());
+    }
+  }
+
+  // One-off access (each call dispatches on the type; loops use Dispatch).
+  float GetValue(int i, int j, int k) const
+  {
+    return this->Dispatch([&](const auto& v) { return v.Value(i, j, k); });
+  }
+  float SampleLinear(const Vec3& p) const
+  {
+    return this->Dispatch([&](const auto& v) { return v.SampleLinear(p); });
+  }
+  float SampleNearest(const Vec3& p) const
+  {
+    return this->Dispatch([&](const auto& v) { return v.SampleNearest(p); });
+  }
+  float Sample(const Vec3& p, Interpolation mode) const
+  {
+    return this->Dispatch([&](const auto& v) { return v.Sample(p, mode); });
+  }
+  Vec3 Gradient(const Vec3& p, Interpolation mode) const
+  {
+    return this->Dispatch([&](const auto& v) { return v.Gradient(p, mode); });
+  }
+
+private:
+  template <typename T>
+  FieldView<T> View() const
+  {
+    return FieldView<T>(static_cast<const T*>(this->Data), this->Dims, this->Stride);
+  }
+  template <typename T>
+  void CopyValues(const T* values, int stride);
+  template <typename T>
+  std::size_t Scan();
+
+  ScalarType Type = ScalarType::Float32;
+  const void* Data = nullptr;
+  int Stride = 1;
+  int Dims[3] = { 0, 0, 0 };
+  double Range[2] = { 0.0, 0.0 };
+  /// The copy, when there is one (shared by copies of the field: it never changes).
+  std::shared_ptr<std::vector<unsigned char>> Owned;
+};
+
+template <typename T>
+void ScalarField::CopyValues(const T* values, int stride)
+{
+  const std::size_t n = this->GetNumberOfValues();
+  auto copy = std::make_shared<std::vector<unsigned char>>(n * sizeof(T));
+  T* out = reinterpret_cast<T*>(copy->data());
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    out[i] = values[i * stride];
+  }
+  this->Owned = std::move(copy);
+  this->Data = out;
+  this->Stride = 1;
+}
+
+template <typename T>
+std::size_t ScalarField::Scan()
+{
+  // The finite range, then (floating point only) the replacement of non-finite values.
+  const std::size_t n = this->GetNumberOfValues();
+  const T* v = static_cast<const T*>(this->Data);
+  double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
+  std::size_t nonFinite = 0;
+  for (std::size_t i = 0; i < n; ++i)
+  {
+    const double x = static_cast<double>(static_cast<float>(v[i * this->Stride]));
+    if (std::isfinite(x))
+    {
+      lo = std::min(lo, x);
+      hi = std::max(hi, x);
+    }
+    else
+    {
+      ++nonFinite;
+    }
+  }
+  if (lo > hi) // no finite value at all
+  {
+    lo = hi = 0.0;
+  }
+  this->Range[0] = n > 0 ? lo : 0.0;
+  this->Range[1] = n > 0 ? hi : 0.0;
+  if (nonFinite > 0)
+  {
+    if (!this->Owned)
+    {
+      this->CopyValues(v, this->Stride);
+    }
+    T* out = reinterpret_cast<T*>(this->Owned->data());
+    for (std::size_t i = 0; i < n; ++i)
+    {
+      if (!std::isfinite(static_cast<float>(out[i])))
+      {
+        out[i] = static_cast<T>(static_cast<float>(out[i]) > 0.f ? hi : lo);
+      }
+    }
+  }
+  return nonFinite;
+}
+
+template <typename T>
+std::size_t ScalarField::Wrap(const T* values, const int dims[3], int stride)
+{
+  this->Type = ScalarTypeOf<T>();
+  std::copy_n(dims, 3, this->Dims);
+  this->Data = values;
+  this->Stride = stride;
+  this->Owned.reset();
+  return this->Scan<T>();
+}
 
 template <typename T>
 std::size_t ScalarField::Assign(const T* values, const int dims[3], int stride)
 {
-  for (int a = 0; a < 3; ++a)
-  {
-    this->Dims[a] = dims[a];
-  }
-  const std::size_t n =
-    static_cast<std::size_t>(dims[0]) * static_cast<std::size_t>(dims[1]) * dims[2];
-  this->Values.resize(n);
-  for (std::size_t i = 0; i < n; ++i)
-  {
-    this->Values[i] = static_cast<float>(values[i * stride]);
-  }
-  std::size_t replaced = 0;
-  this->ReplaceNonFinite(replaced);
-  return replaced;
+  this->Type = ScalarTypeOf<T>();
+  std::copy_n(dims, 3, this->Dims);
+  this->CopyValues(values, stride);
+  return this->Scan<T>();
 }
 
 } // namespace parc

@@ -11,11 +11,29 @@ void PiecewiseLinearFunction::SetNodes(std::vector<double> x, std::vector<double
   this->X = std::move(x);
   this->Y = std::move(y);
   this->Clamp = clamp;
-  this->Slope.assign(this->X.size(), 0.0);
-  for (size_t i = 0; i + 1 < this->X.size(); ++i)
+  const std::size_t n = this->X.size();
+  this->Slope.assign(n, 0.0);
+  for (std::size_t i = 0; i + 1 < n; ++i)
   {
     const double dx = this->X[i + 1] - this->X[i];
     this->Slope[i] = dx > 0.0 ? (this->Y[i + 1] - this->Y[i]) / dx : 0.0;
+  }
+  // Buckets over [x0, xn]: s falls in bucket floor((s - x0) * scale), whose start lies at
+  // least one bucket width (far more than rounding) after the node it records.
+  const std::size_t buckets = std::min<std::size_t>(std::max<std::size_t>(4 * n, 64), 4096);
+  const double width = n > 1 ? (this->X.back() - this->X.front()) / buckets : 0.0;
+  this->BucketScale = width > 0.0 ? 1.0 / width : 0.0;
+  this->LastBucket = buckets - 1;
+  this->BucketStart.assign(buckets, 0);
+  std::size_t node = 0;
+  for (std::size_t b = 1; b < buckets; ++b)
+  {
+    const double before = this->X.front() + (static_cast<double>(b) - 1.0) * width;
+    while (node + 2 < n && this->X[node + 1] <= before)
+    {
+      ++node;
+    }
+    this->BucketStart[b] = node;
   }
 }
 
@@ -27,25 +45,17 @@ void PiecewiseLinearFunction::SetConstant(double value)
   this->Constant = value;
 }
 
-float PiecewiseLinearFunction::Evaluate(double s) const
+bool PiecewiseLinearFunction::IsConstant(double& c) const
 {
   if (this->X.empty())
   {
-    return static_cast<float>(this->Constant);
+    c = this->Constant;
+    return c >= 0.0;
   }
-  if (!(s >= this->X.front())) // also NaN: treated as below the range
-  {
-    return static_cast<float>(this->LeftValue());
-  }
-  if (s > this->X.back())
-  {
-    return static_cast<float>(this->RightValue());
-  }
-  // The last node with x <= s.
-  const size_t i = static_cast<size_t>(
-    std::upper_bound(this->X.begin(), this->X.end(), s) - this->X.begin() - 1);
-  const double v = this->Y[i] + (s - this->X[i]) * this->Slope[i];
-  return static_cast<float>(std::max(v, 0.0));
+  c = this->Y.front();
+  const bool flat =
+    std::all_of(this->Y.begin(), this->Y.end(), [c](double y) { return y == c; });
+  return flat && this->Clamp && c >= 0.0;
 }
 
 bool PiecewiseLinearFunction::IsNonZeroOn(double lo, double hi) const

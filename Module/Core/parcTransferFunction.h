@@ -7,6 +7,7 @@
 #ifndef parcTransferFunction_h
 #define parcTransferFunction_h
 
+#include <algorithm>
 #include <limits>
 #include <vector>
 
@@ -22,8 +23,35 @@ public:
   /// A constant function (no nodes).
   void SetConstant(double value);
 
-  /// f(s) >= 0 for opacity functions; evaluated in double and returned as float.
-  float Evaluate(double s) const;
+  /// f(s) >= 0 for opacity functions; evaluated in double and returned as float. The
+  /// piece holding s is found in constant time: a table of buckets over the nodes' range
+  /// gives a node at or before s, then at most a few nodes are stepped over.
+  float Evaluate(double s) const
+  {
+    if (this->X.empty())
+    {
+      return static_cast<float>(this->Constant);
+    }
+    if (!(s >= this->X.front())) // also NaN: treated as below the range
+    {
+      return static_cast<float>(this->LeftValue());
+    }
+    if (s >= this->X.back())
+    {
+      return static_cast<float>(s > this->X.back() ? this->RightValue() : std::max(this->Y.back(), 0.0));
+    }
+    // The last node with x <= s (X.back() > s ends the walk).
+    const double u = (s - this->X.front()) * this->BucketScale;
+    std::size_t i = this->BucketStart[std::min(static_cast<std::size_t>(u), this->LastBucket)];
+    while (this->X[i + 1] <= s)
+    {
+      ++i;
+    }
+    const double v = this->Y[i] + (s - this->X[i]) * this->Slope[i];
+    return static_cast<float>(std::max(v, 0.0));
+  }
+  /// True when f is the same value c >= 0 everywhere (then Evaluate returns float(c)).
+  bool IsConstant(double& c) const;
 
   /// True when f is non-zero somewhere on [lo, hi] (exact for the function as evaluated by
   /// Evaluate: never false where Evaluate gives a non-zero value).
@@ -42,6 +70,10 @@ private:
   double RightValue() const { return this->Clamp ? this->Y.back() : 0.0; }
 
   std::vector<double> X, Y, Slope;
+  /// BucketStart[b]: a node at or before every s with bucket b; the last node is never one.
+  std::vector<std::size_t> BucketStart;
+  double BucketScale = 0.0;
+  std::size_t LastBucket = 0;
   bool Clamp = true;
   double Constant = 0.0;
 };

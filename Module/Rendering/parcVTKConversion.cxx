@@ -76,9 +76,9 @@ void ConvertColor(vtkVolumeProperty* property, const double range[2], ColorTable
 }
 
 template <typename T>
-std::size_t AssignField(ScalarField& field, vtkDataArray* array, const int dims[3])
+std::size_t WrapField(ScalarField& field, vtkDataArray* array, const int dims[3])
 {
-  return field.Assign(static_cast<const T*>(array->GetVoidPointer(0)), dims,
+  return field.Wrap(static_cast<const T*>(array->GetVoidPointer(0)), dims,
     array->GetNumberOfComponents());
 }
 }
@@ -136,7 +136,7 @@ bool CheckImage(vtkImageData* image, std::string& error)
   return true;
 }
 
-bool ConvertScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
+bool WrapScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
   std::size_t& replaced, std::string& error)
 {
   replaced = 0;
@@ -146,28 +146,28 @@ bool ConvertScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field
     {
       case VTK_CHAR:
       case VTK_SIGNED_CHAR:
-        replaced = AssignField<signed char>(field, scalars, dims);
+        replaced = WrapField<signed char>(field, scalars, dims);
         return true;
       case VTK_UNSIGNED_CHAR:
-        replaced = AssignField<unsigned char>(field, scalars, dims);
+        replaced = WrapField<unsigned char>(field, scalars, dims);
         return true;
       case VTK_SHORT:
-        replaced = AssignField<short>(field, scalars, dims);
+        replaced = WrapField<short>(field, scalars, dims);
         return true;
       case VTK_UNSIGNED_SHORT:
-        replaced = AssignField<unsigned short>(field, scalars, dims);
+        replaced = WrapField<unsigned short>(field, scalars, dims);
         return true;
       case VTK_INT:
-        replaced = AssignField<int>(field, scalars, dims);
+        replaced = WrapField<int>(field, scalars, dims);
         return true;
       case VTK_UNSIGNED_INT:
-        replaced = AssignField<unsigned int>(field, scalars, dims);
+        replaced = WrapField<unsigned int>(field, scalars, dims);
         return true;
       case VTK_FLOAT:
-        replaced = AssignField<float>(field, scalars, dims);
+        replaced = WrapField<float>(field, scalars, dims);
         return true;
       case VTK_DOUBLE:
-        replaced = AssignField<double>(field, scalars, dims);
+        replaced = WrapField<double>(field, scalars, dims);
         return true;
       default:
         error = std::string("Unsupported scalar type ") + scalars->GetDataTypeAsString() +

@@ -20,10 +20,12 @@ namespace vtk
 /// The core blend mode of a vtkVolumeMapper blend mode; false for unsupported ones.
 bool ConvertBlendMode(int vtkBlendMode, BlendMode& out);
 
-/// Copies the first component of scalars (point data of an image of dims) into field.
-/// Returns false with a message in error for unsupported types or too little memory;
-/// replaced receives the number of non-finite values replaced.
-bool ConvertScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
+/// Makes field read the first component of scalars (point data of an image of dims) in
+/// place, without a copy (scalars must stay alive while field is used; only non-finite
+/// floating-point values make a copy). Returns false with a message in error for
+/// unsupported types or too little memory; replaced receives the number of non-finite
+/// values replaced.
+bool WrapScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
   std::size_t& replaced, std::string& error);
 
 /// Checks that an image can be cast (dims >= 2, finite non-zero spacing); false with a

@@ -15,6 +15,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkPoints.h"
 #include "vtkPolyData.h"
+#include "vtkSmartPointer.h"
 #include "vtkCellData.h"
 #include "vtkVolumeProperty.h"
 
@@ -36,7 +37,7 @@ class vtkPARCPolygonModelFilter::vtkInternals
 public:
   parc::ScalarField Field;
   parc::RangePyramid Pyramid;
-  vtkDataArray* FieldArray = nullptr;
+  vtkSmartPointer<vtkDataArray> FieldArray; ///< the values Field reads
   vtkMTimeType FieldTime = 0;
   vtkNew<vtkVolumeProperty> DefaultProperty;
 };
@@ -108,7 +109,7 @@ int vtkPARCPolygonModelFilter::RequestData(
     image->GetDimensions(dims);
     std::size_t replaced = 0;
     in.FieldArray = nullptr;
-    if (!parc::vtk::ConvertScalars(scalars, dims, in.Field, replaced, error))
+    if (!parc::vtk::WrapScalars(scalars, dims, in.Field, replaced, error))
     {
       vtkErrorMacro(<< error);
       return 1;

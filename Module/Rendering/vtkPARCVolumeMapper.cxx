@@ -17,6 +17,7 @@
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRayCastImageDisplayHelper.h"
 #include "vtkPointData.h"
+#include "vtkSmartPointer.h"
 #include "vtkPropCollection.h"
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
@@ -118,7 +119,7 @@ class vtkPARCVolumeMapper::vtkInternals
 public:
   parc::ScalarField Field;
   vtkMTimeType FieldTime = 0;
-  vtkDataArray* FieldArray = nullptr;
+  vtkSmartPointer<vtkDataArray> FieldArray; ///< the values Field reads
   parc::CastParameters Parameters;
   parc::Matrix4 IndexToWorld; ///< voxel index -> world, of the last PrepareParameters
   parc::RayCaster Caster;
@@ -335,7 +336,7 @@ bool vtkPARCVolumeMapper::PrepareField()
   int dims[3];
   image->GetDimensions(dims);
   std::size_t replaced = 0;
-  if (!parc::vtk::ConvertScalars(scalars, dims, in.Field, replaced, error))
+  if (!parc::vtk::WrapScalars(scalars, dims, in.Field, replaced, error))
   {
     vtkErrorMacro(<< error << " Nothing is drawn.");
     in.FieldArray = nullptr;
