@@ -10,6 +10,7 @@
 #ifndef parcBufferSources_h
 #define parcBufferSources_h
 
+#include "parcRay.h"
 #include "parcSupercellGrid.h"
 
 #include <cstdint>

@@ -17,7 +17,8 @@
 #ifndef parcClassification_h
 #define parcClassification_h
 
-#include "parcRayCaster.h"
+#include "parcCastParameters.h"
+#include "parcScalarField.h"
 
 #include <vector>
 

@@ -5,6 +5,13 @@
 #include <array>
 #include <cmath>
 
+/// Marks the small per-sample functions the caster's loops must inline.
+#if defined(__GNUC__)
+#define PARC_HOT_INLINE inline __attribute__((always_inline))
+#else
+#define PARC_HOT_INLINE inline
+#endif
+
 namespace parc
 {
 

@@ -136,6 +136,13 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
       this->DirectionalLights.push_back({ Normalized(light.Position - light.FocalPoint), light.Color });
     }
   }
+  this->SkipEmptyCells = parameters->SkipEmptyCells &&
+    parameters->Interp == Interpolation::Linear &&
+    (parameters->Blend == BlendMode::Composite || parameters->Blend == BlendMode::Additive);
+  if (this->SkipEmptyCells)
+  {
+    this->Rule.Set(*parameters, field->GetRange());
+  }
   this->SortedIsoValues = parameters->IsoValues;
   std::sort(this->SortedIsoValues.begin(), this->SortedIsoValues.end());
   if (this->SortedIsoValues.size() > MaxIsoValues)
@@ -187,10 +194,14 @@ struct RayContext
   bool GradientOpacityConstant;
   float GradientOpacityValue;
   int IntegerSpecularPower;
+  bool SkipEmptyCells;
+  const ContributionRule& Rule;
   const std::vector<RayCaster::DirectionalLight>& DirectionalLights;
   const std::vector<const Light*>& PositionalLights;
   CastStatistics& Stats;
   double FirstHit = std::numeric_limits<double>::infinity();
+  /// The corners of the cell the last lattice sample was in.
+  CellCorners Corners;
   /// Half vectors of the first directional lights for this ray (Blinn-Phong).
   std::array<Vec3, MaxHoistedLights> HalfVectors;
 
@@ -216,10 +227,34 @@ struct RayContext
   }
 
   Vec3 IndexPosition(double t) const { return this->IndexOrigin + t * this->IndexDirection; }
-  float SampleAt(double t) const
+  PARC_HOT_INLINE float SampleAt(double t)
   {
     ++this->Stats.Samples;
-    return this->Field.Sample(this->IndexPosition(t), this->P.Interp);
+    return this->Field.Sample(this->IndexPosition(t), this->P.Interp, this->Corners);
+  }
+  /// The sample at t in s, or false (s unset) for a sample in a cell that cannot contribute
+  /// when the caster skips such cells: its opacity would be exactly 0.
+  PARC_HOT_INLINE bool ContributingSampleAt(double t, float& s)
+  {
+    if (!this->SkipEmptyCells)
+    {
+      s = this->SampleAt(t);
+      return true;
+    }
+    ++this->Stats.Samples;
+    float f[3];
+    if (this->Field.LocateCell(this->IndexPosition(t), this->Corners, f))
+    {
+      const float* c = this->Corners.Values;
+      const auto range = std::minmax({ c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7] });
+      this->Corners.Contributing = this->Rule.IsPossiblyContributing(range.first, range.second);
+    }
+    if (!this->Corners.Contributing)
+    {
+      return false;
+    }
+    s = View::Interpolate(this->Corners.Values, f);
+    return true;
   }
   /// The world-space gradient at ray parameter t.
   Vec3 WorldGradient(double t) const
@@ -360,7 +395,11 @@ struct CompositeFunction
   bool operator()(long k, bool)
   {
     const double t = k * this->C.Dt;
-    const float s = this->C.SampleAt(t);
+    float s;
+    if (!this->C.ContributingSampleAt(t, s))
+    {
+      return true;
+    }
     float a = this->C.P.Opacity.Evaluate(s);
     if (a == 0.f)
     {
@@ -472,7 +511,11 @@ struct AdditiveFunction
 
   bool operator()(long k, bool)
   {
-    const float s = this->C.SampleAt(k * this->C.Dt);
+    float s;
+    if (!this->C.ContributingSampleAt(k * this->C.Dt, s))
+    {
+      return true;
+    }
     float a = this->C.P.Opacity.Evaluate(s);
     if (a == 0.f)
     {
@@ -697,7 +740,8 @@ void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
   using Context = RayContext<View>;
   Context context{ field, *this->Params, *this, ray, indexOrigin, indexDirection, dt,
     this->OpacityExponent, this->GradientNeeded, this->GradientOpacityConstant,
-    this->GradientOpacityValue, this->IntegerSpecularPower, this->DirectionalLights,
+    this->GradientOpacityValue, this->IntegerSpecularPower, this->SkipEmptyCells, this->Rule,
+    this->DirectionalLights,
     this->PositionalLights, stats };
   context.Begin();
   switch (this->Params->Blend)

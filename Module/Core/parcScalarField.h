@@ -64,6 +64,15 @@ constexpr ScalarType ScalarTypeOf()
   }
 }
 
+/// The 8 corner values of the cell a ray sampled last: consecutive samples in one cell
+/// reuse them (the same values, so the same sample bits).
+struct CellCorners
+{
+  std::ptrdiff_t Offset = -1; ///< the cell's first voxel, or -1
+  float Values[8];
+  bool Contributing = true; ///< the caller's verdict on the cell (see RayCaster)
+};
+
 /// Typed, non-owning read access to a field's values (see the file comment).
 template <typename T>
 class FieldView
@@ -95,6 +104,38 @@ public:
     this->Locate(p, cell, f);
     return this->Trilinear(cell, f);
   }
+  /// The same, reusing (and updating) the corners of the cell sampled last.
+  PARC_HOT_INLINE float SampleLinear(const Vec3& p, CellCorners& corners) const
+  {
+    float f[3];
+    this->LocateCell(p, corners, f);
+    return Interpolate(corners.Values, f);
+  }
+  /// Makes corners hold the cell of p (loading them unless it is the cell they hold) and
+  /// sets f to p's fractions in it; true when the cell changed.
+  PARC_HOT_INLINE bool LocateCell(const Vec3& p, CellCorners& corners, float f[3]) const
+  {
+    int cell[3];
+    this->Locate(p, cell, f);
+    const std::ptrdiff_t offset =
+      cell[0] * this->Step[0] + cell[1] * this->Step[1] + cell[2] * this->Step[2];
+    if (offset == corners.Offset)
+    {
+      return false;
+    }
+    this->LoadCorners(this->Data + offset, corners.Values);
+    corners.Offset = offset;
+    return true;
+  }
+  /// Interpolates 8 corner values (x fastest) at fractions f.
+  static PARC_HOT_INLINE float Interpolate(const float c[8], const float f[3])
+  {
+    const float c00 = Lerp(c[0], c[1], f[0]);
+    const float c10 = Lerp(c[2], c[3], f[0]);
+    const float c01 = Lerp(c[4], c[5], f[0]);
+    const float c11 = Lerp(c[6], c[7], f[0]);
+    return Lerp(Lerp(c00, c10, f[1]), Lerp(c01, c11, f[1]), f[2]);
+  }
   /// The value of the nearest voxel to p (ties round up; clamped to the box).
   float SampleNearest(const Vec3& p) const
   {
@@ -114,6 +155,11 @@ public:
   {
     return mode == Interpolation::Linear ? this->SampleLinear(p) : this->SampleNearest(p);
   }
+  PARC_HOT_INLINE float Sample(const Vec3& p, Interpolation mode, CellCorners& corners) const
+  {
+    return mode == Interpolation::Linear ? this->SampleLinear(p, corners)
+                                         : this->SampleNearest(p);
+  }
 
   /// Central-difference gradient of the interpolated field at p (offsets of one voxel), in
   /// scalar units per voxel index; one-sided where p is within one voxel of a box face.
@@ -124,53 +170,43 @@ public:
 
 private:
   /// The cell along one axis and the fraction inside it, for a clamped coordinate.
-  static void LocateAxis(double x, int n, int& i, float& f)
+  static PARC_HOT_INLINE void LocateAxis(double x, int n, int& i, float& f)
   {
-    if (!(x > 0.0)) // also NaN
-    {
-      x = 0.0;
-    }
+    x = x > 0.0 ? x : 0.0; // also NaN
     const double last = n - 1;
-    if (x >= last)
-    {
-      x = last;
-    }
+    x = x < last ? x : last;
     i = static_cast<int>(x);
-    if (i >= n - 1)
-    {
-      i = n - 2;
-    }
+    i = i < n - 2 ? i : n - 2;
     f = static_cast<float>(x - i);
   }
-  void Locate(const Vec3& p, int cell[3], float f[3]) const
+  PARC_HOT_INLINE void Locate(const Vec3& p, int cell[3], float f[3]) const
   {
     LocateAxis(p.X, this->Dims[0], cell[0], f[0]);
     LocateAxis(p.Y, this->Dims[1], cell[1], f[1]);
     LocateAxis(p.Z, this->Dims[2], cell[2], f[2]);
   }
-  static float Lerp(float a, float b, float t) { return a + t * (b - a); }
-  /// Interpolates 8 corner values (x fastest) at fractions f.
-  static float Interpolate(const float c[8], const float f[3])
-  {
-    const float c00 = Lerp(c[0], c[1], f[0]);
-    const float c10 = Lerp(c[2], c[3], f[0]);
-    const float c01 = Lerp(c[4], c[5], f[0]);
-    const float c11 = Lerp(c[6], c[7], f[0]);
-    return Lerp(Lerp(c00, c10, f[1]), Lerp(c01, c11, f[1]), f[2]);
-  }
+  static PARC_HOT_INLINE float Lerp(float a, float b, float t) { return a + t * (b - a); }
   const T* CellPointer(const int cell[3]) const
   {
     return this->Data + cell[0] * this->Step[0] + cell[1] * this->Step[1] +
       cell[2] * this->Step[2];
   }
+  PARC_HOT_INLINE void LoadCorners(const T* v, float c[8]) const
+  {
+    const std::ptrdiff_t sx = this->Step[0], sy = this->Step[1], sz = this->Step[2];
+    c[0] = static_cast<float>(v[0]);
+    c[1] = static_cast<float>(v[sx]);
+    c[2] = static_cast<float>(v[sy]);
+    c[3] = static_cast<float>(v[sy + sx]);
+    c[4] = static_cast<float>(v[sz]);
+    c[5] = static_cast<float>(v[sz + sx]);
+    c[6] = static_cast<float>(v[sz + sy]);
+    c[7] = static_cast<float>(v[sz + sy + sx]);
+  }
   float Trilinear(const int cell[3], const float f[3]) const
   {
-    const T* v = this->CellPointer(cell);
-    const std::ptrdiff_t sx = this->Step[0], sy = this->Step[1], sz = this->Step[2];
-    const float c[8] = { static_cast<float>(v[0]), static_cast<float>(v[sx]),
-      static_cast<float>(v[sy]), static_cast<float>(v[sy + sx]), static_cast<float>(v[sz]),
-      static_cast<float>(v[sz + sx]), static_cast<float>(v[sz + sy]),
-      static_cast<float>(v[sz + sy + sx]) };
+    float c[8];
+    this->LoadCorners(this->CellPointer(cell), c);
     return Interpolate(c, f);
   }
 

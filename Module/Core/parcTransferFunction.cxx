@@ -20,10 +20,12 @@ void PiecewiseLinearFunction::SetNodes(std::vector<double> x, std::vector<double
   }
   // Buckets over [x0, xn]: s falls in bucket floor((s - x0) * scale), whose start lies at
   // least one bucket width (far more than rounding) after the node it records.
-  const std::size_t buckets = std::min<std::size_t>(std::max<std::size_t>(4 * n, 64), 4096);
+  this->X0 = n > 0 ? this->X.front() : 0.0;
+  this->XN = n > 0 ? this->X.back() : 0.0;
+  const std::size_t buckets = std::min<std::size_t>(std::max<std::size_t>(4 * n, 1024), 4096);
   const double width = n > 1 ? (this->X.back() - this->X.front()) / buckets : 0.0;
   this->BucketScale = width > 0.0 ? 1.0 / width : 0.0;
-  this->LastBucket = buckets - 1;
+  this->LastBucket = static_cast<int>(buckets) - 1;
   this->BucketStart.assign(buckets, 0);
   std::size_t node = 0;
   for (std::size_t b = 1; b < buckets; ++b)
@@ -33,16 +35,35 @@ void PiecewiseLinearFunction::SetNodes(std::vector<double> x, std::vector<double
     {
       ++node;
     }
-    this->BucketStart[b] = node;
+    this->BucketStart[b] = static_cast<std::uint32_t>(node);
   }
 }
 
 void PiecewiseLinearFunction::SetConstant(double value)
 {
+  this->X0 = this->XN = 0.0;
   this->X.clear();
   this->Y.clear();
   this->Slope.clear();
   this->Constant = value;
+}
+
+float PiecewiseLinearFunction::EvaluateOutside(double s) const
+{
+  if (this->X.empty())
+  {
+    return static_cast<float>(this->Constant);
+  }
+  if (!(s >= this->X0)) // also NaN: treated as below the range
+  {
+    return static_cast<float>(this->LeftValue());
+  }
+  if (s > this->XN)
+  {
+    return static_cast<float>(this->RightValue());
+  }
+  // s == XN: the last node's value.
+  return static_cast<float>(std::max(this->Y.back(), 0.0));
 }
 
 bool PiecewiseLinearFunction::IsConstant(double& c) const

@@ -7,7 +7,10 @@
 #ifndef parcTransferFunction_h
 #define parcTransferFunction_h
 
+#include "parcMath.h"
+
 #include <algorithm>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -26,29 +29,20 @@ public:
   /// f(s) >= 0 for opacity functions; evaluated in double and returned as float. The
   /// piece holding s is found in constant time: a table of buckets over the nodes' range
   /// gives a node at or before s, then at most a few nodes are stepped over.
-  float Evaluate(double s) const
+  PARC_HOT_INLINE float Evaluate(double s) const
   {
-    if (this->X.empty())
+    if (s >= this->X0 && s < this->XN) // the nodes' range (NaN fails)
     {
-      return static_cast<float>(this->Constant);
+      // The last node with x <= s: the bucket's start, or a few nodes after it.
+      const int bucket = std::min(static_cast<int>((s - this->X0) * this->BucketScale), this->LastBucket);
+      std::size_t i = this->BucketStart[bucket];
+      while (this->X[i + 1] <= s) // X.back() > s ends the walk
+      {
+        ++i;
+      }
+      return static_cast<float>(std::max(this->Y[i] + (s - this->X[i]) * this->Slope[i], 0.0));
     }
-    if (!(s >= this->X.front())) // also NaN: treated as below the range
-    {
-      return static_cast<float>(this->LeftValue());
-    }
-    if (s >= this->X.back())
-    {
-      return static_cast<float>(s > this->X.back() ? this->RightValue() : std::max(this->Y.back(), 0.0));
-    }
-    // The last node with x <= s (X.back() > s ends the walk).
-    const double u = (s - this->X.front()) * this->BucketScale;
-    std::size_t i = this->BucketStart[std::min(static_cast<std::size_t>(u), this->LastBucket)];
-    while (this->X[i + 1] <= s)
-    {
-      ++i;
-    }
-    const double v = this->Y[i] + (s - this->X[i]) * this->Slope[i];
-    return static_cast<float>(std::max(v, 0.0));
+    return this->EvaluateOutside(s);
   }
   /// True when f is the same value c >= 0 everywhere (then Evaluate returns float(c)).
   bool IsConstant(double& c) const;
@@ -66,14 +60,18 @@ public:
   const std::vector<double>& GetY() const { return this->Y; }
 
 private:
+  /// Evaluate for s outside [X0, XN) or NaN, and for functions without nodes.
+  float EvaluateOutside(double s) const;
   double LeftValue() const { return this->Clamp ? this->Y.front() : 0.0; }
   double RightValue() const { return this->Clamp ? this->Y.back() : 0.0; }
 
   std::vector<double> X, Y, Slope;
   /// BucketStart[b]: a node at or before every s with bucket b; the last node is never one.
-  std::vector<std::size_t> BucketStart;
+  std::vector<std::uint32_t> BucketStart;
   double BucketScale = 0.0;
-  std::size_t LastBucket = 0;
+  int LastBucket = 0;
+  /// The first and last node (an empty range without nodes: Evaluate goes outside).
+  double X0 = 0.0, XN = 0.0;
   bool Clamp = true;
   double Constant = 0.0;
 };

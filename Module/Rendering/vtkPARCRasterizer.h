@@ -45,6 +45,7 @@
 
 #include "parcBufferSources.h" // For PassView
 #include "parcPolygonModel.h"  // For PolygonModel
+#include "parcRayCaster.h"     // For ViewGeometry
 
 #include <cstdint> // For std::uint32_t
 #include <memory>  // For std::unique_ptr

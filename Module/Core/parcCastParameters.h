@@ -1,0 +1,68 @@
+// PARC for VTK: what decides a ray's result besides the ray and the field: the ray
+// function (blend mode) with its transfer functions, shading and lights. Shared by the
+// classification (what may contribute) and the caster (what does).
+#ifndef parcCastParameters_h
+#define parcCastParameters_h
+
+#include "parcMath.h"
+#include "parcScalarField.h"
+#include "parcTransferFunction.h"
+
+#include <cstddef>
+#include <vector>
+
+namespace parc
+{
+
+/// The isosurface ray function uses at most this many iso values (the smallest ones).
+constexpr std::size_t MaxIsoValues = 64;
+
+enum class BlendMode
+{
+  Composite,
+  MaximumIntensity,
+  MinimumIntensity,
+  AverageIntensity,
+  Additive,
+  IsoSurface
+};
+
+/// A light in world coordinates.
+struct Light
+{
+  bool Positional = false;
+  Vec3 Position;                     ///< positional lights
+  Vec3 FocalPoint;                   ///< the light points from Position to FocalPoint
+  Vec3 Color{ 1.0, 1.0, 1.0 };       ///< colour times intensity
+  Vec3 Attenuation{ 1.0, 0.0, 0.0 }; ///< constant, linear, quadratic (positional only)
+  double ConeAngle = 180.0;          ///< degrees; >= 90 means no spot
+  double Exponent = 1.0;             ///< spot exponent
+};
+
+/// Everything that decides what a ray returns, except the ray and the field.
+struct CastParameters
+{
+  BlendMode Blend = BlendMode::Composite;
+  Interpolation Interp = Interpolation::Linear;
+  PiecewiseLinearFunction Opacity; ///< scalar opacity, per unit distance
+  ColorTable Color;
+  bool UseGradientOpacity = false;
+  PiecewiseLinearFunction GradientOpacity; ///< of the world-space gradient magnitude
+  double OpacityUnitDistance = 1.0;        ///< world units
+  double SampleDistance = 1.0;             ///< dt, world units
+  double TerminationOpacity = 0.99;
+  std::vector<double> IsoValues;
+  double AverageRange[2] = { -1e300, 1e300 };
+  bool Shade = false;
+  double Ambient = 0.1, Diffuse = 0.7, Specular = 0.2, SpecularPower = 10.0;
+  std::vector<Light> Lights;
+  Matrix4 WorldToIndex; ///< world -> voxel-index coordinates (affine)
+  /// Composite and additive rays with linear interpolation do not interpolate samples in
+  /// cells whose 8 corners fail the contribution rule (parcClassification.h): such samples
+  /// have opacity exactly 0, so the image is the same bit for bit. Off only to test that.
+  bool SkipEmptyCells = true;
+};
+
+} // namespace parc
+
+#endif
