@@ -202,6 +202,8 @@ struct RayContext
   double FirstHit = std::numeric_limits<double>::infinity();
   /// The corners of the cell the last lattice sample was in.
   CellCorners Corners;
+  /// The voxel differences of the cell the last gradient was taken in.
+  CellDifferences Differences;
   /// Half vectors of the first directional lights for this ray (Blinn-Phong).
   std::array<Vec3, MaxHoistedLights> HalfVectors;
 
@@ -257,15 +259,15 @@ struct RayContext
     return true;
   }
   /// The world-space gradient at ray parameter t.
-  Vec3 WorldGradient(double t) const
+  Vec3 WorldGradient(double t)
   {
     ++this->Stats.GradientEvaluations;
-    const Vec3 g = this->Field.Gradient(this->IndexPosition(t), this->P.Interp);
+    const Vec3 g = this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences);
     return this->P.WorldToIndex.TransposeTransformVector(g);
   }
   /// Scales opacity a by the gradient opacity of gradient g (computed only when needed);
   /// false when the result is 0.
-  bool ApplyGradientOpacity(float& a, double t, Vec3& g, bool& haveGradient) const
+  bool ApplyGradientOpacity(float& a, double t, Vec3& g, bool& haveGradient)
   {
     if (!this->P.UseGradientOpacity)
     {
@@ -292,7 +294,17 @@ struct RayContext
     {
       return a;
     }
-    return 1.f - std::pow(1.f - a, this->OpacityExponent);
+    const float transparency = 1.f - a;
+    // The sample distances of half and a quarter of the unit distance by square roots.
+    if (this->OpacityExponent == 0.5f)
+    {
+      return 1.f - std::sqrt(transparency);
+    }
+    if (this->OpacityExponent == 0.25f)
+    {
+      return 1.f - std::sqrt(std::sqrt(transparency));
+    }
+    return 1.f - std::pow(transparency, this->OpacityExponent);
   }
   double SpecularTerm(double ndh) const
   {

@@ -73,6 +73,14 @@ struct CellCorners
   bool Contributing = true; ///< the caller's verdict on the cell (see RayCaster)
 };
 
+/// The voxel differences v(c + e_a) - v(c - e_a) at the 8 corners of the cell a ray's
+/// gradient was taken in last, per axis a: the next gradient in that cell reuses them.
+struct CellDifferences
+{
+  std::ptrdiff_t Offset = -1; ///< the cell's first voxel, or -1
+  float Values[3][8];
+};
+
 /// Typed, non-owning read access to a field's values (see the file comment).
 template <typename T>
 class FieldView
@@ -165,7 +173,14 @@ public:
   /// scalar units per voxel index; one-sided where p is within one voxel of a box face.
   Vec3 Gradient(const Vec3& p, Interpolation mode) const
   {
-    return mode == Interpolation::Linear ? this->GradientLinear(p) : this->GradientNearest(p);
+    CellDifferences differences;
+    return this->Gradient(p, mode, differences);
+  }
+  /// The same, reusing (and updating) the differences of the cell of the last gradient.
+  Vec3 Gradient(const Vec3& p, Interpolation mode, CellDifferences& differences) const
+  {
+    return mode == Interpolation::Linear ? this->GradientLinear(p, differences)
+                                         : this->GradientNearest(p);
   }
 
 private:
@@ -210,7 +225,7 @@ private:
     return Interpolate(c, f);
   }
 
-  Vec3 GradientLinear(const Vec3& p) const
+  Vec3 GradientLinear(const Vec3& p, CellDifferences& differences) const
   {
     int cell[3];
     float f[3];
@@ -226,21 +241,25 @@ private:
     }
     // Inside, f(p + e_a) - f(p - e_a) is the trilinear interpolation, in p's own cell, of
     // the voxel differences v(c + e_a) - v(c - e_a) at its 8 corners.
-    const T* v = this->CellPointer(cell);
-    Vec3 g;
-    for (int a = 0; a < 3; ++a)
+    const std::ptrdiff_t offset =
+      cell[0] * this->Step[0] + cell[1] * this->Step[1] + cell[2] * this->Step[2];
+    if (offset != differences.Offset)
     {
-      const std::ptrdiff_t s = this->Step[a];
-      float d[8];
-      for (int n = 0; n < 8; ++n)
+      const T* v = this->Data + offset;
+      for (int a = 0; a < 3; ++a)
       {
-        const T* corner = v + ((n & 1) ? this->Step[0] : 0) + ((n & 2) ? this->Step[1] : 0) +
-          ((n & 4) ? this->Step[2] : 0);
-        d[n] = static_cast<float>(corner[s]) - static_cast<float>(corner[-s]);
+        const std::ptrdiff_t s = this->Step[a];
+        for (int n = 0; n < 8; ++n)
+        {
+          const T* corner = v + ((n & 1) ? this->Step[0] : 0) + ((n & 2) ? this->Step[1] : 0) +
+            ((n & 4) ? this->Step[2] : 0);
+          differences.Values[a][n] = static_cast<float>(corner[s]) - static_cast<float>(corner[-s]);
+        }
       }
-      g[a] = 0.5 * Interpolate(d, f);
+      differences.Offset = offset;
     }
-    return g;
+    return { 0.5 * Interpolate(differences.Values[0], f), 0.5 * Interpolate(differences.Values[1], f),
+      0.5 * Interpolate(differences.Values[2], f) };
   }
   /// Central differences of SampleLinear with the offsets clamped to the box.
   Vec3 GradientNearFaces(const Vec3& p, const int cell[3], const float f[3]) const
