@@ -13,8 +13,10 @@
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
 #include <vtkPointData.h>
+#include <vtkDataArray.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
+#include <vtkSMPTools.h>
 #include <vtkTimerLog.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
@@ -52,6 +54,14 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
   --repeat N            timed renders after the warm-up renders (default 1); the
                         warm-up includes the frames on which Auto tries each pass
   --compare-fixed-point also render with vtkFixedPointVolumeRayCastMapper
+  --versus-fixed-point R  R rounds of interleaved renders (this mapper with acceleration
+                        none, this mapper with auto, vtkFixedPointVolumeRayCastMapper at
+                        the same sample distance): minimum and median times (table)
+  --sample-cost R       R interleaved rounds of the scene unshaded and shaded, acceleration
+                        none: casting ns per sample per thread, and the extra ns per
+                        contributing shaded sample (table)
+  --threads N           threads for vtkSMPTools (default: all cores)
+  --memory              print the bytes the mapper holds, per structure
   --json                print statistics as JSON
   --help
 )";
@@ -61,7 +71,8 @@ struct Options
   std::string Volume, Output = "parc.png", Blend = "composite", TF, Acceleration = "auto";
   double Iso = 0.0, Azimuth = 30.0, Elevation = 20.0, Zoom = 1.0, SampleDistance = 0.0;
   bool HasIso = false, Shade = false, Parallel = false, Compare = false, Json = false;
-  bool HasPosition = false, HasFocal = false, CompareAcceleration = false;
+  bool HasPosition = false, HasFocal = false, CompareAcceleration = false, Memory = false;
+  int Versus = 0, SampleCost = 0, Threads = 0;
   double Supercell[3] = { 2, 2, 2 };
   std::vector<double> Sweep;
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
@@ -132,6 +143,10 @@ Options Parse(int argc, char* argv[])
     else if (a == "--acceleration") { o.Acceleration = value(); }
     else if (a == "--repeat") { o.Repeat = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--compare-fixed-point") { o.Compare = true; }
+    else if (a == "--versus-fixed-point") { o.Versus = static_cast<int>(ToNumber(a, value())); }
+    else if (a == "--sample-cost") { o.SampleCost = static_cast<int>(ToNumber(a, value())); }
+    else if (a == "--threads") { o.Threads = static_cast<int>(ToNumber(a, value())); }
+    else if (a == "--memory") { o.Memory = true; }
     else if (a == "--supercell") { ToTriple(a, value(), o.Supercell); }
     else if (a == "--compare-acceleration") { o.CompareAcceleration = true; }
     else if (a == "--sweep-supercells")
@@ -165,6 +180,10 @@ Options Parse(int argc, char* argv[])
   if (o.Repeat < 1 || o.Zoom <= 0.0 || o.SampleDistance < 0.0)
   {
     Fail("--repeat must be >= 1, --zoom and --sample-distance > 0");
+  }
+  if (o.Versus < 0 || o.SampleCost < 0 || o.Threads < 0)
+  {
+    Fail("--versus-fixed-point, --sample-cost and --threads take a positive number");
   }
   return o;
 }
@@ -293,6 +312,110 @@ void CompareAccelerationModes(vtkRenderWindow* window, vtkPARCVolumeMapper* mapp
     mapper->GetLastClassificationTime());
 }
 
+/// The minimum and median of times.
+std::pair<double, double> MinMedian(std::vector<double> times)
+{
+  std::sort(times.begin(), times.end());
+  return { times.front(), times[times.size() / 2] };
+}
+
+/// rounds x (this mapper without acceleration, with Auto, vtkFixedPointVolumeRayCastMapper),
+/// interleaved after a warm-up of each (markdown table of wall times per frame).
+void VersusFixedPoint(vtkRenderWindow* window, vtkVolume* volume, vtkPARCVolumeMapper* parc,
+  vtkImageData* image, int rounds)
+{
+  vtkNew<vtkPARCVolumeMapper> none;
+  none->SetInputData(image);
+  none->SetBlendMode(parc->GetBlendMode());
+  none->SetSampleDistance(parc->GetLastSampleDistance());
+  none->SetAccelerationModeToNone();
+  vtkNew<vtkPARCVolumeMapper> automatic;
+  automatic->SetInputData(image);
+  automatic->SetBlendMode(parc->GetBlendMode());
+  automatic->SetSampleDistance(parc->GetLastSampleDistance());
+  automatic->SetSupercellSize(parc->GetSupercellSize());
+  automatic->SetAccelerationModeToAuto();
+  vtkNew<vtkFixedPointVolumeRayCastMapper> fixed;
+  fixed->SetInputData(image);
+  fixed->SetBlendMode(parc->GetBlendMode());
+  fixed->SetAutoAdjustSampleDistances(0);
+  fixed->SetLockSampleDistanceToInputSpacing(0);
+  fixed->SetSampleDistance(parc->GetLastSampleDistance());
+  fixed->SetImageSampleDistance(1.0);
+  vtkVolumeMapper* mappers[3] = { none, automatic, fixed };
+  const char* names[3] = { "PARC, acceleration none", "PARC, Auto",
+    "vtkFixedPointVolumeRayCastMapper" };
+  for (vtkVolumeMapper* m : mappers)
+  {
+    volume->SetMapper(m);
+    if (auto* p = vtkPARCVolumeMapper::SafeDownCast(m))
+    {
+      WarmUp(window, p);
+    }
+    window->Render();
+  }
+  std::vector<double> times[3];
+  for (int r = 0; r < rounds; ++r)
+  {
+    for (int i = 0; i < 3; ++i)
+    {
+      volume->SetMapper(mappers[i]);
+      times[i].push_back(TimedRender(window));
+    }
+  }
+  volume->SetMapper(parc);
+  const double fixedMedian = MinMedian(times[2]).second;
+  std::printf("| mapper | min (s) | median (s) | FixedPoint median / median |\n|---|---|---|---|\n");
+  for (int i = 0; i < 3; ++i)
+  {
+    const auto t = MinMedian(times[i]);
+    std::printf("| %s | %.4f | %.4f | %.2fx |\n", names[i], t.first, t.second, fixedMedian / t.second);
+  }
+  std::printf("Auto used %s; %d interleaved rounds after warm-up\n",
+    vtkPARCVolumeMapper::GetAccelerationModeAsString(automatic->GetLastAccelerationMode()), rounds);
+}
+
+/// Casting cost per sample (unshaded) and per contributing shaded sample (the shaded cast
+/// minus the unshaded one), acceleration none, rounds interleaved (markdown table).
+void SampleCost(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, vtkVolumeProperty* property,
+  int rounds)
+{
+  const int mode = mapper->GetAccelerationMode();
+  const int shade = property->GetShade();
+  mapper->SetAccelerationModeToNone();
+  std::vector<double> casting[2];
+  vtkIdType samples[2] = { 0, 0 }, contributing[2] = { 0, 0 }, gradients = 0;
+  for (int r = 0; r <= rounds; ++r) // round 0 warms up
+  {
+    for (int shaded = 0; shaded < 2; ++shaded)
+    {
+      property->SetShade(shaded);
+      window->Render();
+      if (r > 0)
+      {
+        casting[shaded].push_back(mapper->GetLastCastingTime());
+      }
+      samples[shaded] = mapper->GetLastSampleCount();
+      contributing[shaded] = mapper->GetLastContributingSampleCount();
+      gradients = shaded ? mapper->GetLastGradientCount() : gradients;
+    }
+  }
+  property->SetShade(shade);
+  mapper->SetAccelerationMode(mode);
+  const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();
+  const double unshaded = MinMedian(casting[0]).first, shaded = MinMedian(casting[1]).first;
+  const double perSample = 1e9 * unshaded * threads / std::max<vtkIdType>(samples[0], 1);
+  const double perShaded =
+    1e9 * (shaded - unshaded) * threads / std::max<vtkIdType>(contributing[1], 1);
+  std::printf("| casting, unshaded (s) | casting, shaded (s) | samples | contributing | gradients "
+              "| ns per sample per thread (unshaded) | extra ns per contributing shaded sample "
+              "per thread |\n|---|---|---|---|---|---|---|\n");
+  std::printf("| %.4f | %.4f | %lld | %lld | %lld | %.1f | %.1f |\n", unshaded, shaded,
+    static_cast<long long>(samples[0]), static_cast<long long>(contributing[1]),
+    static_cast<long long>(gradients), perSample, perShaded);
+  std::printf("minimum casting times of %d interleaved rounds, %d threads\n", rounds, threads);
+}
+
 /// Polygons against ray steps: cubic supercells of each size (markdown table).
 void SweepSupercells(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper,
   const std::vector<double>& sizes, int repeat)
@@ -313,6 +436,10 @@ void SweepSupercells(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper,
 int main(int argc, char* argv[])
 {
   const Options o = Parse(argc, argv);
+  if (o.Threads > 0)
+  {
+    vtkSMPTools::Initialize(o.Threads);
+  }
   const int blend = BlendMode(o.Blend);
   const int acceleration = AccelerationMode(o.Acceleration);
   vtkNew<vtkImageData> image;
@@ -425,9 +552,23 @@ int main(int argc, char* argv[])
   const std::string accel =
     vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode());
   const vtkIdType samples = mapper->GetLastSampleCount();
-  if (o.CompareAcceleration || !o.Sweep.empty())
+  if (o.CompareAcceleration || !o.Sweep.empty() || o.Versus > 0 || o.SampleCost > 0)
   {
     volume->SetMapper(mapper);
+  }
+  if (o.Memory)
+  {
+    mapper->PrintMemory(std::cout);
+    std::cout << "Input scalars (bytes): "
+              << image->GetPointData()->GetScalars()->GetActualMemorySize() * 1024 << "\n";
+  }
+  if (o.Versus > 0)
+  {
+    VersusFixedPoint(window, volume, mapper, image, o.Versus);
+  }
+  if (o.SampleCost > 0)
+  {
+    SampleCost(window, mapper, property, o.SampleCost);
   }
   if (o.CompareAcceleration)
   {

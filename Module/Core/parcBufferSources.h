@@ -39,6 +39,8 @@ public:
     const Matrix4& worldToIndex);
   /// Gives the buffer back (to be filled again without reallocating); the source is empty.
   std::vector<float> ReleaseBuffer() { return std::move(this->NearFar); }
+  /// Memory held by the buffer, in bytes.
+  std::size_t GetMemorySize() const { return this->NearFar.capacity() * sizeof(float); }
 
   void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const override;
   bool MayHaveSegments(int px, int py) const override;
@@ -63,6 +65,8 @@ public:
     const SupercellGrid* grid, int axis, int firstPlane, const Matrix4& worldToIndex);
   /// Gives the buffer back (to be filled again without reallocating); the source is empty.
   std::vector<std::uint32_t> ReleaseBuffer() { return std::move(this->Bits); }
+  /// Memory held by the buffer, in bytes.
+  std::size_t GetMemorySize() const { return this->Bits.capacity() * sizeof(std::uint32_t); }
 
   void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const override;
   bool MayHaveSegments(int px, int py) const override;

@@ -29,6 +29,11 @@ struct PolygonModel
   double PlanesHigh = 0.0;    ///< colour model: index coordinate where the last plane ends
 
   std::size_t GetNumberOfQuads() const { return this->Vertices.size() / 4; }
+  /// Memory held by the model, in bytes.
+  std::size_t GetMemorySize() const
+  {
+    return this->Vertices.capacity() * sizeof(Vec3) + this->Planes.capacity() * sizeof(int);
+  }
   /// Total area in voxel-index units.
   double GetArea() const;
 };

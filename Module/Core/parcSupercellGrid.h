@@ -40,6 +40,8 @@ public:
   const double* GetSize() const { return this->Size; }
   std::size_t GetNumberOfSupercells() const { return this->Flags.size(); }
   std::size_t GetNumberOfContributing() const { return this->ContributingCount; }
+  /// Memory held by the grid's flags, in bytes.
+  std::size_t GetMemorySize() const { return this->Flags.capacity(); }
 
   /// The coordinate (voxel index) of the lower face of supercell i along axis; i may be
   /// Counts[axis], the upper face of the last one.

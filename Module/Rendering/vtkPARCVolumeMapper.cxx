@@ -29,6 +29,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace
@@ -222,6 +223,9 @@ public:
       return static_cast<int>(std::count(this->Measured, this->Measured + Count, false));
     }
   } Trials;
+
+  /// Bytes held per structure (see GetMemorySize).
+  std::vector<std::pair<const char*, std::size_t>> Memory() const;
 
   /// The mode Auto resolves to for the current classification, ray function and view.
   int ChooseMode(int requested, const vtkPARCRasterizer::View& passView);
@@ -758,6 +762,45 @@ void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
      << "Casting time (s): " << in.CastingTime << "\n"
      << "Projection time (s): " << in.ProjectionTime << "\n"
      << "Render time (s): " << in.RenderTime << "\n";
+}
+
+//------------------------------------------------------------------------------
+std::vector<std::pair<const char*, std::size_t>> vtkPARCVolumeMapper::vtkInternals::Memory() const
+{
+  std::size_t colorModels = 0;
+  for (const parc::PolygonModel& model : this->ColorModels)
+  {
+    colorModels += model.GetMemorySize();
+  }
+  return { { "scalar copy", this->Field.GetMemorySize() },
+    { "range pyramid", this->Pyramid.GetMemorySize() },
+    { "supercell flags", this->Grid.GetMemorySize() },
+    { "depth model", this->DepthModel.GetMemorySize() },
+    { "colour models", colorModels },
+    { "depth buffer", this->DepthSource.GetMemorySize() },
+    { "bit-plane buffer", this->PlaneSource.GetMemorySize() },
+    { "ray-cast image", this->Image.capacity() * sizeof(float) },
+    { "opaque depth", this->Depth.capacity() * sizeof(float) },
+    { "display image", this->Display.capacity() } };
+}
+
+vtkIdType vtkPARCVolumeMapper::GetMemorySize()
+{
+  std::size_t total = 0;
+  for (const auto& entry : this->Internals->Memory())
+  {
+    total += entry.second;
+  }
+  return static_cast<vtkIdType>(total);
+}
+
+void vtkPARCVolumeMapper::PrintMemory(ostream& os)
+{
+  for (const auto& entry : this->Internals->Memory())
+  {
+    os << "Memory, " << entry.first << " (bytes): " << entry.second << "\n";
+  }
+  os << "Memory, total (bytes): " << this->GetMemorySize() << "\n";
 }
 
 //------------------------------------------------------------------------------
