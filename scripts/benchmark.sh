@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Benchmarks of PARC against unaccelerated casting, every mode side by side in one run per
 # scene (issues 5 and 6): samples, cells, polygons, projection, casting and total time,
-# speedup, and whether the float image is bit-identical. Records the machine and settings.
+# speedup, and whether the float image is bit-identical; against
+# vtkFixedPointVolumeRayCastMapper (interleaved, minimum and median), the casting cost per
+# sample and the memory per structure (issue 11). Records the machine and settings.
 # Output: a markdown report on stdout and in out/benchmark.md. Scenes from ../shared/data
 # are skipped when absent.
 set -euo pipefail
@@ -52,6 +54,37 @@ scene() { # title, file, options...
     echo; echo "### $(basename "$1") $(echo "${*:2}" | sed "s|$here/||g")"; echo
     render "$@" --size 600 --acceleration auto --sweep-supercells 1,1.5,2,3,4
   done
+  echo
+  echo "## Against vtkFixedPointVolumeRayCastMapper (issue 11)"
+  echo
+  echo "Sample distance 0.5 voxel for both mappers, $(nproc) threads, wall time per frame of interleaved rounds (none, Auto, FixedPoint, repeated) after warm-up; the MRI head is dense and shaded or unshaded, the iron protein and the embryo are sparse."
+  for args in "$head --tf mri --shade --elevation -80 --azimuth 30" \
+              "$head --tf mri --elevation -80 --azimuth 30" \
+              "$data/ironProt_68x68x68_uint8.raw --tf $tf/iron-protein-cloud.txt" \
+              "$data/embryo_256x256x256_uint8.raw --tf ct-bone"; do
+    set -- $args
+    [ -f "$1" ] || { echo; echo "($1 not found, skipped)"; continue; }
+    for size in 400 800; do
+      echo; echo "### $(basename "$1") $(echo "${*:2}" | sed "s|$here/||g"), ${size}x${size}"; echo
+      xrun "$here/build/bin/parc-render" "$@" --size "$size" --sample-distance 0.5 \
+        --output "$here/out/benchmark.png" --versus-fixed-point 5 | sed -n '/^| mapper/,/^Auto used/p'
+    done
+  done
+  echo
+  echo "## Casting cost per sample (issue 11; goals: 10 ns per sample, 30 ns per contributing shaded sample)"
+  echo
+  echo "MRI head, 400x400, sample distance 0.5 voxel, acceleration none; the unshaded cast per sample, and the shaded minus the unshaded cast per contributing sample, both per thread."
+  for threads in 1 "$(nproc)"; do
+    echo; echo "### $threads thread(s)"; echo
+    xrun "$here/build/bin/parc-render" "$head" --tf mri --elevation -80 --azimuth 30 --size 400 \
+      --sample-distance 0.5 --threads "$threads" --output "$here/out/benchmark.png" --sample-cost 5 \
+      | sed -n '/^| casting/,/^minimum/p'
+  done
+  echo
+  echo "## Memory held by the mapper, per structure (MRI head, shaded, 400x400, after Auto's trials)"
+  echo
+  xrun "$here/build/bin/parc-render" "$head" --tf mri --shade --elevation -80 --azimuth 30 --size 400 \
+    --sample-distance 0.5 --output "$here/out/benchmark.png" --memory | grep -E '^(Memory|Input)' | sed 's/^/    /'
   echo
   echo "## Reclassification of a 256^3 volume (embryo) after a transfer-function change"
   if [ -f "$data/embryo_256x256x256_uint8.raw" ]; then

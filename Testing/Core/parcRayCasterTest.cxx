@@ -384,6 +384,85 @@ TEST(RayCaster, SparseSegmentsGiveBitIdenticalImages)
   }
 }
 
+// The caster's own skip of cells that fail the contribution rule changes no bit, for every
+// ray function it applies to, with shading, gradient opacity and opacity correction.
+TEST(RayCaster, SkippingEmptyCellsGivesBitIdenticalImages)
+{
+  const parc::ScalarField field = Blobs();
+  for (BlendMode mode : { BlendMode::Composite, BlendMode::Additive })
+  {
+    for (double dt : { 1.0, 0.5, 0.37 })
+    {
+      for (int variant = 0; variant < 3; ++variant) // plain, shaded, gradient opacity
+      {
+        CastParameters p;
+        p.Opacity.SetNodes({ 0.0, 60.0, 90.0, 140.0, 200.0 }, { 0.0, 0.0, 0.3, 0.0, 0.8 }, true);
+        p.Color.SetTable(0.0, 255.0, { 1.f, 0.f, 0.f, 0.f, 1.f, 0.5f });
+        p.Blend = mode;
+        p.SampleDistance = dt;
+        p.Shade = variant == 1;
+        p.UseGradientOpacity = variant == 2;
+        p.GradientOpacity.SetNodes({ 0.0, 30.0 }, { 0.2, 1.0 }, true);
+        parc::Light light;
+        light.Position = { 0.0, 50.0, 50.0 };
+        p.Lights = { light };
+        const parc::ViewGeometry view = ParallelView(48, 40, 0.4);
+        std::vector<float> skipped(4 * 48 * 40), full(4 * 48 * 40);
+        parc::CastStatistics s1, s2;
+        parc::RayCaster caster;
+        ASSERT_TRUE(caster.Prepare(&field, &p));
+        caster.CastImage(view, nullptr, parc::WholeRaySource(), skipped.data(), s1);
+        p.SkipEmptyCells = false;
+        ASSERT_TRUE(caster.Prepare(&field, &p));
+        caster.CastImage(view, nullptr, parc::WholeRaySource(), full.data(), s2);
+        EXPECT_EQ(0, std::memcmp(skipped.data(), full.data(), full.size() * sizeof(float)))
+          << "mode " << static_cast<int>(mode) << " dt " << dt << " variant " << variant;
+        EXPECT_EQ(s1.ContributingSamples, s2.ContributingSamples);
+        EXPECT_GT(s1.ContributingSamples, 0u);
+      }
+    }
+  }
+}
+
+// A gradient opacity that is the same everywhere (VTK creates a constant 1 on any
+// GetGradientOpacity call) costs no gradient, and a constant factor scales the opacity.
+TEST(RayCaster, ConstantGradientOpacityNeedsNoGradient)
+{
+  const parc::ScalarField field = Blobs();
+  CastParameters p;
+  p.Opacity.SetNodes({ 0.0, 60.0, 200.0 }, { 0.0, 0.0, 0.5 }, true);
+  p.Color.SetTable(0.0, 255.0, { 1.f, 0.5f, 0.f, 0.f, 0.5f, 1.f });
+  p.SampleDistance = 0.5;
+  const parc::ViewGeometry view = ParallelView(32, 32, 0.3);
+  auto cast = [&](std::vector<float>& image, parc::CastStatistics& stats) {
+    parc::RayCaster caster;
+    ASSERT_TRUE(caster.Prepare(&field, &p));
+    image.assign(4 * 32 * 32, 0.f);
+    caster.CastImage(view, nullptr, parc::WholeRaySource(), image.data(), stats);
+  };
+  std::vector<float> without, constantOne, half, halfOpacity;
+  parc::CastStatistics s0, s1, s2, s3;
+  cast(without, s0);
+  p.UseGradientOpacity = true;
+  p.GradientOpacity.SetNodes({ 0.0, 100.0 }, { 1.0, 1.0 }, true);
+  cast(constantOne, s1);
+  EXPECT_EQ(s1.GradientEvaluations, 0u);
+  EXPECT_EQ(0, std::memcmp(without.data(), constantOne.data(), without.size() * sizeof(float)));
+  p.GradientOpacity.SetNodes({ 0.0, 100.0 }, { 0.5, 0.5 }, true);
+  cast(half, s2);
+  EXPECT_EQ(s2.GradientEvaluations, 0u);
+  p.UseGradientOpacity = false;
+  p.Opacity.SetNodes({ 0.0, 60.0, 200.0 }, { 0.0, 0.0, 0.25 }, true);
+  cast(halfOpacity, s3);
+  EXPECT_EQ(0, std::memcmp(half.data(), halfOpacity.data(), half.size() * sizeof(float)))
+    << "a constant factor 0.5 equals half the scalar opacity";
+  p.Opacity.SetNodes({ 0.0, 60.0, 200.0 }, { 0.0, 0.0, 0.5 }, true);
+  p.UseGradientOpacity = true;
+  p.GradientOpacity.SetNodes({ 0.0, 100.0 }, { 0.5, 1.0 }, true);
+  cast(half, s2);
+  EXPECT_GT(s2.GradientEvaluations, 0u) << "a varying gradient opacity needs gradients";
+}
+
 TEST(RayCaster, ImageIsTheSameForOneAndManyThreads)
 {
   const parc::ScalarField field = Blobs();
