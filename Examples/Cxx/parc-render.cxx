@@ -17,6 +17,7 @@
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkSMPTools.h>
+#include <vtkSmartPointer.h>
 #include <vtkTimerLog.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
@@ -324,17 +325,17 @@ std::pair<double, double> MinMedian(std::vector<double> times)
 void VersusFixedPoint(vtkRenderWindow* window, vtkVolume* volume, vtkPARCVolumeMapper* parc,
   vtkImageData* image, int rounds)
 {
-  vtkNew<vtkPARCVolumeMapper> none;
-  none->SetInputData(image);
-  none->SetBlendMode(parc->GetBlendMode());
-  none->SetSampleDistance(parc->GetLastSampleDistance());
-  none->SetAccelerationModeToNone();
-  vtkNew<vtkPARCVolumeMapper> automatic;
-  automatic->SetInputData(image);
-  automatic->SetBlendMode(parc->GetBlendMode());
-  automatic->SetSampleDistance(parc->GetLastSampleDistance());
-  automatic->SetSupercellSize(parc->GetSupercellSize());
-  automatic->SetAccelerationModeToAuto();
+  auto copyOf = [&](int mode) {
+    vtkSmartPointer<vtkPARCVolumeMapper> m = vtkSmartPointer<vtkPARCVolumeMapper>::New();
+    m->SetInputData(image);
+    m->SetBlendMode(parc->GetBlendMode());
+    m->SetSampleDistance(parc->GetLastSampleDistance());
+    m->SetSupercellSize(parc->GetSupercellSize());
+    m->SetAccelerationMode(mode);
+    return m;
+  };
+  const auto none = copyOf(vtkPARCVolumeMapper::ACCELERATION_NONE);
+  const auto automatic = copyOf(vtkPARCVolumeMapper::ACCELERATION_AUTO);
   vtkNew<vtkFixedPointVolumeRayCastMapper> fixed;
   fixed->SetInputData(image);
   fixed->SetBlendMode(parc->GetBlendMode());
