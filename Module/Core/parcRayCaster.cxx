@@ -184,13 +184,11 @@ struct RayContext
 {
   const View& Field;
   const CastParameters& P;
-  const RayCaster& Caster;
   const Ray& WorldRay;
   Vec3 IndexOrigin;
   Vec3 IndexDirection;
   double Dt;
   float OpacityExponent;
-  bool GradientNeeded;
   bool GradientOpacityConstant;
   float GradientOpacityValue;
   int IntegerSpecularPower;
@@ -750,11 +748,10 @@ void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
     return;
   }
   using Context = RayContext<View>;
-  Context context{ field, *this->Params, *this, ray, indexOrigin, indexDirection, dt,
-    this->OpacityExponent, this->GradientNeeded, this->GradientOpacityConstant,
-    this->GradientOpacityValue, this->IntegerSpecularPower, this->SkipEmptyCells, this->Rule,
-    this->DirectionalLights,
-    this->PositionalLights, stats };
+  Context context{ field, *this->Params, ray, indexOrigin, indexDirection, dt,
+    this->OpacityExponent, this->GradientOpacityConstant, this->GradientOpacityValue,
+    this->IntegerSpecularPower, this->SkipEmptyCells, this->Rule, this->DirectionalLights,
+    this->PositionalLights, stats, std::numeric_limits<double>::infinity(), {}, {}, {} };
   context.Begin();
   switch (this->Params->Blend)
   {
