@@ -286,6 +286,24 @@ struct RayContext
     }
     return a != 0.f;
   }
+  /// The sample s at t and its corrected opacity a (with gradient opacity; g holds the
+  /// gradient when haveGradient), counted and recorded as a hit; false when a is 0.
+  bool ContributingOpacity(double t, float& s, float& a, Vec3& g, bool& haveGradient)
+  {
+    if (!this->ContributingSampleAt(t, s))
+    {
+      return false;
+    }
+    a = this->P.Opacity.Evaluate(s);
+    if (a == 0.f || !this->ApplyGradientOpacity(a, t, g, haveGradient))
+    {
+      return false;
+    }
+    a = this->CorrectOpacity(a);
+    ++this->Stats.ContributingSamples;
+    this->RecordHit(t);
+    return true;
+  }
   float CorrectOpacity(float a) const
   {
     if (this->OpacityExponent == 1.f || a >= 1.f)
@@ -405,25 +423,13 @@ struct CompositeFunction
   bool operator()(long k, bool)
   {
     const double t = k * this->C.Dt;
-    float s;
-    if (!this->C.ContributingSampleAt(t, s))
-    {
-      return true;
-    }
-    float a = this->C.P.Opacity.Evaluate(s);
-    if (a == 0.f)
-    {
-      return true;
-    }
+    float s, a;
     Vec3 g;
     bool haveGradient = false;
-    if (!this->C.ApplyGradientOpacity(a, t, g, haveGradient))
+    if (!this->C.ContributingOpacity(t, s, a, g, haveGradient))
     {
       return true;
     }
-    a = this->C.CorrectOpacity(a);
-    ++this->C.Stats.ContributingSamples;
-    this->C.RecordHit(t);
     float rgb[3];
     this->C.P.Color.Lookup(s, rgb);
     if (this->C.P.Shade)
@@ -521,25 +527,13 @@ struct AdditiveFunction
 
   bool operator()(long k, bool)
   {
-    float s;
-    if (!this->C.ContributingSampleAt(k * this->C.Dt, s))
-    {
-      return true;
-    }
-    float a = this->C.P.Opacity.Evaluate(s);
-    if (a == 0.f)
-    {
-      return true;
-    }
+    float s, a;
     Vec3 g;
     bool haveGradient = false;
-    if (!this->C.ApplyGradientOpacity(a, k * this->C.Dt, g, haveGradient))
+    if (!this->C.ContributingOpacity(k * this->C.Dt, s, a, g, haveGradient))
     {
       return true;
     }
-    a = this->C.CorrectOpacity(a);
-    ++this->C.Stats.ContributingSamples;
-    this->C.RecordHit(k * this->C.Dt);
     float rgb[3];
     this->C.P.Color.Lookup(s, rgb);
     for (int c = 0; c < 3; ++c)
