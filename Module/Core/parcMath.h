@@ -48,6 +48,32 @@ inline Vec3 Normalized(const Vec3& a)
   return len > 0.0 ? (1.0 / len) * a : a;
 }
 
+/// A 3-vector of floats: the caster's per-sample shading arithmetic (gradients, normals,
+/// light and half vectors).
+struct Vec3f
+{
+  float X = 0.f, Y = 0.f, Z = 0.f;
+
+  constexpr Vec3f() = default;
+  constexpr Vec3f(float x, float y, float z)
+    : X(x)
+    , Y(y)
+    , Z(z)
+  {
+  }
+  explicit Vec3f(const Vec3& v)
+    : X(static_cast<float>(v.X))
+    , Y(static_cast<float>(v.Y))
+    , Z(static_cast<float>(v.Z))
+  {
+  }
+};
+
+inline Vec3f operator+(const Vec3f& a, const Vec3f& b) { return { a.X + b.X, a.Y + b.Y, a.Z + b.Z }; }
+inline Vec3f operator*(float s, const Vec3f& a) { return { s * a.X, s * a.Y, s * a.Z }; }
+inline float Dot(const Vec3f& a, const Vec3f& b) { return a.X * b.X + a.Y * b.Y + a.Z * b.Z; }
+inline float Length(const Vec3f& a) { return std::sqrt(Dot(a, a)); }
+
 /// A 4x4 row-major matrix of doubles acting on column vectors (VTK's convention).
 struct Matrix4
 {

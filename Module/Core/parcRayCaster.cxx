@@ -110,44 +110,52 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   {
     return false;
   }
-  this->OpacityExponent =
+  RenderConstants& k = this->Constants;
+  k.OpacityExponent =
     static_cast<float>(parameters->SampleDistance / parameters->OpacityUnitDistance);
   double constant = 1.0;
-  this->GradientOpacityConstant =
+  k.GradientOpacityConstant =
     parameters->UseGradientOpacity && parameters->GradientOpacity.IsConstant(constant);
-  this->GradientOpacityValue = static_cast<float>(constant);
-  this->GradientNeeded = parameters->Shade ||
-    (parameters->UseGradientOpacity && !this->GradientOpacityConstant);
+  k.GradientOpacityValue = static_cast<float>(constant);
+  k.GradientNeeded =
+    parameters->Shade || (parameters->UseGradientOpacity && !k.GradientOpacityConstant);
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      k.GradientToWorld[3 * r + c] = static_cast<float>(parameters->WorldToIndex(c, r));
+    }
+  }
   const double power = parameters->SpecularPower;
-  this->IntegerSpecularPower = (power >= 0.0 && power <= MaxIntegerSpecularPower &&
-                                 power == std::floor(power))
+  k.IntegerSpecularPower =
+    (power >= 0.0 && power <= MaxIntegerSpecularPower && power == std::floor(power))
     ? static_cast<int>(power)
     : -1;
-  this->DirectionalLights.clear();
-  this->PositionalLights.clear();
+  k.DirectionalLights.clear();
+  k.PositionalLights.clear();
   for (const Light& light : parameters->Lights)
   {
     if (light.Positional)
     {
-      this->PositionalLights.push_back(&light);
+      k.PositionalLights.push_back(&light);
     }
     else
     {
-      this->DirectionalLights.push_back({ Normalized(light.Position - light.FocalPoint), light.Color });
+      k.DirectionalLights.push_back({ Vec3f(Normalized(light.Position - light.FocalPoint)),
+        Vec3f(parameters->Diffuse * light.Color), Vec3f(parameters->Specular * light.Color) });
     }
   }
-  this->SkipEmptyCells = parameters->SkipEmptyCells &&
-    parameters->Interp == Interpolation::Linear &&
+  k.SkipEmptyCells = parameters->SkipEmptyCells && parameters->Interp == Interpolation::Linear &&
     (parameters->Blend == BlendMode::Composite || parameters->Blend == BlendMode::Additive);
-  if (this->SkipEmptyCells)
+  if (k.SkipEmptyCells)
   {
-    this->Rule.Set(*parameters, field->GetRange());
+    k.Rule.Set(*parameters, field->GetRange());
   }
-  this->SortedIsoValues = parameters->IsoValues;
-  std::sort(this->SortedIsoValues.begin(), this->SortedIsoValues.end());
-  if (this->SortedIsoValues.size() > MaxIsoValues)
+  k.SortedIsoValues = parameters->IsoValues;
+  std::sort(k.SortedIsoValues.begin(), k.SortedIsoValues.end());
+  if (k.SortedIsoValues.size() > MaxIsoValues)
   {
-    this->SortedIsoValues.resize(MaxIsoValues);
+    k.SortedIsoValues.resize(MaxIsoValues);
   }
   return true;
 }
@@ -163,9 +171,9 @@ namespace
 {
 
 /// x^n for a whole n >= 0 by repeated squaring.
-double IntegerPower(double x, int n)
+float IntegerPower(float x, int n)
 {
-  double result = 1.0;
+  float result = 1.f;
   while (n > 0)
   {
     if (n & 1)
@@ -178,44 +186,50 @@ double IntegerPower(double x, int n)
   return result;
 }
 
-/// Per-ray constants shared by the ray functions.
+/// Per-ray state shared by the ray functions, over the per-render constants.
 template <class View>
 struct RayContext
 {
   const View& Field;
   const CastParameters& P;
+  const RayCaster::RenderConstants& K;
   const Ray& WorldRay;
   Vec3 IndexOrigin;
   Vec3 IndexDirection;
   double Dt;
-  float OpacityExponent;
-  bool GradientOpacityConstant;
-  float GradientOpacityValue;
-  int IntegerSpecularPower;
-  bool SkipEmptyCells;
-  const ContributionRule& Rule;
-  const std::vector<RayCaster::DirectionalLight>& DirectionalLights;
-  const std::vector<const Light*>& PositionalLights;
   CastStatistics& Stats;
   double FirstHit = std::numeric_limits<double>::infinity();
   /// The corners of the cell the last lattice sample was in.
   CellCorners Corners;
   /// The voxel differences of the cell the last gradient was taken in.
   CellDifferences Differences;
+  /// Unit vector from the samples to the eye (parallel light rays: the same for all).
+  Vec3f ToEye;
   /// Half vectors of the first directional lights for this ray (Blinn-Phong).
-  std::array<Vec3, MaxHoistedLights> HalfVectors;
+  std::array<Vec3f, MaxHoistedLights> HalfVectors;
 
-  void Begin()
+  RayContext(const View& field, const CastParameters& p, const RayCaster::RenderConstants& k,
+    const Ray& ray, const Vec3& indexOrigin, const Vec3& indexDirection, CastStatistics& stats)
+    : Field(field)
+    , P(p)
+    , K(k)
+    , WorldRay(ray)
+    , IndexOrigin(indexOrigin)
+    , IndexDirection(indexDirection)
+    , Dt(p.SampleDistance)
+    , Stats(stats)
+    , ToEye(-ray.Direction)
   {
-    const std::size_t n = std::min(this->DirectionalLights.size(), MaxHoistedLights);
-    for (std::size_t i = 0; this->P.Shade && i < n; ++i)
+    const std::size_t n = std::min(k.DirectionalLights.size(), MaxHoistedLights);
+    for (std::size_t i = 0; p.Shade && i < n; ++i)
     {
-      this->HalfVectors[i] = this->HalfVector(this->DirectionalLights[i].ToLight);
+      this->HalfVectors[i] = this->HalfVector(k.DirectionalLights[i].ToLight);
     }
   }
-  Vec3 HalfVector(const Vec3& toLight) const
+  Vec3f HalfVector(const Vec3f& toLight) const
   {
-    return Normalized(toLight - this->WorldRay.Direction);
+    const Vec3 d = this->WorldRay.Direction;
+    return Vec3f(Normalized(Vec3(toLight.X - d.X, toLight.Y - d.Y, toLight.Z - d.Z)));
   }
 
   void RecordHit(double t)
@@ -236,7 +250,7 @@ struct RayContext
   /// when the caster skips such cells: its opacity would be exactly 0.
   PARC_HOT_INLINE bool ContributingSampleAt(double t, float& s)
   {
-    if (!this->SkipEmptyCells)
+    if (!this->K.SkipEmptyCells)
     {
       s = this->SampleAt(t);
       return true;
@@ -247,7 +261,7 @@ struct RayContext
     {
       const float* c = this->Corners.Values;
       const auto range = std::minmax({ c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7] });
-      this->Corners.Contributing = this->Rule.IsPossiblyContributing(range.first, range.second);
+      this->Corners.Contributing = this->K.Rule.IsPossiblyContributing(range.first, range.second);
     }
     if (!this->Corners.Contributing)
     {
@@ -257,23 +271,25 @@ struct RayContext
     return true;
   }
   /// The world-space gradient at ray parameter t.
-  Vec3 WorldGradient(double t)
+  Vec3f WorldGradient(double t)
   {
     ++this->Stats.GradientEvaluations;
-    const Vec3 g = this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences);
-    return this->P.WorldToIndex.TransposeTransformVector(g);
+    const Vec3f g(this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences));
+    const float* m = this->K.GradientToWorld;
+    return { m[0] * g.X + m[1] * g.Y + m[2] * g.Z, m[3] * g.X + m[4] * g.Y + m[5] * g.Z,
+      m[6] * g.X + m[7] * g.Y + m[8] * g.Z };
   }
   /// Scales opacity a by the gradient opacity of gradient g (computed only when needed);
   /// false when the result is 0.
-  bool ApplyGradientOpacity(float& a, double t, Vec3& g, bool& haveGradient)
+  bool ApplyGradientOpacity(float& a, double t, Vec3f& g, bool& haveGradient)
   {
     if (!this->P.UseGradientOpacity)
     {
       return true;
     }
-    if (this->GradientOpacityConstant)
+    if (this->K.GradientOpacityConstant)
     {
-      a *= this->GradientOpacityValue;
+      a *= this->K.GradientOpacityValue;
     }
     else
     {
@@ -288,7 +304,7 @@ struct RayContext
   }
   /// The sample s at t and its corrected opacity a (with gradient opacity; g holds the
   /// gradient when haveGradient), counted and recorded as a hit; false when a is 0.
-  bool ContributingOpacity(double t, float& s, float& a, Vec3& g, bool& haveGradient)
+  bool ContributingOpacity(double t, float& s, float& a, Vec3f& g, bool& haveGradient)
   {
     if (!this->ContributingSampleAt(t, s))
     {
@@ -306,92 +322,110 @@ struct RayContext
   }
   float CorrectOpacity(float a) const
   {
-    if (this->OpacityExponent == 1.f || a >= 1.f)
+    const float exponent = this->K.OpacityExponent;
+    if (exponent == 1.f || a >= 1.f)
     {
       return a;
     }
     const float transparency = 1.f - a;
     // The sample distances of half and a quarter of the unit distance by square roots.
-    if (this->OpacityExponent == 0.5f)
+    if (exponent == 0.5f)
     {
       return 1.f - std::sqrt(transparency);
     }
-    if (this->OpacityExponent == 0.25f)
+    if (exponent == 0.25f)
     {
       return 1.f - std::sqrt(std::sqrt(transparency));
     }
-    return 1.f - std::pow(transparency, this->OpacityExponent);
+    return 1.f - std::pow(transparency, exponent);
   }
-  double SpecularTerm(double ndh) const
+  float SpecularTerm(float ndh) const
   {
-    return this->IntegerSpecularPower >= 0 ? IntegerPower(ndh, this->IntegerSpecularPower)
-                                           : std::pow(ndh, this->P.SpecularPower);
+    return this->K.IntegerSpecularPower >= 0
+      ? IntegerPower(ndh, this->K.IntegerSpecularPower)
+      : std::pow(ndh, static_cast<float>(this->P.SpecularPower));
   }
-  /// Shades rgb in place at ray parameter t with world gradient g (Blinn-Phong, two-sided).
-  void Shade(float rgb[3], double t, const Vec3& g) const;
+  /// Shades rgb in place at ray parameter t with world gradient g (Blinn-Phong, two-sided,
+  /// in float).
+  void Shade(float rgb[3], double t, const Vec3f& g) const;
+  /// Adds the positional lights' terms at ray parameter t for unit normal n.
+  void AddPositionalLights(double t, const Vec3f& n, float diffuse[3], float specular[3]) const;
 };
 
 template <class View>
-void RayContext<View>::Shade(float rgb[3], double t, const Vec3& g) const
+void RayContext<View>::Shade(float rgb[3], double t, const Vec3f& g) const
 {
-  const double len = Length(g);
-  double diffuse[3] = { 0.0, 0.0, 0.0 };
-  double specular[3] = { 0.0, 0.0, 0.0 };
-  auto add = [&](const Vec3& color, double attenuation, double ndl, double ndh) {
-    const double spec = ndh > 0.0 ? this->SpecularTerm(ndh) : 0.0;
-    for (int c = 0; c < 3; ++c)
-    {
-      diffuse[c] += attenuation * color[c] * ndl;
-      specular[c] += attenuation * color[c] * spec;
-    }
-  };
-  if (len > 0.0)
+  float diffuse[3] = { 0.f, 0.f, 0.f };
+  float specular[3] = { 0.f, 0.f, 0.f };
+  const float length = Length(g);
+  if (length > 0.f)
   {
-    const Vec3 toEye = -this->WorldRay.Direction;
-    Vec3 n = (-1.0 / len) * g;
-    if (Dot(n, toEye) < 0.0)
+    // The normal faces the eye (two-sided lighting).
+    const float towardsEye = Dot(g, this->ToEye) > 0.f ? 1.f : -1.f;
+    const Vec3f n = (towardsEye / length) * g;
+    const auto& lights = this->K.DirectionalLights;
+    for (std::size_t i = 0; i < lights.size(); ++i)
     {
-      n = -n;
-    }
-    for (std::size_t i = 0; i < this->DirectionalLights.size(); ++i)
-    {
-      const RayCaster::DirectionalLight& light = this->DirectionalLights[i];
-      const double ndl = Dot(n, light.ToLight);
-      if (ndl > 0.0)
+      const RayCaster::DirectionalLight& light = lights[i];
+      const float ndl = Dot(n, light.ToLight);
+      if (ndl > 0.f)
       {
-        const Vec3 h = i < MaxHoistedLights ? this->HalfVectors[i] : this->HalfVector(light.ToLight);
-        add(light.Color, 1.0, ndl, Dot(n, h));
+        const float ndh =
+          Dot(n, i < MaxHoistedLights ? this->HalfVectors[i] : this->HalfVector(light.ToLight));
+        const float spec = ndh > 0.f ? this->SpecularTerm(ndh) : 0.f;
+        for (int c = 0; c < 3; ++c)
+        {
+          diffuse[c] += ndl * (&light.Diffuse.X)[c];
+          specular[c] += spec * (&light.Specular.X)[c];
+        }
       }
     }
-    for (const Light* light : this->PositionalLights)
+    if (!this->K.PositionalLights.empty())
     {
-      const Vec3 x = this->WorldRay.Origin + t * this->WorldRay.Direction;
-      const Vec3 toLight = light->Position - x;
-      const double dist = Length(toLight);
-      const Vec3 l = Normalized(toLight);
-      const double denom =
-        light->Attenuation.X + dist * (light->Attenuation.Y + dist * light->Attenuation.Z);
-      double attenuation = denom > 0.0 ? 1.0 / denom : 1.0;
-      if (light->ConeAngle < 90.0)
-      {
-        const Vec3 spot = Normalized(light->FocalPoint - light->Position);
-        const double c = Dot(-l, spot);
-        attenuation *= (c < std::cos(light->ConeAngle * (M_PI / 180.0)))
-          ? 0.0
-          : std::pow(std::max(c, 0.0), light->Exponent);
-      }
-      const double ndl = Dot(n, l);
-      if (ndl > 0.0 && attenuation != 0.0)
-      {
-        add(light->Color, attenuation, ndl, Dot(n, Normalized(l + toEye)));
-      }
+      this->AddPositionalLights(t, n, diffuse, specular);
     }
   }
+  const float ambient = static_cast<float>(this->P.Ambient);
   for (int c = 0; c < 3; ++c)
   {
-    const double v =
-      rgb[c] * (this->P.Ambient + this->P.Diffuse * diffuse[c]) + this->P.Specular * specular[c];
-    rgb[c] = static_cast<float>(std::min(v, 1.0));
+    rgb[c] = std::min(rgb[c] * (ambient + diffuse[c]) + specular[c], 1.f);
+  }
+}
+
+template <class View>
+void RayContext<View>::AddPositionalLights(
+  double t, const Vec3f& n, float diffuse[3], float specular[3]) const
+{
+  const Vec3 x = this->WorldRay.Origin + t * this->WorldRay.Direction;
+  const Vec3 normal(n.X, n.Y, n.Z);
+  for (const Light* light : this->K.PositionalLights)
+  {
+    const Vec3 toLight = light->Position - x;
+    const double dist = Length(toLight);
+    const Vec3 l = Normalized(toLight);
+    const double denom =
+      light->Attenuation.X + dist * (light->Attenuation.Y + dist * light->Attenuation.Z);
+    double attenuation = denom > 0.0 ? 1.0 / denom : 1.0;
+    if (light->ConeAngle < 90.0)
+    {
+      const Vec3 spot = Normalized(light->FocalPoint - light->Position);
+      const double c = Dot(-l, spot);
+      attenuation *= (c < std::cos(light->ConeAngle * (M_PI / 180.0)))
+        ? 0.0
+        : std::pow(std::max(c, 0.0), light->Exponent);
+    }
+    const double ndl = Dot(normal, l);
+    if (ndl > 0.0 && attenuation != 0.0)
+    {
+      const double ndh = Dot(normal, Normalized(l - this->WorldRay.Direction));
+      const double spec = ndh > 0.0 ? this->SpecularTerm(static_cast<float>(ndh)) : 0.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        const double color = attenuation * light->Color[c];
+        diffuse[c] += static_cast<float>(this->P.Diffuse * color * ndl);
+        specular[c] += static_cast<float>(this->P.Specular * color * spec);
+      }
+    }
   }
 }
 
@@ -424,7 +458,7 @@ struct CompositeFunction
   {
     const double t = k * this->C.Dt;
     float s, a;
-    Vec3 g;
+    Vec3f g;
     bool haveGradient = false;
     if (!this->C.ContributingOpacity(t, s, a, g, haveGradient))
     {
@@ -528,7 +562,7 @@ struct AdditiveFunction
   bool operator()(long k, bool)
   {
     float s, a;
-    Vec3 g;
+    Vec3f g;
     bool haveGradient = false;
     if (!this->C.ContributingOpacity(k * this->C.Dt, s, a, g, haveGradient))
     {
@@ -742,11 +776,7 @@ void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
     return;
   }
   using Context = RayContext<View>;
-  Context context{ field, *this->Params, ray, indexOrigin, indexDirection, dt,
-    this->OpacityExponent, this->GradientOpacityConstant, this->GradientOpacityValue,
-    this->IntegerSpecularPower, this->SkipEmptyCells, this->Rule, this->DirectionalLights,
-    this->PositionalLights, stats, std::numeric_limits<double>::infinity(), {}, {}, {} };
-  context.Begin();
+  Context context(field, *this->Params, this->Constants, ray, indexOrigin, indexDirection, stats);
   switch (this->Params->Blend)
   {
     case BlendMode::Composite:
@@ -765,7 +795,7 @@ void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
       Run(AdditiveFunction<Context>{ context }, ranges, rgba);
       break;
     case BlendMode::IsoSurface:
-      Run(IsoSurfaceFunction<Context>{ context, this->SortedIsoValues }, ranges, rgba);
+      Run(IsoSurfaceFunction<Context>{ context, this->Constants.SortedIsoValues }, ranges, rgba);
       break;
   }
   if (firstHit)

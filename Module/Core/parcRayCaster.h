@@ -97,13 +97,32 @@ public:
   const CastParameters* GetParameters() const { return this->Params; }
   const ScalarField* GetField() const { return this->Field; }
   /// Whether samples need gradients: shading, or a gradient opacity that is not constant.
-  bool NeedsGradient() const { return this->GradientNeeded; }
+  bool NeedsGradient() const { return this->Constants.GradientNeeded; }
 
-  /// Per-render constants of the lights (derived from the parameters by Prepare).
+  /// A directional light as the shading uses it: colours times the material's
+  /// coefficients, in float like every per-sample shading step.
   struct DirectionalLight
   {
-    Vec3 ToLight; ///< unit vector towards the light
-    Vec3 Color;
+    Vec3f ToLight;  ///< unit vector towards the light
+    Vec3f Diffuse;  ///< diffuse coefficient times the light's colour
+    Vec3f Specular; ///< specular coefficient times the light's colour
+  };
+  /// What Prepare derives from the parameters once per render for every ray.
+  struct RenderConstants
+  {
+    float OpacityExponent = 1.f; ///< dt / unit distance
+    bool GradientNeeded = false;
+    bool GradientOpacityConstant = false; ///< then every sample's factor is GradientOpacityValue
+    float GradientOpacityValue = 1.f;
+    /// World gradient = GradientToWorld (row-major 3x3) times the voxel-index gradient: the
+    /// transpose of the world-to-index matrix's linear part.
+    float GradientToWorld[9] = { 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f };
+    int IntegerSpecularPower = -1; ///< SpecularPower when it is a small whole number
+    std::vector<DirectionalLight> DirectionalLights;
+    std::vector<const Light*> PositionalLights;
+    std::vector<double> SortedIsoValues;
+    bool SkipEmptyCells = false; ///< the parameters' SkipEmptyCells, where it applies
+    ContributionRule Rule;       ///< what SkipEmptyCells tests each cell against
   };
 
 private:
@@ -118,16 +137,7 @@ private:
 
   const ScalarField* Field = nullptr;
   const CastParameters* Params = nullptr;
-  float OpacityExponent = 1.f; ///< dt / unit distance
-  bool GradientNeeded = false;
-  bool GradientOpacityConstant = false; ///< then every sample's factor is GradientOpacityValue
-  float GradientOpacityValue = 1.f;
-  int IntegerSpecularPower = -1; ///< SpecularPower when it is a small whole number
-  std::vector<DirectionalLight> DirectionalLights;
-  std::vector<const Light*> PositionalLights;
-  std::vector<double> SortedIsoValues;
-  bool SkipEmptyCells = false; ///< the parameters' SkipEmptyCells, where it applies
-  ContributionRule Rule;       ///< what SkipEmptyCells tests each cell against
+  RenderConstants Constants;
 };
 
 } // namespace parc
