@@ -102,25 +102,6 @@ void ContributionRule::Set(const CastParameters& p, const double range[2])
   }
 }
 
-bool ContributionRule::IsPossiblyContributing(double lo, double hi) const
-{
-  lo -= this->Margin;
-  hi += this->Margin;
-  switch (this->Blend)
-  {
-    case BlendMode::MaximumIntensity:
-      return hi >= this->Threshold;
-    case BlendMode::MinimumIntensity:
-      return lo <= this->Threshold;
-    default:
-    {
-      // The first interval ending at or after lo; it is met if it starts at or before hi.
-      const auto it = std::lower_bound(this->Hi.begin(), this->Hi.end(), lo);
-      return it != this->Hi.end() && this->Lo[it - this->Hi.begin()] <= hi;
-    }
-  }
-}
-
 void RangePyramid::Build(const ScalarField& field)
 {
   this->Field = &field;

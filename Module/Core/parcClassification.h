@@ -20,6 +20,7 @@
 #include "parcCastParameters.h"
 #include "parcScalarField.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace parc
@@ -32,12 +33,37 @@ public:
   void Set(const CastParameters& p, const double range[2]);
 
   /// True when a cell whose samples lie in [lo, hi] may change a ray's result.
-  bool IsPossiblyContributing(double lo, double hi) const;
+  PARC_HOT_INLINE bool IsPossiblyContributing(double lo, double hi) const
+  {
+    lo -= this->Margin;
+    hi += this->Margin;
+    switch (this->Blend)
+    {
+      case BlendMode::MaximumIntensity:
+        return hi >= this->Threshold;
+      case BlendMode::MinimumIntensity:
+        return lo <= this->Threshold;
+      default:
+        return this->MeetsInterval(lo, hi);
+    }
+  }
 
   /// The margin added on both sides of every range (scalar units).
   double GetMargin() const { return this->Margin; }
 
 private:
+  /// Whether [lo, hi] meets one of the intervals.
+  PARC_HOT_INLINE bool MeetsInterval(double lo, double hi) const
+  {
+    if (this->Hi.size() == 1) // the common case: one interval
+    {
+      return lo <= this->Hi[0] && this->Lo[0] <= hi;
+    }
+    // The first interval ending at or after lo; it is met if it starts at or before hi.
+    const auto it = std::lower_bound(this->Hi.begin(), this->Hi.end(), lo);
+    return it != this->Hi.end() && this->Lo[it - this->Hi.begin()] <= hi;
+  }
+
   BlendMode Blend = BlendMode::Composite;
   /// Closed scalar intervals, sorted and disjoint: non-zero opacity (composite, additive)
   /// or the averaged range; for the isosurface, degenerate intervals at the iso values.

@@ -168,29 +168,4 @@ void ColorTable::SetTable(double lo, double hi, std::vector<float> rgb)
   this->Scale = (this->Hi > this->Lo) ? (this->Count - 1) / (this->Hi - this->Lo) : 0.0;
 }
 
-void ColorTable::Lookup(double s, float rgb[3]) const
-{
-  double u = (s - this->Lo) * this->Scale;
-  if (!(u > 0.0)) // also NaN
-  {
-    u = 0.0;
-  }
-  const double last = this->Count - 1;
-  if (u >= last)
-  {
-    u = last;
-  }
-  int i = static_cast<int>(u);
-  if (i >= this->Count - 1)
-  {
-    i = this->Count - 2;
-  }
-  const float f = static_cast<float>(u - i);
-  const float* a = &this->RGB[3 * i];
-  for (int c = 0; c < 3; ++c)
-  {
-    rgb[c] = a[c] + f * (a[c + 3] - a[c]);
-  }
-}
-
 } // namespace parc

@@ -82,7 +82,21 @@ class ColorTable
 public:
   /// rgb holds 3 * n values for n >= 2 evenly spaced scalars from lo to hi.
   void SetTable(double lo, double hi, std::vector<float> rgb);
-  void Lookup(double s, float rgb[3]) const;
+  PARC_HOT_INLINE void Lookup(double s, float rgb[3]) const
+  {
+    double u = (s - this->Lo) * this->Scale;
+    u = u > 0.0 ? u : 0.0; // also NaN
+    const double last = this->Count - 1;
+    u = u < last ? u : last;
+    int i = static_cast<int>(u);
+    i = i < this->Count - 2 ? i : this->Count - 2;
+    const float f = static_cast<float>(u - i);
+    const float* a = &this->RGB[3 * i];
+    for (int c = 0; c < 3; ++c)
+    {
+      rgb[c] = a[c] + f * (a[c + 3] - a[c]);
+    }
+  }
 
 private:
   std::vector<float> RGB{ 1.f, 1.f, 1.f, 1.f, 1.f, 1.f };
