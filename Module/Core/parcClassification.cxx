@@ -110,6 +110,12 @@ void RangePyramid::Build(const ScalarField& field)
   {
     this->CellDims[a] = std::max(dims[a] - 1, 0);
   }
+  const double* range = field.GetRange();
+  for (int c = 0; c < CodeCount; ++c)
+  {
+    this->CodeValues[c] = range[0] + (range[1] - range[0]) * c / (CodeCount - 1);
+  }
+  this->CodeValues[CodeCount - 1] = range[1];
   this->Levels.clear();
   int levelDims[3] = { this->CellDims[0], this->CellDims[1], this->CellDims[2] };
   for (int level = 1; levelDims[0] > 1 || levelDims[1] > 1 || levelDims[2] > 1; ++level)
@@ -120,8 +126,8 @@ void RangePyramid::Build(const ScalarField& field)
       next.Dims[a] = (levelDims[a] + 1) / 2;
     }
     const std::size_t n = static_cast<std::size_t>(next.Dims[0]) * next.Dims[1] * next.Dims[2];
-    next.Min.assign(n, std::numeric_limits<float>::max());
-    next.Max.assign(n, std::numeric_limits<float>::lowest());
+    next.Min.assign(n, CodeCount - 1);
+    next.Max.assign(n, 0);
     std::size_t out = 0;
     for (int k = 0; k < next.Dims[2]; ++k)
     {
@@ -136,10 +142,13 @@ void RangePyramid::Build(const ScalarField& field)
             {
               for (int ci = 2 * i; ci < std::min(2 * i + 2, levelDims[0]); ++ci)
               {
-                float lo, hi;
+                Code lo, hi;
                 if (level == 1)
                 {
-                  this->CellRange(ci, cj, ck, lo, hi);
+                  float cellLo, cellHi;
+                  this->CellRange(ci, cj, ck, cellLo, cellHi);
+                  lo = this->CodeBelow(cellLo);
+                  hi = this->CodeAbove(cellHi);
                 }
                 else
                 {
@@ -164,6 +173,22 @@ void RangePyramid::Build(const ScalarField& field)
       levelDims[a] = this->Levels.back().Dims[a];
     }
   }
+}
+
+RangePyramid::Code RangePyramid::CodeBelow(double v) const
+{
+  // The last code whose value is at most v (the first code holds the field's minimum).
+  const double* end = this->CodeValues + CodeCount;
+  const auto it = std::upper_bound(this->CodeValues, end, v);
+  return static_cast<Code>(it == this->CodeValues ? 0 : it - this->CodeValues - 1);
+}
+
+RangePyramid::Code RangePyramid::CodeAbove(double v) const
+{
+  // The first code whose value is at least v (the last code holds the field's maximum).
+  const double* end = this->CodeValues + CodeCount;
+  const auto it = std::lower_bound(this->CodeValues, end, v);
+  return static_cast<Code>(it == end ? CodeCount - 1 : it - this->CodeValues);
 }
 
 void RangePyramid::CellRange(int i, int j, int k, float& lo, float& hi) const
@@ -199,7 +224,7 @@ bool RangePyramid::Query(int level, const int node[3], const int c0[3], const in
   const Level& l = this->Levels[level - 1];
   const std::size_t n = static_cast<std::size_t>(node[0]) +
     static_cast<std::size_t>(l.Dims[0]) * (node[1] + static_cast<std::size_t>(l.Dims[1]) * node[2]);
-  if (!rule.IsPossiblyContributing(l.Min[n], l.Max[n]))
+  if (!rule.IsPossiblyContributing(this->CodeValues[l.Min[n]], this->CodeValues[l.Max[n]]))
   {
     return false;
   }
@@ -255,10 +280,10 @@ bool RangePyramid::AnyContributing(const int c0[3], const int c1[3],
 
 std::size_t RangePyramid::GetMemorySize() const
 {
-  std::size_t bytes = 0;
+  std::size_t bytes = sizeof(this->CodeValues);
   for (const Level& l : this->Levels)
   {
-    bytes += (l.Min.size() + l.Max.size()) * sizeof(float);
+    bytes += (l.Min.size() + l.Max.size()) * sizeof(Code);
   }
   return bytes;
 }

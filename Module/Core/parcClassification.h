@@ -21,6 +21,7 @@
 #include "parcScalarField.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <vector>
 
 namespace parc
@@ -73,7 +74,11 @@ private:
 };
 
 /// Min/max of the cells of a field, as a pyramid: level 1 holds the range of 2x2x2 cells,
-/// level L of 2^L x 2^L x 2^L cells. Cell ranges (level 0) are read from the field.
+/// level L of 2^L x 2^L x 2^L cells. Cell ranges (level 0) are read from the field. Levels
+/// keep one-byte codes of 256 values evenly spread over the field's range, the minimum
+/// rounded down and the maximum rounded up: a node's coded range holds its true range, so
+/// a query descends wherever it would with exact ranges and decides on the exact cell
+/// ranges (for 8-bit data the codes are the values themselves).
 class RangePyramid
 {
 public:
@@ -94,17 +99,23 @@ public:
   std::size_t GetMemorySize() const;
 
 private:
+  using Code = std::uint8_t;
+  static constexpr int CodeCount = 256;
   struct Level
   {
     int Dims[3];
-    std::vector<float> Min, Max;
+    std::vector<Code> Min, Max;
   };
+  /// The code of the largest code value at most v, and of the smallest at least v.
+  Code CodeBelow(double v) const;
+  Code CodeAbove(double v) const;
   bool Query(int level, const int node[3], const int c0[3], const int c1[3],
     const ContributionRule& rule) const;
 
   const ScalarField* Field = nullptr;
   int CellDims[3] = { 0, 0, 0 };
   std::vector<Level> Levels; ///< Levels[L - 1] is level L
+  double CodeValues[CodeCount]; ///< increasing, from the field's minimum to its maximum
 };
 
 } // namespace parc
