@@ -31,9 +31,10 @@ constexpr double AffineTolerance = 1e-12;
 /// the shaders; the rasterizer test fails without it).
 constexpr float FaceDepthMargin = 1.0e-4f;
 
-// Four vertices a quad, each with the quad's corner, its two edges and its plane (voxel-index
-// coordinates); vertex gl_VertexID % 4 becomes that corner of the quad's dilated screen
-// bounding box (two indexed triangles), each vertex computing the same flat outputs. The
+// One instance a quad, with the quad's corner, its two edges and its plane (voxel-index
+// coordinates); vertex gl_VertexID (0 to 3) of the instance's triangle strip becomes that
+// corner of the quad's dilated screen bounding box, each vertex computing the same flat
+// outputs. The
 // quad is first clipped to the part in front of MinDepth. The shader also sets up the
 // ratios the fragment shaders evaluate (FaceFragment).
 const char* VertexShader = R"(
@@ -117,7 +118,7 @@ void main()
   }
   lo -= Dilation;
   hi += Dilation;
-  int box = gl_VertexID & 3;
+  int box = gl_VertexID;
   gl_Position = vec4((box & 1) != 0 ? hi.x : lo.x, (box & 2) != 0 ? hi.y : lo.y, 0.0, 1.0);
   // The face's plane dot(n, x) = w (eye-relative world coordinates). The ray through NDC
   // (x, y) starts at b = RayBase . (1, x, y) and runs along u = RayDirection . (1, x, y); it
@@ -323,9 +324,9 @@ struct GPUModel
   GLuint VertexArray = 0;
   GLuint Positions = 0;
   GLuint Planes = 0;
-  GLuint Indices = 0;
-  GLsizei Count = 0; ///< indices
+  GLsizei Count = 0; ///< quads (instances)
   std::uint64_t Version = ~std::uint64_t(0);
+  std::size_t Bytes = 0; ///< buffer storage
 
   void Release()
   {
@@ -334,7 +335,6 @@ struct GPUModel
       glDeleteVertexArrays(1, &this->VertexArray);
       glDeleteBuffers(1, &this->Positions);
       glDeleteBuffers(1, &this->Planes);
-      glDeleteBuffers(1, &this->Indices);
     }
     *this = GPUModel();
   }
@@ -352,6 +352,13 @@ struct RenderTarget
   /// Binds the framebuffer with attachments renderbuffers of format, (re)allocating
   /// storage when anything changed; false with a message when it is incomplete.
   bool Bind(GLenum format, int attachments, int width, int height, std::string& error);
+  /// Bytes of renderbuffer storage.
+  std::size_t GetMemorySize() const
+  {
+    const std::size_t texel = this->Format == GL_RG32F ? 8 : 16; // RG32F or RGBA32UI
+    return this->Renderbuffers.size() * texel * static_cast<std::size_t>(this->Size[0]) *
+      static_cast<std::size_t>(this->Size[1]);
+  }
   void Release()
   {
     this->Detach();
@@ -574,33 +581,25 @@ void vtkPARCRasterizer::vtkInternals::Upload(
     glGenVertexArrays(1, &gpu.VertexArray);
     glGenBuffers(1, &gpu.Positions);
     glGenBuffers(1, &gpu.Planes);
-    glGenBuffers(1, &gpu.Indices);
   }
-  // Per vertex: its quad's first corner and the edges to the quad's second and fourth
-  // corners (the model's quads are parallelograms), then the quad's plane.
+  // Per quad: its first corner and the edges to its second and fourth corners (the model's
+  // quads are parallelograms), then its plane.
   const std::size_t quads = model.GetNumberOfQuads();
   std::vector<float> geometry;
-  geometry.reserve(4 * 9 * quads);
-  std::vector<GLint> planes(4 * quads, 0);
-  std::vector<GLuint> indices;
-  indices.reserve(6 * quads);
+  geometry.reserve(9 * quads);
+  std::vector<GLint> planes(quads, 0);
   for (std::size_t q = 0; q < quads; ++q)
   {
     const parc::Vec3* v = model.Vertices.data() + 4 * q;
-    for (int corner = 0; corner < 4; ++corner)
+    for (const parc::Vec3& x : { v[0], v[1] - v[0], v[3] - v[0] })
     {
-      for (const parc::Vec3& x : { v[0], v[1] - v[0], v[3] - v[0] })
-      {
-        geometry.insert(geometry.end(),
-          { static_cast<float>(x.X), static_cast<float>(x.Y), static_cast<float>(x.Z) });
-      }
+      geometry.insert(geometry.end(),
+        { static_cast<float>(x.X), static_cast<float>(x.Y), static_cast<float>(x.Z) });
     }
     if (q < model.Planes.size())
     {
-      std::fill_n(planes.begin() + 4 * q, 4, model.Planes[q]);
+      planes[q] = model.Planes[q];
     }
-    const GLuint first = static_cast<GLuint>(4 * q);
-    indices.insert(indices.end(), { first, first + 1, first + 2, first + 1, first + 3, first + 2 });
   }
   glBindVertexArray(gpu.VertexArray);
   glBindBuffer(GL_ARRAY_BUFFER, gpu.Positions);
@@ -609,17 +608,17 @@ void vtkPARCRasterizer::vtkInternals::Upload(
   {
     glVertexAttribPointer(a, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float),
       reinterpret_cast<const void*>(3 * a * sizeof(float)));
+    glVertexAttribDivisor(a, 1);
     glEnableVertexAttribArray(a);
   }
   glBindBuffer(GL_ARRAY_BUFFER, gpu.Planes);
   glBufferData(GL_ARRAY_BUFFER, planes.size() * sizeof(GLint), planes.data(), GL_STATIC_DRAW);
   glVertexAttribIPointer(3, 1, GL_INT, 0, nullptr);
+  glVertexAttribDivisor(3, 1);
   glEnableVertexAttribArray(3);
-  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.Indices);
-  glBufferData(GL_ELEMENT_ARRAY_BUFFER, indices.size() * sizeof(GLuint), indices.data(),
-    GL_STATIC_DRAW);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
-  gpu.Count = static_cast<GLsizei>(indices.size());
+  gpu.Count = static_cast<GLsizei>(quads);
+  gpu.Bytes = geometry.size() * sizeof(float) + planes.size() * sizeof(GLint);
   gpu.Version = version;
 }
 
@@ -650,7 +649,7 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
     static_cast<float>(2.0 * DilationPixels / view.Pass.Width),
     static_cast<float>(2.0 * DilationPixels / view.Pass.Height));
   glBindVertexArray(gpu.VertexArray);
-  glDrawElements(GL_TRIANGLES, gpu.Count, GL_UNSIGNED_INT, nullptr);
+  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, gpu.Count);
 }
 
 void vtkPARCRasterizer::vtkInternals::Release()
@@ -692,6 +691,25 @@ vtkPARCRasterizer::vtkPARCRasterizer()
 vtkPARCRasterizer::~vtkPARCRasterizer()
 {
   this->Internals->Release();
+}
+
+bool vtkPARCRasterizer::HasModel(
+  vtkRenderWindow* window, bool colour, std::uint64_t modelVersion) const
+{
+  const vtkInternals& in = *this->Internals;
+  return window && window == in.Context.GetPointer() &&
+    in.Models[colour ? 1 : 0].Version == modelVersion;
+}
+
+std::size_t vtkPARCRasterizer::GetMemorySize() const
+{
+  const vtkInternals& in = *this->Internals;
+  std::size_t bytes = in.Texels.capacity() * sizeof(std::uint32_t);
+  for (int slot = 0; slot < 2; ++slot)
+  {
+    bytes += in.Models[slot].Bytes + in.Targets[slot].GetMemorySize();
+  }
+  return bytes;
 }
 
 void vtkPARCRasterizer::ReleaseGraphicsResources(vtkWindow*)

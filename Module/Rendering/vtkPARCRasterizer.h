@@ -99,9 +99,16 @@ public:
     std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view, int raySign,
     std::vector<std::uint32_t>& bits, int& wordsPerPixel, int& passes);
 
+  /// Whether the model of version (depth or colour pass) is on window's GPU already: the
+  /// passes then need none of its vertices.
+  bool HasModel(vtkRenderWindow* window, bool colour, std::uint64_t modelVersion) const;
+
   const std::string& GetLastError() const { return this->LastError; }
   /// How many times a model was uploaded to the GPU (statistics).
   std::uint64_t GetUploadCount() const { return this->UploadCount; }
+  /// Bytes of the uploaded models, the render targets and the read-back buffer (on
+  /// software GL all of it is main memory).
+  std::size_t GetMemorySize() const;
 
   void ReleaseGraphicsResources(vtkWindow* window);
 

@@ -139,9 +139,16 @@ public:
   parc::RangePyramid Pyramid;
   vtkMTimeType PyramidFieldTime = 0;
   parc::SupercellGrid Grid;
-  parc::PolygonModel DepthModel;
-  parc::PolygonModel ColorModels[3];
-  bool ColorModelBuilt[3] = { false, false, false };
+  /// The model of a pass. Its vertices are built when the GPU lacks the model and
+  /// released once uploaded: the passes draw the GPU copy.
+  struct PassModel
+  {
+    parc::PolygonModel Model;
+    std::size_t Quads = 0;
+    bool Current = false; ///< built for the current classification
+  };
+  PassModel DepthModel;
+  PassModel ColorModels[3]; ///< per major axis
   std::uint64_t ModelVersion = 0;
   struct ClassificationKey
   {
@@ -223,6 +230,28 @@ public:
       return static_cast<int>(std::count(this->Measured, this->Measured + Count, false));
     }
   } Trials;
+
+  /// Makes pass hold its model's vertices unless the GPU has the model (built by build).
+  template <class Build>
+  void EnsureModel(PassModel& pass, bool uploaded, Build&& build)
+  {
+    if (!pass.Current || (!uploaded && pass.Model.Vertices.empty()))
+    {
+      build(pass.Model);
+      pass.Quads = pass.Model.GetNumberOfQuads();
+      pass.Current = true;
+      ++this->ModelBuilds;
+    }
+  }
+  /// Frees the vertices of pass once the GPU has them.
+  static void ReleaseUploaded(PassModel& pass, bool uploaded)
+  {
+    if (uploaded)
+    {
+      std::vector<parc::Vec3>().swap(pass.Model.Vertices);
+      std::vector<int>().swap(pass.Model.Planes);
+    }
+  }
 
   /// Bytes held per structure (see GetMemorySize).
   std::vector<std::pair<const char*, std::size_t>> Memory() const;
@@ -449,7 +478,7 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
     depth = in.Depth.data();
   }
 
-  const vtkIdType buildsBefore = in.ModelBuilds; // every classification builds a model
+  const vtkIdType buildsBefore = in.ModelBuilds;
   const std::uint64_t uploadsBefore = in.Rasterizer->GetUploadCount();
   in.Trials.Trial = -1;
   const double projectionStart = vtkTimerLog::GetUniversalTime();
@@ -520,31 +549,35 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(vtkPARCV
   bool ok = true;
   if (depth)
   {
+    PassModel& pass = in.DepthModel;
+    in.EnsureModel(pass, in.Rasterizer->HasModel(window, false, in.ModelVersion),
+      [&](parc::PolygonModel& model) { parc::BuildDepthModel(in.Grid, MergeFaces, model); });
     std::vector<float> nearFar = in.DepthSource.ReleaseBuffer();
-    ok = in.Rasterizer->RenderDepth(window, in.DepthModel, in.ModelVersion, indexToWorld, passView, nearFar);
+    ok = in.Rasterizer->RenderDepth(
+      window, pass.Model, in.ModelVersion, indexToWorld, passView, nearFar);
+    ReleaseUploaded(pass, in.Rasterizer->HasModel(window, false, in.ModelVersion));
     in.DepthSource.Set(passView.Pass, std::move(nearFar), &in.Grid, in.Parameters.WorldToIndex);
-    in.PolygonCount += static_cast<vtkIdType>(in.DepthModel.GetNumberOfQuads());
+    in.PolygonCount += static_cast<vtkIdType>(pass.Quads);
   }
   if (ok && color)
   {
     const int axis = MajorAxis(indexToWorld, passView);
-    parc::PolygonModel& model = in.ColorModels[axis];
-    if (!in.ColorModelBuilt[axis])
-    {
-      parc::BuildColorModel(in.Grid, axis, MergeFaces, model);
-      in.ColorModelBuilt[axis] = true;
-      ++in.ModelBuilds;
-    }
+    PassModel& pass = in.ColorModels[axis];
+    const std::uint64_t version = 4 * in.ModelVersion + axis;
+    in.EnsureModel(pass, in.Rasterizer->HasModel(window, true, version),
+      [&](parc::PolygonModel& model) { parc::BuildColorModel(in.Grid, axis, MergeFaces, model); });
     std::vector<std::uint32_t> bits = in.PlaneSource.ReleaseBuffer();
     int words = 0;
     std::vector<parc::Vec3> starts, directions;
     view.RayBounds(in.Parameters.WorldToIndex, starts, directions);
-    ok = in.Rasterizer->RenderPlanes(window, model, 4 * in.ModelVersion + axis, indexToWorld,
-      passView, parc::RayAxisSign(model, starts, directions), bits, words, in.PassCount);
+    const parc::PolygonModel& model = pass.Model;
+    ok = in.Rasterizer->RenderPlanes(window, model, version, indexToWorld, passView,
+      parc::RayAxisSign(model, starts, directions), bits, words, in.PassCount);
+    ReleaseUploaded(pass, in.Rasterizer->HasModel(window, true, version));
     in.PlaneSource.Set(passView.Pass, std::move(bits), words, &in.Grid, axis, model.FirstPlane,
       in.Parameters.WorldToIndex);
     in.PlaneCount = model.PlaneCount;
-    in.PolygonCount += static_cast<vtkIdType>(model.GetNumberOfQuads());
+    in.PolygonCount += static_cast<vtkIdType>(pass.Quads);
   }
   if (!ok)
   {
@@ -600,11 +633,13 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolume* vol)
   rule.Set(in.Parameters, in.Field.GetRange());
   in.Grid.Classify(in.Pyramid, rule, in.Parameters.Interp);
   in.ClassificationTime = vtkTimerLog::GetUniversalTime() - start;
-  parc::BuildDepthModel(in.Grid, MergeFaces, in.DepthModel);
-  std::fill_n(in.ColorModelBuilt, 3, false);
+  in.DepthModel.Current = false;
+  for (vtkInternals::PassModel& pass : in.ColorModels)
+  {
+    pass.Current = false;
+  }
   ++in.ModelVersion;
   ++in.Classifications;
-  ++in.ModelBuilds;
   return true;
 }
 
@@ -768,17 +803,18 @@ void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
 std::vector<std::pair<const char*, std::size_t>> vtkPARCVolumeMapper::vtkInternals::Memory() const
 {
   std::size_t colorModels = 0;
-  for (const parc::PolygonModel& model : this->ColorModels)
+  for (const PassModel& pass : this->ColorModels)
   {
-    colorModels += model.GetMemorySize();
+    colorModels += pass.Model.GetMemorySize();
   }
   return { { "scalar copy", this->Field.GetMemorySize() },
     { "range pyramid", this->Pyramid.GetMemorySize() },
     { "supercell flags", this->Grid.GetMemorySize() },
-    { "depth model", this->DepthModel.GetMemorySize() },
+    { "depth model", this->DepthModel.Model.GetMemorySize() },
     { "colour models", colorModels },
     { "depth buffer", this->DepthSource.GetMemorySize() },
     { "bit-plane buffer", this->PlaneSource.GetMemorySize() },
+    { "OpenGL models and targets", this->Rasterizer->GetMemorySize() },
     { "ray-cast image", this->Image.capacity() * sizeof(float) },
     { "opaque depth", this->Depth.capacity() * sizeof(float) },
     { "display image", this->Display.capacity() } };

@@ -173,6 +173,32 @@ int TestPARCAccelerationExact(int argc, char* argv[])
       std::cerr << "FAIL: a transfer-function change should reclassify once\n";
       ++failures;
     }
+    // The mapper keeps no vertices once its model is uploaded; the same volume in a second
+    // window (another GL context) gets the model built again, and the image stays exact.
+    const vtkIdType builds = mapper->GetModelBuildCount();
+    vtkRenderer* first = window->GetRenderers()->GetFirstRenderer();
+    vtkNew<vtkRenderWindow> second;
+    second->SetOffScreenRendering(1);
+    second->SetSize(72, 64);
+    vtkNew<vtkRenderer> ren2;
+    ren2->AddVolume(vtkVolume::SafeDownCast(first->GetVolumes()->GetItemAsObject(0)));
+    ren2->SetActiveCamera(first->GetActiveCamera());
+    second->AddRenderer(ren2);
+    mapper->SetAccelerationModeToNone();
+    second->Render();
+    const std::vector<float> reference = RayImage(mapper);
+    mapper->SetAccelerationModeToDepthBuffer();
+    second->Render();
+    const std::vector<float> fast = RayImage(mapper);
+    if (reference.empty() || fast != reference || mapper->GetModelBuildCount() != builds + 1 ||
+      mapper->GetLastAccelerationMode() != vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER)
+    {
+      std::cerr << "FAIL: a second window: model builds " << builds << " -> "
+                << mapper->GetModelBuildCount() << ", image "
+                << (fast == reference ? "identical" : "differs") << "\n";
+      ++failures;
+    }
+    ren2->RemoveAllViewProps();
   }
   // A mapper that outlives its window (taken off its volume first, so the window never
   // releases its GL resources) is destroyed without touching the dead context.
