@@ -193,14 +193,7 @@ RangePyramid::Code RangePyramid::CodeAbove(double v) const
 
 void RangePyramid::CellRange(int i, int j, int k, float& lo, float& hi) const
 {
-  const ScalarField& f = *this->Field;
-  lo = hi = f.GetValue(i, j, k);
-  for (int c = 1; c < 8; ++c)
-  {
-    const float v = f.GetValue(i + (c & 1), j + ((c >> 1) & 1), k + ((c >> 2) & 1));
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
+  this->Field->CellRange(i, j, k, lo, hi);
 }
 
 bool RangePyramid::Query(int level, const int node[3], const int c0[3], const int c1[3],

@@ -103,6 +103,17 @@ public:
     return static_cast<float>(this->Data[i * this->Step[0] + j * this->Step[1] + k * this->Step[2]]);
   }
 
+  /// The range of the 8 corner values of cell (i, j, k).
+  void CellRange(int i, int j, int k, float& lo, float& hi) const
+  {
+    const int cell[3] = { i, j, k };
+    float c[8];
+    this->LoadCorners(this->CellPointer(cell), c);
+    const auto range = std::minmax({ c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7] });
+    lo = range.first;
+    hi = range.second;
+  }
+
   /// Trilinear interpolation at index coordinates p (clamped to the box).
   float SampleLinear(const Vec3& p) const
   {
@@ -359,6 +370,10 @@ public:
   float GetValue(int i, int j, int k) const
   {
     return this->Dispatch([&](const auto& v) { return v.Value(i, j, k); });
+  }
+  void CellRange(int i, int j, int k, float& lo, float& hi) const
+  {
+    this->Dispatch([&](const auto& v) { v.CellRange(i, j, k, lo, hi); });
   }
   float SampleLinear(const Vec3& p) const
   {

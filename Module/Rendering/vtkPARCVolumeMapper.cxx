@@ -174,25 +174,31 @@ public:
   vtkIdType PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
   double ClassificationTime = 0.0;
 
-  /// Auto: each candidate (the passes, and none at all) is tried on one frame, then the one
-  /// whose frame (projection + casting) was fastest is kept. The passes are tried again
-  /// when the model or the ray image size changes; casting without a pass, whose cost does
-  /// not depend on the model, only when the size changes (so editing a transfer function
-  /// does not bring back slow unaccelerated frames).
+  /// Auto: each candidate (the passes, and none at all) is tried on one frame when the ray
+  /// image size is new; then every frame takes the candidate with the least predicted time.
+  /// A candidate's estimate is its fastest representative frame (projection + casting) for
+  /// the current classification, or, from an earlier classification, that frame with its
+  /// projection scaled by the number of PC supercells (the models grow with it). So an edit
+  /// of a transfer function brings no trial frames: a candidate runs again only when it is
+  /// predicted to be the fastest, and its estimate is then measured afresh.
   struct AutoTrials
   {
     static constexpr int Count = 4;
     static constexpr int Candidates[Count] = { ACCELERATION_DEPTH_BUFFER,
       ACCELERATION_COLOR_BUFFER, ACCELERATION_BOTH, ACCELERATION_NONE };
-    static constexpr int Unaccelerated = Count - 1;
-    std::uint64_t ModelVersion = ~std::uint64_t(0);
+    struct Estimate
+    {
+      bool Measured = false;
+      std::uint64_t ModelVersion = 0; ///< of the measured frame
+      std::size_t Contributing = 0;   ///< PC supercells of that frame's classification
+      double Projection = 0.0, Casting = 0.0;
+    };
     int Size[2] = { 0, 0 };
-    double Time[Count] = { 0.0, 0.0, 0.0, 0.0 };
-    bool Measured[Count] = { false, false, false, false };
-    int Trial = -1; ///< the candidate the current frame tries, or -1
+    Estimate Estimates[Count];
+    int Chosen = -1; ///< the candidate of the current frame, or -1
 
     /// The mode for this frame.
-    int Mode(std::uint64_t modelVersion, int width, int height)
+    int Mode(std::uint64_t modelVersion, std::size_t contributing, int width, int height)
     {
       if (width != this->Size[0] || height != this->Size[1])
       {
@@ -200,34 +206,49 @@ public:
         this->Size[0] = width;
         this->Size[1] = height;
       }
-      if (modelVersion != this->ModelVersion)
+      this->Chosen = 0;
+      for (int i = 0; i < Count; ++i)
       {
-        this->ModelVersion = modelVersion;
-        std::fill_n(this->Measured, Unaccelerated, false);
+        if (!this->Estimates[i].Measured)
+        {
+          this->Chosen = i;
+          return Candidates[i];
+        }
+        if (Predict(this->Estimates[i], modelVersion, contributing) <
+          Predict(this->Estimates[this->Chosen], modelVersion, contributing))
+        {
+          this->Chosen = i;
+        }
       }
-      const bool* next = std::find(this->Measured, this->Measured + Count, false);
-      this->Trial = next != this->Measured + Count ? static_cast<int>(next - this->Measured) : -1;
-      if (this->Trial >= 0)
-      {
-        return Candidates[this->Trial];
-      }
-      return Candidates[std::min_element(this->Time, this->Time + Count) - this->Time];
+      return Candidates[this->Chosen];
     }
-    /// The time of the frame Mode chose, if it was a trial. A frame that was aborted or
-    /// also did set-up work (building or uploading a model) does not count: the candidate
-    /// is tried again on the next frame.
-    void Record(double seconds, bool representative)
+    static double Predict(const Estimate& e, std::uint64_t modelVersion, std::size_t contributing)
     {
-      if (this->Trial >= 0 && representative)
+      const double scale = (e.ModelVersion == modelVersion || e.Contributing == 0)
+        ? 1.0
+        : static_cast<double>(contributing) / static_cast<double>(e.Contributing);
+      return scale * e.Projection + e.Casting;
+    }
+    /// The times of the frame Mode chose. A frame that was aborted or also did set-up work
+    /// (building or uploading a model) does not count.
+    void Record(std::uint64_t modelVersion, std::size_t contributing, double projection,
+      double casting, bool representative)
+    {
+      if (this->Chosen >= 0 && representative)
       {
-        this->Time[this->Trial] = seconds;
-        this->Measured[this->Trial] = true;
+        Estimate& e = this->Estimates[this->Chosen];
+        if (!e.Measured || e.ModelVersion != modelVersion ||
+          projection + casting < e.Projection + e.Casting)
+        {
+          e = { true, modelVersion, contributing, projection, casting };
+        }
       }
-      this->Trial = -1;
+      this->Chosen = -1;
     }
     int Remaining() const
     {
-      return static_cast<int>(std::count(this->Measured, this->Measured + Count, false));
+      return static_cast<int>(std::count_if(this->Estimates, this->Estimates + Count,
+        [](const Estimate& e) { return !e.Measured; }));
     }
   } Trials;
 
@@ -480,7 +501,7 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
 
   const vtkIdType buildsBefore = in.ModelBuilds;
   const std::uint64_t uploadsBefore = in.Rasterizer->GetUploadCount();
-  in.Trials.Trial = -1;
+  in.Trials.Chosen = -1;
   const double projectionStart = vtkTimerLog::GetUniversalTime();
   const parc::SegmentSource& source = in.RunPasses(this, ren, vol, view, passView);
   in.ProjectionTime = vtkTimerLog::GetUniversalTime() - projectionStart;
@@ -498,7 +519,8 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
   in.CastingTime = vtkTimerLog::GetUniversalTime() - castStart;
   const bool setUp = in.ModelBuilds != buildsBefore ||
     in.Rasterizer->GetUploadCount() != uploadsBefore;
-  in.Trials.Record(in.ProjectionTime + in.CastingTime, completed && !setUp);
+  in.Trials.Record(in.ModelVersion, in.Grid.GetNumberOfContributing(), in.ProjectionTime,
+    in.CastingTime, completed && !setUp);
 }
 
 //------------------------------------------------------------------------------
@@ -517,7 +539,7 @@ int vtkPARCVolumeMapper::vtkInternals::ChooseMode(
   }
   // Which pass pays off, if any, depends on the GL implementation (software GL makes the
   // passes dear), the data, the ray function and the view: measure.
-  return in.Trials.Mode(in.ModelVersion, passView.Pass.Width, passView.Pass.Height);
+  return in.Trials.Mode(in.ModelVersion, pc, passView.Pass.Width, passView.Pass.Height);
 }
 
 //------------------------------------------------------------------------------

@@ -77,11 +77,13 @@ public:
    * intersects the two. Auto picks per volume, ray function and view: no pass when every
    * supercell may contribute (none can help), no sample when none may, and otherwise the
    * fastest of DepthBuffer, ColorBuffer, Both and None, measured: each is tried on one
-   * frame (GetAutoTrialsRemaining), then the one whose frame took least time is kept. The
-   * passes are tried again after the classification or the ray image size changes, None
-   * only after the size changes. GetLastAccelerationMode says which mode a
-   * frame used. The image is bit-identical in every mode. When no OpenGL 3.3 context or
-   * framebuffer is available, the mapper warns once and casts unaccelerated.
+   * frame (GetAutoTrialsRemaining) when the ray image size is new, then every frame uses
+   * the one predicted fastest. A prediction is the mode's fastest frame for the current
+   * classification or, after a transfer-function edit, its last frame with the projection
+   * scaled by the number of PC supercells; an edit brings no trial frames.
+   * GetLastAccelerationMode says which mode a frame used. The image is bit-identical in
+   * every mode. When no OpenGL 3.3 context or framebuffer is available, the mapper warns
+   * once and casts unaccelerated.
    * Default: Auto.
    */
   vtkSetClampMacro(AccelerationMode, int, ACCELERATION_NONE, ACCELERATION_BOTH);

@@ -98,8 +98,15 @@ class TestPARCPipeline(unittest.TestCase):
             used.append(chosen)
         self.assertEqual(len(set(used[-3:])), 1, "the choice is kept")
         self.assertTrue(all(i == images[0] for i in images), "every pass gives the same image")
-        opacity.AddPoint(240, 0.2)  # the passes are tried again, unaccelerated casting not
+        opacity.AddPoint(240, 0.2)  # an edit brings no trials: Auto predicts from its estimates
+        before = mapper.GetClassificationCount()
         window.Render()
+        self.assertEqual(mapper.GetClassificationCount(), before + 1)
+        self.assertEqual(mapper.GetAutoTrialsRemaining(), 0)
+        self.assertIn(vtkPARCVolumeMapper.GetAccelerationModeAsString(
+            mapper.GetLastAccelerationMode()), order)
+        window.SetSize(window.GetSize()[0] + 8, window.GetSize()[1])
+        window.Render()  # a new ray image size: every mode is tried again
         self.assertEqual(mapper.GetAutoTrialsRemaining(), 3)
         self.assertEqual(vtkPARCVolumeMapper.GetAccelerationModeAsString(
             mapper.GetLastAccelerationMode()), "DepthBuffer")
