@@ -107,7 +107,9 @@ class TestPARCPipeline(unittest.TestCase):
             mapper.GetLastAccelerationMode()), order)
         window.SetSize(window.GetSize()[0] + 8, window.GetSize()[1])
         window.Render()  # a new ray image size: every mode is tried again
-        self.assertEqual(mapper.GetAutoTrialsRemaining(), 3)
+        # 3 left, or 4 when this frame also built and uploaded the depth model (after the
+        # edit Auto may have predicted another mode), which makes it no measurement.
+        self.assertIn(mapper.GetAutoTrialsRemaining(), (3, 4))
         self.assertEqual(vtkPARCVolumeMapper.GetAccelerationModeAsString(
             mapper.GetLastAccelerationMode()), "DepthBuffer")
 
