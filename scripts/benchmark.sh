@@ -81,6 +81,13 @@ scene() { # title, file, options...
       | sed -n '/^| casting/,/^minimum/p'
   done
   echo
+  echo "## Accuracy against time (issue 11)"
+  echo
+  echo "MRI head, shaded, 400x400: RMSE in grey levels of the window image against a cast at 1/16 voxel, median of 3 interleaved frames per distance, $(nproc) threads. This mapper reaches at 2 voxels an error FixedPoint does not reach at 1/8 voxel."
+  echo
+  xrun "$here/build/bin/parc-render" "$head" --tf mri --shade --elevation -80 --azimuth 30 --size 400 \
+    --output "$here/out/benchmark.png" --accuracy-curve 3 | sed -n '/^| sample distance/,/^3 interleaved/p'
+  echo
   echo "## Memory held by the mapper, per structure (MRI head, shaded, 400x400, after Auto's trials)"
   echo
   xrun "$here/build/bin/parc-render" "$head" --tf mri --shade --elevation -80 --azimuth 30 --size 400 \

@@ -24,6 +24,7 @@
 #include <vtkWindowToImageFilter.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -61,6 +62,10 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
   --sample-cost R       R interleaved rounds of the scene unshaded and shaded, acceleration
                         none: casting ns per sample per thread, and the extra ns per
                         contributing shaded sample (table)
+  --accuracy-curve R    accuracy against time at sample distances 2 to 1/8 voxel (the
+                        smallest spacing): RMSE in grey levels of each mapper's window
+                        image against a reference cast at 1/16 voxel, and the median of
+                        R interleaved frames, this mapper (Auto) and FixedPoint (table)
   --threads N           threads for vtkSMPTools (default: all cores)
   --memory              print the bytes the mapper holds, per structure
   --json                print statistics as JSON
@@ -73,7 +78,7 @@ struct Options
   double Iso = 0.0, Azimuth = 30.0, Elevation = 20.0, Zoom = 1.0, SampleDistance = 0.0;
   bool HasIso = false, Shade = false, Parallel = false, Compare = false, Json = false;
   bool HasPosition = false, HasFocal = false, CompareAcceleration = false, Memory = false;
-  int Versus = 0, SampleCost = 0, Threads = 0;
+  int Versus = 0, SampleCost = 0, Threads = 0, Accuracy = 0;
   double Supercell[3] = { 2, 2, 2 };
   std::vector<double> Sweep;
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
@@ -146,6 +151,7 @@ Options Parse(int argc, char* argv[])
     else if (a == "--compare-fixed-point") { o.Compare = true; }
     else if (a == "--versus-fixed-point") { o.Versus = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--sample-cost") { o.SampleCost = static_cast<int>(ToNumber(a, value())); }
+    else if (a == "--accuracy-curve") { o.Accuracy = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--threads") { o.Threads = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--memory") { o.Memory = true; }
     else if (a == "--supercell") { ToTriple(a, value(), o.Supercell); }
@@ -182,9 +188,10 @@ Options Parse(int argc, char* argv[])
   {
     Fail("--repeat must be >= 1, --zoom and --sample-distance > 0");
   }
-  if (o.Versus < 0 || o.SampleCost < 0 || o.Threads < 0)
+  if (o.Versus < 0 || o.SampleCost < 0 || o.Threads < 0 || o.Accuracy < 0)
   {
-    Fail("--versus-fixed-point, --sample-cost and --threads take a positive number");
+    Fail("--versus-fixed-point, --sample-cost, --accuracy-curve and --threads take a positive "
+         "number");
   }
   return o;
 }
@@ -417,6 +424,95 @@ void SampleCost(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, vtkVolumeP
   std::printf("minimum casting times of %d interleaved rounds, %d threads\n", rounds, threads);
 }
 
+/// The window's RGB, 8 bits a channel.
+std::vector<unsigned char> WindowPixels(vtkRenderWindow* window)
+{
+  vtkNew<vtkWindowToImageFilter> grab;
+  grab->SetInput(window);
+  grab->SetInputBufferTypeToRGB();
+  grab->ReadFrontBufferOff();
+  grab->Update();
+  vtkDataArray* rgb = grab->GetOutput()->GetPointData()->GetScalars();
+  const auto* p = static_cast<const unsigned char*>(rgb->GetVoidPointer(0));
+  return std::vector<unsigned char>(p, p + 3 * rgb->GetNumberOfTuples());
+}
+
+/// Root mean square difference of two RGB images, in grey levels.
+double RMSE(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
+{
+  double sum = 0.0;
+  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
+  {
+    const double d = static_cast<double>(a[i]) - static_cast<double>(b[i]);
+    sum += d * d;
+  }
+  return std::sqrt(sum / std::max<std::size_t>(a.size(), 1));
+}
+
+/// Accuracy against time: for each sample distance (in voxels of the smallest spacing)
+/// this mapper (Auto) and vtkFixedPointVolumeRayCastMapper render the scene, rounds frames
+/// interleaved; RMSE against this mapper's cast at 1/16 voxel, and FixedPoint's against
+/// its own cast at 1/16 voxel (markdown table).
+void AccuracyCurve(vtkRenderWindow* window, vtkVolume* volume, vtkPARCVolumeMapper* parc,
+  vtkImageData* image, int rounds)
+{
+  const double* spacing = image->GetSpacing();
+  const double voxel = std::min({ spacing[0], spacing[1], spacing[2] });
+  vtkNew<vtkFixedPointVolumeRayCastMapper> fixed;
+  fixed->SetInputData(image);
+  fixed->SetBlendMode(parc->GetBlendMode());
+  fixed->SetAutoAdjustSampleDistances(0);
+  fixed->SetLockSampleDistanceToInputSpacing(0);
+  fixed->SetImageSampleDistance(1.0);
+  vtkVolumeMapper* mappers[2] = { parc, fixed };
+  auto setDistance = [&](double d) {
+    parc->SetSampleDistance(d * voxel);
+    fixed->SetSampleDistance(d * voxel);
+  };
+  constexpr double ReferenceDistance = 1.0 / 16.0;
+  setDistance(ReferenceDistance);
+  std::vector<unsigned char> references[2];
+  for (int i = 0; i < 2; ++i)
+  {
+    volume->SetMapper(mappers[i]);
+    window->Render();
+    references[i] = WindowPixels(window);
+  }
+  std::printf("| sample distance (voxels) | PARC Auto median (s) | PARC RMSE | FixedPoint median "
+              "(s) | FixedPoint RMSE against PARC's reference | FixedPoint RMSE against its own "
+              "|\n|---|---|---|---|---|---|\n");
+  for (double d : { 2.0, 1.0, 0.5, 0.25, 0.125 })
+  {
+    setDistance(d);
+    std::vector<double> times[2];
+    std::vector<unsigned char> pixels[2];
+    for (int i = 0; i < 2; ++i) // warm-up, and Auto's trials
+    {
+      volume->SetMapper(mappers[i]);
+      if (auto* p = vtkPARCVolumeMapper::SafeDownCast(mappers[i]))
+      {
+        WarmUp(window, p);
+      }
+      window->Render();
+      pixels[i] = WindowPixels(window);
+    }
+    for (int r = 0; r < rounds; ++r)
+    {
+      for (int i = 0; i < 2; ++i)
+      {
+        volume->SetMapper(mappers[i]);
+        times[i].push_back(TimedRender(window));
+      }
+    }
+    std::printf("| %g | %.4f | %.2f | %.4f | %.2f | %.2f |\n", d, MinMedian(times[0]).second,
+      RMSE(pixels[0], references[0]), MinMedian(times[1]).second, RMSE(pixels[1], references[0]),
+      RMSE(pixels[1], references[1]));
+  }
+  std::printf("%d interleaved rounds per distance, Auto used %s at the last\n", rounds,
+    vtkPARCVolumeMapper::GetAccelerationModeAsString(parc->GetLastAccelerationMode()));
+  volume->SetMapper(parc);
+}
+
 /// Polygons against ray steps: cubic supercells of each size (markdown table).
 void SweepSupercells(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper,
   const std::vector<double>& sizes, int repeat)
@@ -553,7 +649,8 @@ int main(int argc, char* argv[])
   const std::string accel =
     vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode());
   const vtkIdType samples = mapper->GetLastSampleCount();
-  if (o.CompareAcceleration || !o.Sweep.empty() || o.Versus > 0 || o.SampleCost > 0)
+  if (o.CompareAcceleration || !o.Sweep.empty() || o.Versus > 0 || o.SampleCost > 0 ||
+    o.Accuracy > 0)
   {
     volume->SetMapper(mapper);
   }
@@ -570,6 +667,10 @@ int main(int argc, char* argv[])
   if (o.SampleCost > 0)
   {
     SampleCost(window, mapper, property, o.SampleCost);
+  }
+  if (o.Accuracy > 0)
+  {
+    AccuracyCurve(window, volume, mapper, image, o.Accuracy);
   }
   if (o.CompareAcceleration)
   {
