@@ -255,21 +255,39 @@ private:
       cell[0] * this->Step[0] + cell[1] * this->Step[1] + cell[2] * this->Step[2];
     if (offset != differences.Offset)
     {
-      const T* v = this->Data + offset;
-      for (int a = 0; a < 3; ++a)
-      {
-        const std::ptrdiff_t s = this->Step[a];
-        for (int n = 0; n < 8; ++n)
-        {
-          const T* corner = v + ((n & 1) ? this->Step[0] : 0) + ((n & 2) ? this->Step[1] : 0) +
-            ((n & 4) ? this->Step[2] : 0);
-          differences.Values[a][n] = static_cast<float>(corner[s]) - static_cast<float>(corner[-s]);
-        }
-      }
+      this->LoadDifferences(this->Data + offset, differences.Values);
       differences.Offset = offset;
     }
     return { 0.5 * Interpolate(differences.Values[0], f), 0.5 * Interpolate(differences.Values[1], f),
       0.5 * Interpolate(differences.Values[2], f) };
+  }
+  /// The voxel differences v(c + e_a) - v(c - e_a) at the 8 corners c of the interior cell
+  /// whose first voxel is v (corner n: x offset n & 1, y (n >> 1) & 1, z (n >> 2) & 1). Per
+  /// axis, each difference takes one corner of the cell and one voxel outside it: 8 corner
+  /// loads and 24 outer ones.
+  PARC_HOT_INLINE void LoadDifferences(const T* v, float d[3][8]) const
+  {
+    float c[8];
+    this->LoadCorners(v, c);
+    for (int a = 0; a < 3; ++a)
+    {
+      const std::ptrdiff_t s = this->Step[a];
+      const int bit = 1 << a;
+      for (int n = 0; n < 8; ++n)
+      {
+        if (n & bit)
+        {
+          continue;
+        }
+        // Corners n (low along a) and n | bit (high): the low one's difference is the high
+        // corner minus the voxel before the cell, the high one's the voxel after the cell
+        // minus the low corner.
+        const T* low = v + ((n & 1) ? this->Step[0] : 0) + ((n & 2) ? this->Step[1] : 0) +
+          ((n & 4) ? this->Step[2] : 0);
+        d[a][n] = c[n | bit] - static_cast<float>(low[-s]);
+        d[a][n | bit] = static_cast<float>(low[2 * s]) - c[n];
+      }
+    }
   }
   /// Central differences of SampleLinear with the offsets clamped to the box.
   Vec3 GradientNearFaces(const Vec3& p, const int cell[3], const float f[3]) const
