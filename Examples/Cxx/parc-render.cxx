@@ -27,6 +27,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <utility>
 #include <sstream>
@@ -187,6 +188,11 @@ Options Parse(int argc, char* argv[])
   if (o.Repeat < 1 || o.Zoom <= 0.0 || o.SampleDistance < 0.0)
   {
     Fail("--repeat must be >= 1, --zoom and --sample-distance > 0");
+  }
+  const std::filesystem::path folder = std::filesystem::path(o.Output).parent_path();
+  if (!folder.empty() && !std::filesystem::is_directory(folder))
+  {
+    Fail("cannot write " + o.Output + ": no such folder " + folder.string());
   }
   if (o.Versus < 0 || o.SampleCost < 0 || o.Threads < 0 || o.Accuracy < 0)
   {
@@ -622,6 +628,10 @@ int main(int argc, char* argv[])
   writer->SetFileName(o.Output.c_str());
   writer->SetInputConnection(grab->GetOutputPort());
   writer->Write();
+  if (writer->GetErrorCode() != 0)
+  {
+    Fail("cannot write " + o.Output);
+  }
 
   double fixedWall = -1.0;
   // vtkFixedPointVolumeRayCastMapper has no isosurface or average-intensity mode.

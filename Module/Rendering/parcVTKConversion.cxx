@@ -9,8 +9,10 @@
 #include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
+#include <algorithm>
 #include <cmath>
 #include <new>
+#include <numeric>
 #include <sstream>
 #include <vector>
 
@@ -24,8 +26,11 @@ namespace
 constexpr int ColorTableSize = 1024;
 constexpr int NonLinearSegmentPieces = 32; ///< pieces for a node with midpoint/sharpness
 
-/// Converts a vtkPiecewiseFunction into the core's exact piecewise-linear function.
-void ConvertPiecewise(vtkPiecewiseFunction* f, PiecewiseLinearFunction& out)
+/// Converts a vtkPiecewiseFunction into the core's exact piecewise-linear function. Nodes
+/// with a non-finite scalar or value are left out and values are clamped to [0, 1]; what
+/// was changed is appended to fixes, named by what.
+void ConvertPiecewise(vtkPiecewiseFunction* f, const char* what, PiecewiseLinearFunction& out,
+  std::string& fixes)
 {
   const int n = f ? f->GetSize() : 0;
   if (n == 0)
@@ -34,27 +39,76 @@ void ConvertPiecewise(vtkPiecewiseFunction* f, PiecewiseLinearFunction& out)
     return;
   }
   std::vector<double> x, y;
+  int dropped = 0, clamped = 0;
+  auto add = [&](double s, double v) {
+    if (!std::isfinite(s) || !std::isfinite(v))
+    {
+      ++dropped;
+      return;
+    }
+    const double c = std::min(std::max(v, 0.0), 1.0);
+    clamped += c != v;
+    x.push_back(s);
+    y.push_back(c);
+  };
   double node[4], next[4];
   for (int i = 0; i < n; ++i)
   {
     f->GetNodeValue(i, node);
-    x.push_back(node[0]);
-    y.push_back(node[1]);
+    add(node[0], node[1]);
     if (i + 1 < n && (node[2] != 0.5 || node[3] != 0.0))
     {
       f->GetNodeValue(i + 1, next);
       for (int p = 1; p < NonLinearSegmentPieces; ++p)
       {
         const double s = node[0] + (next[0] - node[0]) * p / NonLinearSegmentPieces;
-        x.push_back(s);
-        y.push_back(f->GetValue(s));
+        add(s, f->GetValue(s));
       }
     }
+  }
+  if (dropped > 0 || clamped > 0)
+  {
+    fixes += std::string(fixes.empty() ? "" : " ") + "The " + what + " function has " +
+      std::to_string(dropped) + " non-finite and " + std::to_string(clamped) +
+      " out-of-range [0, 1] values: left out and clamped.";
+  }
+  if (x.empty())
+  {
+    out.SetConstant(0.0);
+    return;
+  }
+  if (dropped > 0) // a NaN scalar may have left the function's nodes out of order
+  {
+    std::vector<std::size_t> order(x.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
+    std::vector<double> sx, sy;
+    for (std::size_t i : order)
+    {
+      sx.push_back(x[i]);
+      sy.push_back(y[i]);
+    }
+    x.swap(sx);
+    y.swap(sy);
   }
   out.SetNodes(std::move(x), std::move(y), f->GetClamping() != 0);
 }
 
-void ConvertColor(vtkVolumeProperty* property, const double range[2], ColorTable& out)
+/// Clamps colour values to [0, 1] (NaN to 0); the number changed.
+int ClampColors(std::vector<float>& rgb)
+{
+  int changed = 0;
+  for (float& v : rgb)
+  {
+    const float c = v >= 0.f ? std::min(v, 1.f) : 0.f; // NaN to 0
+    changed += !(c == v);
+    v = c;
+  }
+  return changed;
+}
+
+void ConvertColor(
+  vtkVolumeProperty* property, const double range[2], ColorTable& out, std::string& fixes)
 {
   std::vector<float> rgb(3 * ColorTableSize);
   const double lo = range[0];
@@ -71,6 +125,11 @@ void ConvertColor(vtkVolumeProperty* property, const double range[2], ColorTable
   else
   {
     property->GetRGBTransferFunction()->GetTable(lo, hi, ColorTableSize, rgb.data());
+  }
+  if (const int changed = ClampColors(rgb))
+  {
+    fixes += std::string(fixes.empty() ? "" : " ") + "The colour function has " +
+      std::to_string(changed) + " NaN or out-of-range [0, 1] values in its table: clamped.";
   }
   out.SetTable(lo, hi, std::move(rgb));
 }
@@ -140,6 +199,14 @@ bool WrapScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
   std::size_t& replaced, std::string& error)
 {
   replaced = 0;
+  const vtkIdType points =
+    static_cast<vtkIdType>(dims[0]) * static_cast<vtkIdType>(dims[1]) * dims[2];
+  if (scalars->GetNumberOfTuples() < points)
+  {
+    error = "The scalars have " + std::to_string(scalars->GetNumberOfTuples()) +
+      " tuples, fewer than the image's " + std::to_string(points) + " points.";
+    return false;
+  }
   try
   {
     switch (scalars->GetDataType())
@@ -183,17 +250,19 @@ bool WrapScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
   }
 }
 
-void ConvertProperty(vtkVolumeProperty* property, const double range[2], CastParameters& p)
+std::string ConvertProperty(
+  vtkVolumeProperty* property, const double range[2], CastParameters& p)
 {
+  std::string fixes;
   p.Interp = property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION
     ? Interpolation::Nearest
     : Interpolation::Linear;
-  ConvertPiecewise(property->GetScalarOpacity(0), p.Opacity);
-  ConvertColor(property, range, p.Color);
+  ConvertPiecewise(property->GetScalarOpacity(0), "scalar opacity", p.Opacity, fixes);
+  ConvertColor(property, range, p.Color, fixes);
   p.UseGradientOpacity = property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
   if (p.UseGradientOpacity)
   {
-    ConvertPiecewise(property->GetGradientOpacity(0), p.GradientOpacity);
+    ConvertPiecewise(property->GetGradientOpacity(0), "gradient opacity", p.GradientOpacity, fixes);
   }
   p.OpacityUnitDistance = property->GetScalarOpacityUnitDistance(0);
   p.Shade = property->GetShade(0) &&
@@ -208,6 +277,7 @@ void ConvertProperty(vtkVolumeProperty* property, const double range[2], CastPar
   {
     p.IsoValues.push_back(iso->GetValue(i));
   }
+  return fixes;
 }
 
 Matrix4 ToMatrix4(vtkMatrix4x4* m)

@@ -23,8 +23,8 @@ bool ConvertBlendMode(int vtkBlendMode, BlendMode& out);
 /// Makes field read the first component of scalars (point data of an image of dims) in
 /// place, without a copy (scalars must stay alive while field is used; only non-finite
 /// floating-point values make a copy). Returns false with a message in error for
-/// unsupported types or too little memory; replaced receives the number of non-finite
-/// values replaced.
+/// unsupported types, fewer tuples than the image has points, or too little memory;
+/// replaced receives the number of non-finite values replaced.
 bool WrapScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
   std::size_t& replaced, std::string& error);
 
@@ -34,8 +34,11 @@ bool CheckImage(vtkImageData* image, std::string& error);
 
 /// The transfer functions, interpolation, shading coefficients and iso values of
 /// component 0 of property, for a field of the given value range. Blend must be set in p
-/// already (it decides whether shading applies).
-void ConvertProperty(vtkVolumeProperty* property, const double range[2], CastParameters& p);
+/// already (it decides whether shading applies). Values no transfer function can mean are
+/// made usable the same way for every acceleration mode: nodes with a NaN or infinite
+/// scalar or value are left out, opacities are clamped to [0, 1] and colours to [0, 1]
+/// (NaN to 0). Returns a description of what was changed, empty when nothing was.
+std::string ConvertProperty(vtkVolumeProperty* property, const double range[2], CastParameters& p);
 
 Matrix4 ToMatrix4(vtkMatrix4x4* m);
 /// The matrix from 0-based voxel indices of the image to its physical coordinates.

@@ -40,6 +40,9 @@ constexpr bool MergeFaces = true;
 
 constexpr float DisplayDepth = 1e-6f; ///< window depth of the displayed image quad
 
+/// A sample distance must leave at most this many samples along the volume's diagonal.
+constexpr double MaxSamplesPerDiagonal = 1e7;
+
 void ConvertLights(vtkRenderer* ren, std::vector<parc::Light>& lights)
 {
   lights.clear();
@@ -74,6 +77,13 @@ void ConvertLights(vtkRenderer* ren, std::vector<parc::Light>& lights)
 parc::Matrix4 IndexToWorld(vtkImageData* image, vtkVolume* vol)
 {
   return parc::Multiply(parc::vtk::ToMatrix4(vol->GetMatrix()), parc::vtk::IndexToPhysical(image));
+}
+
+/// The world length of the diagonal of the volume's box (voxel-index box of dims).
+double VolumeDiagonal(const parc::Matrix4& indexToWorld, const int dims[3])
+{
+  return parc::Length(indexToWorld.TransformVector(
+    { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 }));
 }
 
 /// The volume axis whose world direction is closest to the viewing direction (towards the
@@ -120,6 +130,10 @@ class vtkPARCVolumeMapper::vtkInternals
 public:
   parc::ScalarField Field;
   vtkMTimeType FieldTime = 0;
+  /// Counts the fields wrapped: what the pyramid and the classification were made from (an
+  /// array switched by SelectScalarArray or a scalar mode can be older than the last one).
+  std::uint64_t FieldVersion = 0;
+  vtkMTimeType FixesWarnedTime = 0; ///< the property whose conversion fixes were reported
   vtkSmartPointer<vtkDataArray> FieldArray; ///< the values Field reads
   parc::CastParameters Parameters;
   parc::Matrix4 IndexToWorld; ///< voxel index -> world, of the last PrepareParameters
@@ -137,7 +151,7 @@ public:
 
   // PARC: cached classification and models, rebuilt only when their inputs change.
   parc::RangePyramid Pyramid;
-  vtkMTimeType PyramidFieldTime = 0;
+  std::uint64_t PyramidFieldVersion = 0;
   parc::SupercellGrid Grid;
   /// The model of a pass. Its vertices are built when the GPU lacks the model and
   /// released once uploaded: the passes draw the GPU copy.
@@ -152,12 +166,14 @@ public:
   std::uint64_t ModelVersion = 0;
   struct ClassificationKey
   {
-    vtkMTimeType FieldTime = 0, PropertyTime = 0;
+    std::uint64_t FieldVersion = 0;
+    const void* Property = nullptr; ///< compared, never dereferenced
+    vtkMTimeType PropertyTime = 0;
     int Blend = -1;
     double Average[2] = { 0, 0 }, Size[3] = { 0, 0, 0 };
     bool operator==(const ClassificationKey& o) const
     {
-      return FieldTime == o.FieldTime && PropertyTime == o.PropertyTime && Blend == o.Blend &&
+      return FieldVersion == o.FieldVersion && Property == o.Property && PropertyTime == o.PropertyTime && Blend == o.Blend &&
         std::equal(Average, Average + 2, o.Average) && std::equal(Size, Size + 3, o.Size);
     }
   } Classified;
@@ -404,6 +420,7 @@ bool vtkPARCVolumeMapper::PrepareField()
   }
   in.FieldArray = scalars;
   in.FieldTime = time;
+  ++in.FieldVersion;
   return true;
 }
 
@@ -421,7 +438,27 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
   {
     vtkWarningMacro("Cropping is not supported and is ignored.");
   }
-  parc::vtk::ConvertProperty(vol->GetProperty(), in.Field.GetRange(), p);
+  vtkVolumeProperty* property = vol->GetProperty();
+  const std::string fixes = parc::vtk::ConvertProperty(property, in.Field.GetRange(), p);
+  if (!fixes.empty() && property->GetMTime() != in.FixesWarnedTime)
+  {
+    vtkWarningMacro(<< fixes);
+    in.FixesWarnedTime = property->GetMTime();
+  }
+  if (p.Blend == parc::BlendMode::IsoSurface &&
+    (p.IsoValues.empty() ||
+      std::any_of(p.IsoValues.begin(), p.IsoValues.end(), [](double v) { return !std::isfinite(v); })))
+  {
+    vtkErrorMacro("The isosurface blend mode needs at least one iso value, all finite "
+                  "(vtkVolumeProperty::GetIsoSurfaceValues); nothing is drawn.");
+    return false;
+  }
+  if (!(this->ImageSampleDistance >= 1.0 && this->ImageSampleDistance <= 64.0))
+  {
+    vtkErrorMacro("ImageSampleDistance " << this->ImageSampleDistance
+                                         << " is not in [1, 64]; nothing is drawn.");
+    return false;
+  }
   p.AverageRange[0] = this->AverageIPScalarRange[0];
   p.AverageRange[1] = this->AverageIPScalarRange[1];
   p.TerminationOpacity = this->TerminationOpacity;
@@ -440,6 +477,15 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
     smallestStep = std::min(smallestStep, parc::Length(axis));
   }
   p.SampleDistance = this->SampleDistance > 0.0 ? this->SampleDistance : 0.5 * smallestStep;
+  const double diagonal = VolumeDiagonal(indexToWorld, in.Field.GetDimensions());
+  if (std::isnan(this->SampleDistance) || !std::isfinite(p.SampleDistance) ||
+    p.SampleDistance * MaxSamplesPerDiagonal < diagonal)
+  {
+    vtkErrorMacro("SampleDistance " << this->SampleDistance << " is not usable: it must be "
+                  "finite, and at least 1/" << MaxSamplesPerDiagonal << " of the volume's diagonal ("
+                  << diagonal << "), or <= 0 for half the smallest spacing; nothing is drawn.");
+    return false;
+  }
   this->LastSampleDistance = p.SampleDistance;
   if (p.Shade)
   {
@@ -625,14 +671,15 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(vtkPARCV
 bool vtkPARCVolumeMapper::PrepareModels(vtkVolume* vol)
 {
   vtkInternals& in = *this->Internals;
-  if (in.PyramidFieldTime != in.FieldTime)
+  if (in.PyramidFieldVersion != in.FieldVersion)
   {
     in.Pyramid.Build(in.Field);
-    in.PyramidFieldTime = in.FieldTime;
+    in.PyramidFieldVersion = in.FieldVersion;
     ++in.PyramidBuilds;
   }
   vtkInternals::ClassificationKey key;
-  key.FieldTime = in.FieldTime;
+  key.FieldVersion = in.FieldVersion;
+  key.Property = vol->GetProperty();
   key.PropertyTime = vol->GetProperty()->GetMTime();
   key.Blend = this->BlendMode;
   std::copy_n(this->AverageIPScalarRange, 2, key.Average);

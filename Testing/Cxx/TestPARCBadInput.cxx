@@ -1,6 +1,8 @@
 // Bad input gives a clear error (or a documented result) and never a crash, a hang or a
 // stale image: no input, an empty image, one voxel, one slice, zero spacing, cell scalars,
-// an unsupported scalar type, NaN/Inf scalars, no transfer function set.
+// an unsupported scalar type, a scalar array shorter than the image, NaN/Inf scalars, no
+// transfer function set, NaN or out-of-range transfer-function values (the same image in
+// every acceleration mode), unusable sample distances, isosurfaces without a usable value.
 #include "parcTestScene.h"
 
 #include <vtkCellData.h>
@@ -8,9 +10,11 @@
 #include <vtkStringArray.h>
 #include <vtkTestErrorObserver.h>
 
+#include <cstring>
 #include <iostream>
 #include <limits>
 #include <string>
+#include <vector>
 
 namespace
 {
@@ -48,6 +52,17 @@ struct Harness
     return ok;
   }
 };
+
+/// The mapper's last float ray-cast image.
+std::vector<float> RayImage(vtkPARCVolumeMapper* mapper)
+{
+  vtkNew<vtkImageData> image;
+  mapper->GetLastRayCastImage(image);
+  vtkFloatArray* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
+  return rgba ? std::vector<float>(rgba->GetPointer(0),
+                  rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples())
+              : std::vector<float>();
+}
 
 vtkSmartPointer<vtkImageData> Image(int nx, int ny, int nz)
 {
@@ -123,6 +138,65 @@ int TestPARCBadInput(int, char*[])
   const bool defaultsOk = !h.Observer->GetError() && h.Mapper->GetLastSampleCount() > 0;
   std::cout << "default property: " << (defaultsOk ? "rendered" : "UNEXPECTED") << "\n";
   ok &= defaultsOk;
+
+  // A scalar array shorter than the image: an error, no read past its end.
+  auto shortArray = Image(8, 8, 8);
+  shortArray->GetPointData()->GetScalars()->SetNumberOfTuples(100);
+  ok &= h.ExpectError(shortArray, "fewer than the image's 512 points", "short scalar array");
+
+  // Unusable sample distances and image sample distances: an error each, nothing drawn.
+  for (const double d : { std::numeric_limits<double>::infinity(),
+         std::numeric_limits<double>::denorm_min(), std::numeric_limits<double>::quiet_NaN() })
+  {
+    h.Mapper->SetSampleDistance(d);
+    ok &= h.ExpectError(parctest::MakeBlobs(16), "SampleDistance", "unusable sample distance");
+  }
+  h.Mapper->SetSampleDistance(0.0);
+  h.Mapper->SetImageSampleDistance(std::numeric_limits<double>::quiet_NaN());
+  ok &= h.ExpectError(parctest::MakeBlobs(16), "ImageSampleDistance", "NaN image sample distance");
+  h.Mapper->SetImageSampleDistance(1.0);
+
+  // An isosurface without iso values, or with a NaN one: an error, nothing drawn.
+  h.Mapper->SetBlendMode(vtkVolumeMapper::ISOSURFACE_BLEND);
+  h.Volume->GetProperty()->GetIsoSurfaceValues()->SetNumberOfContours(0);
+  ok &= h.ExpectError(parctest::MakeBlobs(16), "iso value", "isosurface without iso values");
+  h.Volume->GetProperty()->GetIsoSurfaceValues()->SetValue(0, std::numeric_limits<double>::quiet_NaN());
+  ok &= h.ExpectError(parctest::MakeBlobs(16), "iso value", "NaN iso value");
+  h.Mapper->SetBlendMode(vtkVolumeMapper::COMPOSITE_BLEND);
+
+  // NaN nodes and opacities outside [0, 1]: one warning, the nodes left out and the values
+  // clamped, the same image in every acceleration mode, alpha at most 1.
+  {
+    vtkSmartPointer<vtkVolumeProperty> property = parctest::MakeProperty(false);
+    vtkPiecewiseFunction* opacity = property->GetScalarOpacity();
+    opacity->AddPoint(200, 4.0);
+    opacity->AddPoint(std::numeric_limits<double>::quiet_NaN(), 0.5);
+    opacity->AddPoint(230, std::numeric_limits<double>::quiet_NaN());
+    opacity->AddPoint(20, -1.0);
+    h.Volume->SetProperty(property);
+    h.Mapper->SetInputData(parctest::MakeBlobs(24));
+    h.Renderer->ResetCamera();
+    std::vector<float> images[2];
+    int warnings = 0;
+    const int modes[2] = { vtkPARCVolumeMapper::ACCELERATION_NONE,
+      vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER };
+    for (int m = 0; m < 2; ++m)
+    {
+      h.Observer->Clear();
+      h.Mapper->SetAccelerationMode(modes[m]);
+      h.Window->Render();
+      warnings += h.Observer->GetWarning() &&
+        h.Observer->GetWarningMessage().find("left out and clamped") != std::string::npos;
+      images[m] = RayImage(h.Mapper);
+    }
+    const bool tfOk = warnings == 1 && !images[0].empty() && images[0] == images[1] &&
+      h.Mapper->GetLastAccelerationMode() == vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER &&
+      parctest::MaxAlpha(h.Mapper) <= 1.0 && parctest::MaxAlpha(h.Mapper) > 0.0;
+    std::cout << "NaN and out-of-range opacities: "
+              << (tfOk ? "one warning, identical images, alpha <= 1" : "UNEXPECTED") << "\n";
+    ok &= tfOk;
+    h.Volume->SetProperty(parctest::MakeProperty(false));
+  }
 
   // Slice blending is not supported: an error, nothing drawn.
   h.Mapper->SetBlendMode(vtkVolumeMapper::SLICE_BLEND);

@@ -1,0 +1,228 @@
+// Cache invalidation: after a render in an accelerated mode, any one input changes (data
+// values in place, the scalars replaced, the array selection by name or by index, the
+// transfer function, blend mode, iso values, interpolation, shading, supercell size, volume
+// matrix, window size, sample distance, projection, an opaque prop, the lights, the render
+// window); the next image must be bit-identical to a fresh mapper's without acceleration.
+#include "parcTestScene.h"
+
+#include <vtkActor.h>
+#include <vtkLight.h>
+#include <vtkPolyDataMapper.h>
+#include <vtkSphereSource.h>
+#include <vtkTransform.h>
+
+#include <functional>
+#include <iostream>
+#include <vector>
+
+namespace
+{
+std::vector<float> RayImage(vtkPARCVolumeMapper* mapper)
+{
+  vtkNew<vtkImageData> image;
+  mapper->GetLastRayCastImage(image);
+  vtkFloatArray* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
+  return rgba ? std::vector<float>(rgba->GetPointer(0),
+                  rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples())
+              : std::vector<float>();
+}
+
+/// An image with point arrays "density" (the blobs, the active scalars), "inverted" and
+/// "shifted" (the blobs moved along x).
+vtkSmartPointer<vtkImageData> MakeImage()
+{
+  vtkSmartPointer<vtkImageData> image = parctest::MakeBlobs(32);
+  vtkSmartPointer<vtkImageData> inverted = parctest::MakeBlobs(32, true);
+  vtkDataArray* a = inverted->GetPointData()->GetScalars();
+  a->SetName("inverted");
+  image->GetPointData()->AddArray(a);
+  vtkNew<vtkUnsignedCharArray> shifted;
+  shifted->SetName("shifted");
+  vtkDataArray* density = image->GetPointData()->GetScalars();
+  shifted->SetNumberOfTuples(density->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < density->GetNumberOfTuples(); ++i)
+  {
+    shifted->SetValue(i, static_cast<unsigned char>(density->GetTuple1((i + 5) % density->GetNumberOfTuples())));
+  }
+  image->GetPointData()->AddArray(shifted);
+  return image;
+}
+
+struct Scene
+{
+  vtkNew<vtkRenderWindow> Window;
+  vtkNew<vtkRenderer> Renderer;
+  vtkSmartPointer<vtkImageData> Image = MakeImage();
+  vtkSmartPointer<vtkVolumeProperty> Property = parctest::MakeProperty(false);
+  vtkNew<vtkVolume> Volume;
+  vtkNew<vtkPARCVolumeMapper> Mapper;
+  vtkSmartPointer<vtkRenderWindow> Second; ///< the render window case
+
+  Scene()
+  {
+    this->Window->SetOffScreenRendering(1);
+    this->Window->SetSize(64, 56);
+    this->Window->AddRenderer(this->Renderer);
+    this->Mapper->SetInputData(this->Image);
+    this->Volume->SetMapper(this->Mapper);
+    this->Volume->SetProperty(this->Property);
+    this->Renderer->AddVolume(this->Volume);
+    this->Renderer->ResetCamera();
+    this->Renderer->GetActiveCamera()->Azimuth(30);
+    this->Renderer->GetActiveCamera()->Elevation(20);
+    this->Renderer->ResetCameraClippingRange();
+  }
+  vtkRenderWindow* Current() { return this->Second ? this->Second.Get() : this->Window.Get(); }
+
+  /// The image of a fresh mapper with the same settings, unaccelerated, in the same view.
+  std::vector<float> FreshImage()
+  {
+    vtkNew<vtkPARCVolumeMapper> fresh;
+    fresh->SetInputData(this->Mapper->GetInput());
+    fresh->SetBlendMode(this->Mapper->GetBlendMode());
+    fresh->SetScalarMode(this->Mapper->GetScalarMode());
+    if (this->Mapper->GetArrayAccessMode() == VTK_GET_ARRAY_BY_ID)
+    {
+      fresh->SelectScalarArray(this->Mapper->GetArrayId());
+    }
+    else
+    {
+      fresh->SelectScalarArray(this->Mapper->GetArrayName());
+    }
+    fresh->SetSampleDistance(this->Mapper->GetSampleDistance());
+    fresh->SetAccelerationModeToNone();
+    this->Volume->SetMapper(fresh);
+    this->Current()->Render();
+    this->Volume->SetMapper(this->Mapper);
+    return RayImage(fresh);
+  }
+};
+
+struct Change
+{
+  const char* Name;
+  std::function<void(Scene&)> Setup; ///< before the first render (may be empty)
+  std::function<void(Scene&)> Apply;
+};
+}
+
+int TestPARCCacheInvalidation(int, char*[])
+{
+  const std::vector<Change> changes = {
+    { "data values in place", nullptr,
+      [](Scene& s) {
+        vtkDataArray* a = s.Image->GetPointData()->GetScalars();
+        for (vtkIdType i = 0; i < a->GetNumberOfTuples(); i += 3)
+        {
+          a->SetTuple1(i, 255.0 - a->GetTuple1(i));
+        }
+        a->Modified();
+      } },
+    { "scalars replaced", nullptr,
+      [](Scene& s) {
+        vtkNew<vtkUnsignedCharArray> copy;
+        copy->DeepCopy(s.Image->GetPointData()->GetArray("shifted"));
+        s.Image->GetPointData()->SetScalars(copy);
+      } },
+    { "array selected by name", nullptr,
+      [](Scene& s) {
+        s.Mapper->SetScalarModeToUsePointFieldData();
+        s.Mapper->SelectScalarArray("shifted");
+      } },
+    { "array selected by index",
+      [](Scene& s) {
+        s.Mapper->SetScalarModeToUsePointFieldData();
+        s.Mapper->SelectScalarArray(0);
+      },
+      [](Scene& s) { s.Mapper->SelectScalarArray(2); } },
+    { "scalar mode", 
+      [](Scene& s) {
+        s.Mapper->SetScalarModeToUsePointFieldData();
+        s.Mapper->SelectScalarArray("shifted");
+      },
+      [](Scene& s) { s.Mapper->SetScalarModeToDefault(); } },
+    { "transfer function", nullptr,
+      [](Scene& s) { s.Property->GetScalarOpacity()->AddPoint(90, 0.6); } },
+    { "blend mode", nullptr,
+      [](Scene& s) { s.Mapper->SetBlendMode(vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND); } },
+    { "iso values",
+      [](Scene& s) { s.Mapper->SetBlendMode(vtkVolumeMapper::ISOSURFACE_BLEND); },
+      [](Scene& s) { s.Property->GetIsoSurfaceValues()->SetValue(0, 90.0); } },
+    { "interpolation", nullptr, [](Scene& s) { s.Property->SetInterpolationTypeToNearest(); } },
+    { "shading", nullptr, [](Scene& s) { s.Property->ShadeOn(); } },
+    { "supercell size", nullptr, [](Scene& s) { s.Mapper->SetSupercellSize(3, 1.5, 2); } },
+    { "volume matrix", nullptr,
+      [](Scene& s) {
+        s.Volume->RotateZ(25);
+        s.Volume->SetScale(1.0, 1.3, 0.8);
+      } },
+    { "window size", nullptr, [](Scene& s) { s.Window->SetSize(80, 48); } },
+    { "sample distance", nullptr, [](Scene& s) { s.Mapper->SetSampleDistance(0.9); } },
+    { "projection", nullptr,
+      [](Scene& s) { s.Renderer->GetActiveCamera()->ParallelProjectionOn(); } },
+    { "opaque prop", nullptr,
+      [](Scene& s) {
+        vtkNew<vtkSphereSource> sphere;
+        sphere->SetRadius(10);
+        vtkNew<vtkPolyDataMapper> pm;
+        pm->SetInputConnection(sphere->GetOutputPort());
+        vtkNew<vtkActor> actor;
+        actor->SetMapper(pm);
+        s.Renderer->AddActor(actor);
+      } },
+    { "lights", [](Scene& s) { s.Property->ShadeOn(); },
+      [](Scene& s) {
+        vtkNew<vtkLight> light;
+        light->SetPosition(40, -30, 10);
+        light->SetFocalPoint(0, 0, 0);
+        light->SetColor(1.0, 0.5, 0.3);
+        s.Renderer->AddLight(light);
+      } },
+    { "render window", nullptr,
+      [](Scene& s) {
+        s.Second = vtkSmartPointer<vtkRenderWindow>::New();
+        s.Second->SetOffScreenRendering(1);
+        s.Second->SetSize(64, 56);
+        vtkNew<vtkRenderer> renderer;
+        renderer->SetActiveCamera(s.Renderer->GetActiveCamera());
+        s.Renderer->RemoveVolume(s.Volume);
+        renderer->AddVolume(s.Volume);
+        s.Second->AddRenderer(renderer);
+      } },
+  };
+  const int modes[] = { vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER,
+    vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER, vtkPARCVolumeMapper::ACCELERATION_AUTO };
+  int failures = 0, cases = 0;
+  for (int mode : modes)
+  {
+    for (const Change& change : changes)
+    {
+      Scene s;
+      s.Mapper->SetAccelerationMode(mode);
+      if (change.Setup)
+      {
+        change.Setup(s);
+      }
+      for (int i = 0; i < 5; ++i) // Auto's trials too
+      {
+        s.Window->Render();
+      }
+      change.Apply(s);
+      s.Current()->Render();
+      const std::vector<float> image = RayImage(s.Mapper);
+      const std::vector<float> fresh = s.FreshImage();
+      ++cases;
+      if (image.empty() || image != fresh)
+      {
+        std::cerr << "FAIL: " << change.Name << ", "
+                  << vtkPARCVolumeMapper::GetAccelerationModeAsString(mode) << " (used "
+                  << vtkPARCVolumeMapper::GetAccelerationModeAsString(
+                       s.Mapper->GetLastAccelerationMode())
+                  << "): the image differs from a fresh mapper's\n";
+        ++failures;
+      }
+    }
+  }
+  std::cout << cases << " changes compared with a fresh mapper, " << failures << " failures\n";
+  return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
+}
