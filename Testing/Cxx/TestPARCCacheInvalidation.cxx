@@ -106,6 +106,79 @@ struct Change
 };
 }
 
+/// Several windows: two mappers in window 1, a third in window 2 (both alive, rendered
+/// in turn); then mapper 1 visits window 2 and comes back. Every image of every accelerated
+/// mode must equal the unaccelerated one of the same mapper in the same view.
+int TwoWindows()
+{
+  int failures = 0;
+  const int modes[] = { vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER,
+    vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER };
+  for (int mode : modes)
+  {
+    Scene one, two;
+    vtkNew<vtkPARCVolumeMapper> other; // a second mapper in window 1
+    other->SetInputData(one.Image);
+    vtkNew<vtkVolume> otherVolume;
+    otherVolume->SetMapper(other);
+    otherVolume->SetProperty(one.Property);
+    otherVolume->SetPosition(20, 0, 0);
+    one.Renderer->AddVolume(otherVolume);
+    vtkPARCVolumeMapper* mappers[3] = { one.Mapper, other, two.Mapper };
+    auto check = [&](const char* when) {
+      // Each mapper's image with acceleration against the same render without.
+      for (vtkRenderWindow* w : { one.Window.Get(), two.Window.Get() })
+      {
+        for (vtkPARCVolumeMapper* m : mappers)
+        {
+          m->SetAccelerationModeToNone();
+        }
+        w->Render();
+        std::vector<std::vector<float>> reference;
+        for (vtkPARCVolumeMapper* m : mappers)
+        {
+          reference.push_back(RayImage(m));
+          m->SetAccelerationMode(mode);
+        }
+        w->Render();
+        for (int i = 0; i < 3; ++i)
+        {
+          if (RayImage(mappers[i]) != reference[i])
+          {
+            std::cerr << "FAIL: two windows, " << when << ", mapper " << i << ", "
+                      << vtkPARCVolumeMapper::GetAccelerationModeAsString(mode) << "\n";
+            ++failures;
+          }
+        }
+      }
+    };
+    check("both alive");
+    // Mapper 1's volume moves to window 2 and back.
+    one.Renderer->RemoveVolume(one.Volume);
+    two.Renderer->AddVolume(one.Volume);
+    two.Window->Render();
+    two.Renderer->RemoveVolume(one.Volume);
+    one.Renderer->AddVolume(one.Volume);
+    check("after a visit to the other window");
+    // Mapper 1's volume visits a window that is then destroyed.
+    {
+      vtkNew<vtkRenderWindow> temporary;
+      temporary->SetOffScreenRendering(1);
+      temporary->SetSize(40, 40);
+      vtkNew<vtkRenderer> renderer;
+      renderer->SetActiveCamera(one.Renderer->GetActiveCamera());
+      temporary->AddRenderer(renderer);
+      one.Renderer->RemoveVolume(one.Volume);
+      renderer->AddVolume(one.Volume);
+      temporary->Render();
+      renderer->RemoveVolume(one.Volume);
+      one.Renderer->AddVolume(one.Volume);
+    }
+    check("after a visit to a window since destroyed");
+  }
+  return failures;
+}
+
 int TestPARCCacheInvalidation(int, char*[])
 {
   const std::vector<Change> changes = {
@@ -223,6 +296,7 @@ int TestPARCCacheInvalidation(int, char*[])
       }
     }
   }
+  failures += TwoWindows();
   std::cout << cases << " changes compared with a fresh mapper, " << failures << " failures\n";
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
