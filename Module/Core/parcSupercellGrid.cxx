@@ -37,6 +37,42 @@ void TrilinearRange(const double v[8], const double u0[3], const double u1[3], d
 }
 }
 
+double SupercellGrid::CountSupercells(const int cellDims[3], const double size[3])
+{
+  double count = 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    if (cellDims[a] < 1 || !(size[a] > 0.0) || !std::isfinite(size[a]))
+    {
+      return std::numeric_limits<double>::infinity();
+    }
+    count *= std::max(1.0, std::ceil(cellDims[a] / size[a]));
+  }
+  return count;
+}
+
+bool SupercellGrid::FitSize(const int cellDims[3], const double size[3], double fitted[3])
+{
+  const double count = CountSupercells(cellDims, size);
+  if (!std::isfinite(count))
+  {
+    return false;
+  }
+  constexpr double Step = 1.001; ///< growth of the factor while the grid is too large
+  double factor = std::max(1.0, std::cbrt(count / static_cast<double>(MaxSupercells)));
+  for (;; factor *= Step)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      fitted[a] = size[a] * factor;
+    }
+    if (CountSupercells(cellDims, fitted) <= static_cast<double>(MaxSupercells))
+    {
+      return true;
+    }
+  }
+}
+
 bool SupercellGrid::Configure(const int cellDims[3], const double size[3])
 {
   this->Flags.clear();

@@ -30,6 +30,12 @@ public:
   /// size cells per axis (each > 0 and finite). Returns false, leaving the grid empty, when
   /// the sizes are invalid or would make more than MaxSupercells supercells.
   bool Configure(const int cellDims[3], const double size[3]);
+  /// The number of supercells of size for cellDims cells per axis (before Configure drops
+  /// an empty last one; +inf for invalid sizes).
+  static double CountSupercells(const int cellDims[3], const double size[3]);
+  /// Size scaled up uniformly, by the smallest factor found, until the grid has at most
+  /// MaxSupercells supercells (size itself when it fits). False for invalid sizes.
+  static bool FitSize(const int cellDims[3], const double size[3], double fitted[3]);
 
   /// Classifies every supercell (in parallel); Configure must have matched the pyramid.
   void Classify(const RangePyramid& pyramid, const ContributionRule& rule,

@@ -689,13 +689,21 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolume* vol)
     return in.Grid.GetNumberOfSupercells() > 0;
   }
   in.Classified = key;
-  if (!in.Grid.Configure(in.Pyramid.GetCellDimensions(), this->SupercellSize))
+  const int* cells = in.Pyramid.GetCellDimensions();
+  const double* requested = this->SupercellSize;
+  double size[3];
+  if (!parc::SupercellGrid::FitSize(cells, requested, size) || !in.Grid.Configure(cells, size))
   {
-    vtkErrorMacro("Invalid supercell size (" << this->SupercellSize[0] << ", "
-                                             << this->SupercellSize[1] << ", "
-                                             << this->SupercellSize[2]
-                                             << "): casting unaccelerated.");
+    vtkErrorMacro("Invalid supercell size (" << requested[0] << ", " << requested[1] << ", "
+                                             << requested[2] << "): casting unaccelerated.");
     return false;
+  }
+  if (!std::equal(size, size + 3, requested))
+  {
+    vtkWarningMacro("Supercell size (" << requested[0] << ", " << requested[1] << ", "
+      << requested[2] << ") would make " << parc::SupercellGrid::CountSupercells(cells, requested)
+      << " supercells, more than the " << parc::SupercellGrid::MaxSupercells
+      << " allowed: using (" << size[0] << ", " << size[1] << ", " << size[2] << ").");
   }
   const double start = vtkTimerLog::GetUniversalTime();
   parc::ContributionRule rule;

@@ -344,6 +344,31 @@ TEST(SupercellGrid, RejectsInvalidSizes)
   EXPECT_EQ(grid.GetCounts()[2], 1);
 }
 
+// A volume too large for the requested supercells (1300^3 voxels at 2x2x2) gets the
+// smallest uniform enlargement found that fits; sizes that fit are kept; invalid ones fail.
+TEST(SupercellGrid, FitSizeScalesUpOnlyWhatDoesNotFit)
+{
+  const int huge[3] = { 1299, 1299, 1299 };
+  const double two[3] = { 2.0, 2.0, 2.0 };
+  EXPECT_GT(SupercellGrid::CountSupercells(huge, two), double(SupercellGrid::MaxSupercells));
+  double fitted[3];
+  ASSERT_TRUE(SupercellGrid::FitSize(huge, two, fitted));
+  EXPECT_LE(SupercellGrid::CountSupercells(huge, fitted), double(SupercellGrid::MaxSupercells));
+  EXPECT_GT(fitted[0], 2.0);
+  EXPECT_LT(fitted[0], 2.02) << "enlarged by little more than needed";
+  EXPECT_EQ(fitted[0], fitted[1]);
+  EXPECT_EQ(fitted[1], fitted[2]);
+  const double sized[3] = { 4.0, 6.0, 8.0 };
+  const double shifted[3] = { 2.0, 3.0, 4.0 };
+  const int small[3] = { 10, 10, 10 };
+  ASSERT_TRUE(SupercellGrid::FitSize(small, shifted, fitted));
+  EXPECT_TRUE(std::equal(fitted, fitted + 3, shifted));
+  ASSERT_TRUE(SupercellGrid::FitSize(huge, sized, fitted));
+  EXPECT_TRUE(std::equal(fitted, fitted + 3, sized));
+  const double bad[3] = { 1.0, std::nan(""), 1.0 };
+  EXPECT_FALSE(SupercellGrid::FitSize(small, bad, fitted));
+}
+
 // Depth model: face count and area against an independent count of PC/empty transitions
 // along each grid line; merging keeps the area and never adds quads; closed and oriented.
 TEST(PolygonModel, DepthModelMatchesAnIndependentCount)
