@@ -5,6 +5,7 @@
 #define parcCastParameters_h
 
 #include "parcMath.h"
+#include "parcRay.h"
 #include "parcScalarField.h"
 #include "parcTransferFunction.h"
 
@@ -57,6 +58,11 @@ struct CastParameters
   double Ambient = 0.1, Diffuse = 0.7, Specular = 0.2, SpecularPower = 10.0;
   std::vector<Light> Lights;
   Matrix4 WorldToIndex; ///< world -> voxel-index coordinates (affine)
+  /// Rays are cut to the part every clipping plane keeps (world coordinates) ...
+  std::vector<ClipPlane> ClipPlanes;
+  /// ... and to the rendered cropping regions (voxel-index coordinates). A sample outside
+  /// them is never taken, whatever the acceleration.
+  Cropping Crop;
   /// Composite and additive rays with linear interpolation do not interpolate samples in
   /// cells whose 8 corners fail the contribution rule (parcClassification.h): such samples
   /// have opacity exactly 0, so the image is the same bit for bit. Off only to test that.

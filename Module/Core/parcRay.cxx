@@ -78,6 +78,111 @@ void SegmentsToLatticeRanges(const std::vector<Segment>& segments, double tEnter
   }
 }
 
+bool ClipToPlanes(const Ray& ray, const std::vector<ClipPlane>& planes, double& t0, double& t1)
+{
+  for (const ClipPlane& plane : planes)
+  {
+    // dot(n, o + t d - p) >= 0  <=>  dot(n, d) t >= dot(n, p - o).
+    const double slope = Dot(plane.Normal, ray.Direction);
+    const double offset = Dot(plane.Normal, plane.Origin - ray.Origin);
+    if (slope > 0.0)
+    {
+      t0 = std::max(t0, offset / slope);
+    }
+    else if (slope < 0.0)
+    {
+      t1 = std::min(t1, offset / slope);
+    }
+    else if (offset > 0.0)
+    {
+      return false; // parallel to the plane, on the clipped side
+    }
+  }
+  return t0 <= t1;
+}
+
+namespace
+{
+/// The cropping region index (0, 1, 2) of coordinate x between planes lo and hi.
+int CropSlab(double x, double lo, double hi)
+{
+  return x < lo ? 0 : (x <= hi ? 1 : 2);
+}
+}
+
+void CroppedIntervals(const Vec3& o, const Vec3& d, const Cropping& cropping, double t0,
+  double t1, std::vector<Segment>& out)
+{
+  out.clear();
+  if (!(t0 <= t1))
+  {
+    return;
+  }
+  // The parameters where the line crosses a cropping plane split [t0, t1] into pieces,
+  // each inside one region: its midpoint tells which.
+  std::vector<double> cuts{ t0, t1 };
+  for (int a = 0; a < 3; ++a)
+  {
+    for (int side = 0; side < 2 && d[a] != 0.0; ++side)
+    {
+      const double t = (cropping.Planes[2 * a + side] - o[a]) / d[a];
+      if (t > t0 && t < t1)
+      {
+        cuts.push_back(t);
+      }
+    }
+  }
+  std::sort(cuts.begin(), cuts.end());
+  for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
+  {
+    const double a = cuts[i], b = cuts[i + 1];
+    const double m = a == b ? a : 0.5 * (a + b);
+    int region = 0;
+    for (int axis = 2; axis >= 0; --axis)
+    {
+      const double x = o[axis] + m * d[axis];
+      region = 3 * region + CropSlab(x, cropping.Planes[2 * axis], cropping.Planes[2 * axis + 1]);
+    }
+    if (!(cropping.RegionFlags & (1 << region)))
+    {
+      continue;
+    }
+    if (!out.empty() && out.back().TFar >= a)
+    {
+      out.back().TFar = b;
+    }
+    else
+    {
+      out.push_back({ a, b });
+    }
+  }
+}
+
+void IntersectLatticeRanges(
+  std::vector<LatticeRange>& ranges, const std::vector<Segment>& intervals, double dt)
+{
+  std::vector<LatticeRange> kept;
+  std::size_t r = 0;
+  for (const Segment& s : intervals)
+  {
+    const double first = std::ceil(s.TNear / dt), last = std::floor(s.TFar / dt);
+    if (!(first <= last))
+    {
+      continue;
+    }
+    const long k0 = static_cast<long>(first), k1 = static_cast<long>(last);
+    while (r < ranges.size() && ranges[r].Last < k0)
+    {
+      ++r;
+    }
+    for (std::size_t i = r; i < ranges.size() && ranges[i].First <= k1; ++i)
+    {
+      kept.push_back({ std::max(ranges[i].First, k0), std::min(ranges[i].Last, k1) });
+    }
+  }
+  ranges.swap(kept);
+}
+
 void WholeRaySource::GetSegments(int, int, const Ray&, std::vector<Segment>& out) const
 {
   constexpr double inf = std::numeric_limits<double>::infinity();

@@ -22,15 +22,16 @@ constexpr double MaxIntegerSpecularPower = 1024.0;
 constexpr std::size_t MaxHoistedLights = 8;
 
 /// The ray-parameter interval of the ray (origin o, direction d in voxel-index
-/// coordinates) inside the field's box and [ray.TMin, ray.TMax].
-bool ClipToField(const ScalarField& field, const Vec3& o, const Vec3& d, const Ray& ray,
-  double& tEnter, double& tExit)
+/// coordinates) inside the field's box, [ray.TMin, ray.TMax] and the clipping planes.
+bool ClipToField(const ScalarField& field, const CastParameters& p, const Vec3& o,
+  const Vec3& d, const Ray& ray, double& tEnter, double& tExit)
 {
   const int* dims = field.GetDimensions();
   tEnter = ray.TMin;
   tExit = ray.TMax;
   return ClipToBox(o, d, { 0.0, 0.0, 0.0 }, { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 },
-    tEnter, tExit);
+           tEnter, tExit) &&
+    ClipToPlanes(ray, p.ClipPlanes, tEnter, tExit);
 }
 }
 
@@ -163,7 +164,7 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
 bool RayCaster::ClipRay(const Ray& ray, double& tEnter, double& tExit) const
 {
   const Matrix4& w2i = this->Params->WorldToIndex;
-  return ClipToField(*this->Field, w2i.TransformPoint(ray.Origin),
+  return ClipToField(*this->Field, *this->Params, w2i.TransformPoint(ray.Origin),
     w2i.TransformVector(ray.Direction), ray, tEnter, tExit);
 }
 
@@ -761,7 +762,7 @@ void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
   const Vec3 indexOrigin = w2i.TransformPoint(ray.Origin);
   const Vec3 indexDirection = w2i.TransformVector(ray.Direction);
   double tEnter, tExit;
-  if (!ClipToField(*this->Field, indexOrigin, indexDirection, ray, tEnter, tExit))
+  if (!ClipToField(*this->Field, *this->Params, indexOrigin, indexDirection, ray, tEnter, tExit))
   {
     return;
   }
@@ -771,6 +772,12 @@ void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
   stats.Segments += segments.size();
   const double dt = this->Params->SampleDistance;
   SegmentsToLatticeRanges(segments, tEnter, tExit, dt, ranges);
+  if (this->Params->Crop.Enabled)
+  {
+    // The segments are spent: their storage takes the cropping's intervals.
+    CroppedIntervals(indexOrigin, indexDirection, this->Params->Crop, tEnter, tExit, segments);
+    IntersectLatticeRanges(ranges, segments, dt);
+  }
   if (ranges.empty())
   {
     return;

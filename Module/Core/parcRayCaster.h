@@ -91,7 +91,8 @@ public:
     float* rgba, CastStatistics& stats,
     const std::function<bool(double)>& progress = nullptr) const;
 
-  /// The ray-parameter interval of ray inside the field's box and [TMin, TMax].
+  /// The ray-parameter interval of ray inside the field's box, [TMin, TMax] and the
+  /// clipping planes (cropping may cut it further).
   bool ClipRay(const Ray& ray, double& tEnter, double& tExit) const;
 
   const CastParameters* GetParameters() const { return this->Params; }

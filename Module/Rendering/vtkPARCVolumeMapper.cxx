@@ -16,6 +16,8 @@
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRayCastImageDisplayHelper.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 #include "vtkPropCollection.h"
@@ -77,6 +79,45 @@ void ConvertLights(vtkRenderer* ren, std::vector<parc::Light>& lights)
 parc::Matrix4 IndexToWorld(vtkImageData* image, vtkVolume* vol)
 {
   return parc::Multiply(parc::vtk::ToMatrix4(vol->GetMatrix()), parc::vtk::IndexToPhysical(image));
+}
+
+/// The planes of a vtkPlaneCollection (world coordinates).
+void ConvertClippingPlanes(vtkPlaneCollection* planes, std::vector<parc::ClipPlane>& out)
+{
+  out.clear();
+  if (!planes)
+  {
+    return;
+  }
+  vtkCollectionSimpleIterator it;
+  planes->InitTraversal(it);
+  while (vtkPlane* plane = planes->GetNextPlane(it))
+  {
+    const double* o = plane->GetOrigin();
+    const double* n = plane->GetNormal();
+    out.push_back({ { o[0], o[1], o[2] }, { n[0], n[1], n[2] } });
+  }
+}
+
+/// vtkVolumeMapper's cropping planes (the image's physical coordinates along its axes) in
+/// voxel-index coordinates of the field (index 0 at the extent's start).
+void ConvertCropping(vtkImageData* image, const double planes[6], int flags, parc::Cropping& out)
+{
+  const double* origin = image->GetOrigin();
+  const double* spacing = image->GetSpacing();
+  const int* extent = image->GetExtent();
+  for (int a = 0; a < 3; ++a)
+  {
+    double lo = (planes[2 * a] - origin[a]) / spacing[a] - extent[2 * a];
+    double hi = (planes[2 * a + 1] - origin[a]) / spacing[a] - extent[2 * a];
+    if (lo > hi) // negative spacing
+    {
+      std::swap(lo, hi);
+    }
+    out.Planes[2 * a] = lo;
+    out.Planes[2 * a + 1] = hi;
+  }
+  out.RegionFlags = flags;
 }
 
 /// The world length of the diagonal of the volume's box (voxel-index box of dims).
@@ -434,10 +475,6 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
     vtkErrorMacro("Blend mode " << this->BlendMode << " is not supported; nothing is drawn.");
     return false;
   }
-  if (this->Cropping)
-  {
-    vtkWarningMacro("Cropping is not supported and is ignored.");
-  }
   vtkVolumeProperty* property = vol->GetProperty();
   const std::string fixes = parc::vtk::ConvertProperty(property, in.Field.GetRange(), p);
   if (!fixes.empty() && property->GetMTime() != in.FixesWarnedTime)
@@ -487,6 +524,13 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
     return false;
   }
   this->LastSampleDistance = p.SampleDistance;
+  ConvertClippingPlanes(this->ClippingPlanes, p.ClipPlanes);
+  p.Crop.Enabled = this->Cropping != 0;
+  if (p.Crop.Enabled)
+  {
+    ConvertCropping(vtkImageData::SafeDownCast(this->GetInput()), this->CroppingRegionPlanes,
+      this->CroppingRegionFlags, p.Crop);
+  }
   if (p.Shade)
   {
     ConvertLights(ren, p.Lights);

@@ -33,8 +33,17 @@
  *   functions are evaluated exactly from their nodes (segments with a non-default midpoint
  *   or sharpness are subdivided into 32 linear pieces).
  * - Additive blending sums opacity-weighted colours and opacities (no attenuation) and clamps
- *   them to 1. Slice blending and cropping are not supported (nothing is drawn, with an
- *   error / cropping is ignored with a warning).
+ *   them to 1. Slice blending is not supported (nothing is drawn, with an error).
+ * - Clipping planes (world coordinates) keep the side their normal points to; cropping keeps
+ *   the regions of CroppingRegionFlags between CroppingRegionPlanes, given in the image's
+ *   physical coordinates along its axes (origin and spacing; a direction matrix is not
+ *   applied to them). A clipped or cropped ray is a shorter ray: no sample outside is taken,
+ *   in every acceleration mode alike.
+ * - Transfer-function nodes with NaN are left out, opacities and colours are clamped to
+ *   [0, 1] (one warning per property change); a scalar array shorter than the image, an
+ *   unusable SampleDistance or ImageSampleDistance, and an isosurface without a finite iso
+ *   value are errors. Supercells that would be too many for the volume are enlarged
+ *   uniformly, with a warning.
  * - Positional lights use their attenuation and spot cone; shading is Blinn-Phong, two-sided.
  *
  * Thread safety: like every VTK mapper, use it from the rendering thread; it parallelizes

@@ -1,12 +1,14 @@
 // Cache invalidation: after a render in an accelerated mode, any one input changes (data
 // values in place, the scalars replaced, the array selection by name or by index, the
 // transfer function, blend mode, iso values, interpolation, shading, supercell size, volume
-// matrix, window size, sample distance, projection, an opaque prop, the lights, the render
-// window); the next image must be bit-identical to a fresh mapper's without acceleration.
+// matrix, window size, sample distance, projection, an opaque prop, the lights, a clipping
+// plane, cropping, the render window); the next image must be bit-identical to a fresh mapper's without acceleration.
 #include "parcTestScene.h"
 
 #include <vtkActor.h>
 #include <vtkLight.h>
+#include <vtkPlane.h>
+#include <vtkPlaneCollection.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkSphereSource.h>
 #include <vtkTransform.h>
@@ -90,6 +92,10 @@ struct Scene
       fresh->SelectScalarArray(this->Mapper->GetArrayName());
     }
     fresh->SetSampleDistance(this->Mapper->GetSampleDistance());
+    fresh->SetClippingPlanes(this->Mapper->GetClippingPlanes());
+    fresh->SetCropping(this->Mapper->GetCropping());
+    fresh->SetCroppingRegionPlanes(this->Mapper->GetCroppingRegionPlanes());
+    fresh->SetCroppingRegionFlags(this->Mapper->GetCroppingRegionFlags());
     fresh->SetAccelerationModeToNone();
     this->Volume->SetMapper(fresh);
     this->Current()->Render();
@@ -251,6 +257,25 @@ int TestPARCCacheInvalidation(int, char*[])
         light->SetColor(1.0, 0.5, 0.3);
         s.Renderer->AddLight(light);
       } },
+    { "clipping plane", nullptr,
+      [](Scene& s) {
+        vtkNew<vtkPlane> plane;
+        plane->SetOrigin(-4, 2, 0);
+        plane->SetNormal(0.8, -0.3, 0.5);
+        s.Mapper->AddClippingPlane(plane);
+      } },
+    { "cropping", nullptr,
+      [](Scene& s) {
+        s.Mapper->CroppingOn();
+        s.Mapper->SetCroppingRegionPlanes(-20, 12, -15, 18, -10, 9);
+        s.Mapper->SetCroppingRegionFlagsToCross();
+      } },
+    { "cropping regions",
+      [](Scene& s) {
+        s.Mapper->CroppingOn();
+        s.Mapper->SetCroppingRegionPlanes(-20, 12, -15, 18, -10, 9);
+      },
+      [](Scene& s) { s.Mapper->SetCroppingRegionFlagsToInvertedFence(); } },
     { "render window", nullptr,
       [](Scene& s) {
         s.Second = vtkSmartPointer<vtkRenderWindow>::New();

@@ -1,17 +1,20 @@
 // vtkPARCVolumeMapper against vtkFixedPointVolumeRayCastMapper on a smooth volume, same
-// camera, same sample distance, MIP and composite. The samplers differ (fixed-point
-// arithmetic, different sample positions), so the images are compared within a stated
-// tolerance: mean absolute difference below 1 of 255 per channel and 99.9% of the values
-// within 24 of 255, over an image that is not blank.
+// camera, same sample distance, MIP and composite, also with a clipping plane and with
+// cropping (the centre subvolume, and VTK's "fence" regions), set alike on both. The
+// samplers differ (fixed-point arithmetic, different sample positions), so the images are
+// compared within a stated tolerance: mean absolute difference below 1 of 255 per channel
+// and 99.9% of the values within 24 of 255, over an image that is not blank.
 #include "parcTestScene.h"
 
 #include <vtkFixedPointVolumeRayCastMapper.h>
+#include <vtkPlane.h>
 #include <vtkRendererCollection.h>
 #include <vtkUnsignedCharArray.h>
 #include <vtkVolumeCollection.h>
 #include <vtkWindowToImageFilter.h>
 
 #include <cstdlib>
+#include <functional>
 #include <iostream>
 
 namespace
@@ -27,7 +30,10 @@ vtkSmartPointer<vtkImageData> Grab(vtkRenderWindow* window)
   return out;
 }
 
-bool Compare(int blend)
+/// Sets the same clipping or cropping on a mapper.
+using Configure = std::function<void(vtkVolumeMapper*)>;
+
+bool Compare(int blend, const char* what, const Configure& configure)
 {
   vtkNew<vtkRenderWindow> window;
   window->SetSize(160, 160);
@@ -38,6 +44,7 @@ bool Compare(int blend)
   const double vp[4] = { 0, 0, 1, 1 };
   auto parcMapper = parctest::AddVolume(window, vp, image, property, blend);
   parcMapper->SetSampleDistance(0.5);
+  configure(parcMapper);
   window->Render();
   auto parcImage = Grab(window);
 
@@ -48,6 +55,7 @@ bool Compare(int blend)
   fixed->SetLockSampleDistanceToInputSpacing(0);
   fixed->SetSampleDistance(0.5);
   fixed->SetImageSampleDistance(1.0);
+  configure(fixed);
   vtkRenderer* renderer = vtkRenderer::SafeDownCast(window->GetRenderers()->GetItemAsObject(0));
   vtkVolume::SafeDownCast(renderer->GetVolumes()->GetItemAsObject(0))->SetMapper(fixed);
   window->Render();
@@ -66,7 +74,7 @@ bool Compare(int blend)
     bright += a->GetValue(i) > 80 ? 1 : 0;
   }
   const double mean = sum / n;
-  std::cout << "blend " << blend << ": mean |difference| " << mean << ", values beyond 24: " << far
+  std::cout << "blend " << blend << ", " << what << ": mean |difference| " << mean << ", values beyond 24: " << far
             << " of " << n << ", bright values " << bright << "\n";
   return mean < 1.0 && far < n / 1000 && bright > n / 200;
 }
@@ -74,7 +82,33 @@ bool Compare(int blend)
 
 int TestPARCCompareFixedPoint(int, char*[])
 {
-  const bool mip = Compare(vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND);
-  const bool composite = Compare(vtkVolumeMapper::COMPOSITE_BLEND);
-  return mip && composite ? EXIT_SUCCESS : EXIT_FAILURE;
+  const std::pair<const char*, Configure> configurations[] = {
+    { "plain", [](vtkVolumeMapper*) {} },
+    { "clipping plane",
+      [](vtkVolumeMapper* m) {
+        vtkNew<vtkPlane> plane; // keeps x - 0.4 y >= -6, cutting through both blobs
+        plane->SetOrigin(-6, 0, 0);
+        plane->SetNormal(1, -0.4, 0);
+        m->AddClippingPlane(plane);
+      } },
+    { "cropping, centre subvolume",
+      [](vtkVolumeMapper* m) {
+        m->CroppingOn();
+        m->SetCroppingRegionPlanes(-20, 12, -15, 18, -10, 9);
+        m->SetCroppingRegionFlagsToSubVolume();
+      } },
+    { "cropping, fence",
+      [](vtkVolumeMapper* m) {
+        m->CroppingOn();
+        m->SetCroppingRegionPlanes(-20, 12, -15, 18, -10, 9);
+        m->SetCroppingRegionFlagsToFence();
+      } },
+  };
+  bool ok = true;
+  for (const auto& c : configurations)
+  {
+    ok &= Compare(vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND, c.first, c.second);
+    ok &= Compare(vtkVolumeMapper::COMPOSITE_BLEND, c.first, c.second);
+  }
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
