@@ -1,10 +1,15 @@
-// Ray-box clipping and the conversion of segments to lattice ranges.
+// Ray-box clipping, clipping planes, cropping and the conversion of segments to lattice
+// ranges.
 #include "parcRay.h"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+#include <random>
+#include <set>
+#include <vector>
 
 using parc::LatticeRange;
 using parc::Segment;
@@ -90,4 +95,82 @@ TEST(WholeRaySource, GivesOneUnboundedSegment)
   ASSERT_EQ(s.size(), 1u);
   EXPECT_TRUE(std::isinf(s[0].TNear) && s[0].TNear < 0);
   EXPECT_TRUE(std::isinf(s[0].TFar) && s[0].TFar > 0);
+}
+
+// Clipping planes keep the side the normal points to; a ray parallel to a plane is kept or
+// dropped whole.
+TEST(ClipToPlanes, KeepsTheSideTheNormalPointsTo)
+{
+  parc::Ray ray;
+  ray.Origin = { 0, 0, 0 };
+  ray.Direction = { 1, 0, 0 };
+  double t0 = 0, t1 = 10;
+  const std::vector<parc::ClipPlane> planes = { { { 3, 0, 0 }, { 1, 0, 0 } },
+    { { 7, 0, 0 }, { -2, 0, 0 } } };
+  ASSERT_TRUE(parc::ClipToPlanes(ray, planes, t0, t1));
+  EXPECT_DOUBLE_EQ(t0, 3.0);
+  EXPECT_DOUBLE_EQ(t1, 7.0);
+  const std::vector<parc::ClipPlane> parallelOut = { { { 0, 1, 0 }, { 0, 1, 0 } } };
+  t0 = 0, t1 = 10;
+  EXPECT_FALSE(parc::ClipToPlanes(ray, parallelOut, t0, t1));
+  const std::vector<parc::ClipPlane> parallelIn = { { { 0, -1, 0 }, { 0, 1, 0 } } };
+  t0 = 0, t1 = 10;
+  EXPECT_TRUE(parc::ClipToPlanes(ray, parallelIn, t0, t1));
+  EXPECT_EQ(t1, 10.0);
+}
+
+// Cropped intervals and their lattice samples against a brute-force test of every lattice
+// sample's region, on random rays and region sets.
+TEST(Cropping, IntervalsHoldExactlyTheSamplesOfRenderedRegions)
+{
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  parc::Cropping crop;
+  crop.Enabled = true;
+  const double planes[6] = { 2.5, 6.0, 1.0, 7.5, 3.0, 4.0 };
+  std::copy_n(planes, 6, crop.Planes);
+  const double dt = 0.37;
+  for (int trial = 0; trial < 300; ++trial)
+  {
+    crop.RegionFlags = static_cast<int>(rng() & ((1u << 27) - 1));
+    const parc::Vec3 o(5 + 6 * u(rng), 5 + 6 * u(rng), 5 + 6 * u(rng));
+    const parc::Vec3 d = parc::Normalized({ u(rng), u(rng), trial % 7 == 0 ? 0.0 : u(rng) });
+    std::vector<parc::Segment> intervals;
+    parc::CroppedIntervals(o, d, crop, -2.0, 25.0, intervals);
+    std::vector<parc::LatticeRange> ranges = { { -10, 20 }, { 30, 80 } };
+    parc::IntersectLatticeRanges(ranges, intervals, dt);
+    std::set<long> kept;
+    for (const parc::LatticeRange& r : ranges)
+    {
+      for (long k = r.First; k <= r.Last; ++k)
+      {
+        kept.insert(k);
+      }
+    }
+    for (long k = -10; k <= 80; ++k)
+    {
+      const double t = k * dt;
+      bool inRanges = (k <= 20 || k >= 30) && t >= -2.0 && t <= 25.0;
+      int region = 0;
+      for (int a = 2; a >= 0; --a)
+      {
+        const double x = o[a] + t * d[a];
+        region = 3 * region + (x < planes[2 * a] ? 0 : (x <= planes[2 * a + 1] ? 1 : 2));
+      }
+      // Samples on a cropping plane may fall on either side: only check the others.
+      bool onPlane = false;
+      for (int a = 0; a < 3; ++a)
+      {
+        for (int side = 0; side < 2; ++side)
+        {
+          onPlane = onPlane || std::fabs(o[a] + t * d[a] - planes[2 * a + side]) < 1e-9;
+        }
+      }
+      if (!onPlane)
+      {
+        EXPECT_EQ(kept.count(k) == 1, inRanges && ((crop.RegionFlags >> region) & 1))
+          << "trial " << trial << ", k " << k;
+      }
+    }
+  }
 }
