@@ -42,14 +42,13 @@ layout(location = 0) in vec3 Corner;
 layout(location = 1) in vec3 Edge1;
 layout(location = 2) in vec3 Edge3;
 layout(location = 3) in int Plane;
-uniform mat4 IndexToWorld;
-uniform mat4 WorldToClip;
-uniform vec3 Eye;
+uniform mat4 IndexToRelative;
+uniform mat4 RelativeToClip;
 uniform vec3 ViewDirection;
 uniform float MinDepth;
 uniform vec2 Dilation;
 uniform vec3 SkipNormal;
-uniform float EyeDistance;
+uniform float FrameScale;
 uniform vec3 RayBase[3];
 uniform vec3 RayDirection[3];
 flat out vec2 gDepthRange;
@@ -75,9 +74,8 @@ void main()
   float depth[4];
   for (int i = 0; i < 4; ++i)
   {
-    vec4 world = IndexToWorld * vec4(corners[i], 1.0);
-    relative[i] = world.xyz - Eye;
-    clip[i] = WorldToClip * world;
+    relative[i] = (IndexToRelative * vec4(corners[i], 1.0)).xyz;
+    clip[i] = RelativeToClip * vec4(relative[i], 1.0);
     depth[i] = dot(relative[i], ViewDirection);
   }
   vec2 lo = vec2(3.0e38);
@@ -116,8 +114,10 @@ void main()
     gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
     return;
   }
-  lo -= Dilation;
-  hi += Dilation;
+  // Beyond the viewport (NDC -1 to 1) the box only makes the primitive huge: clamped to a
+  // margin around it, so the rasterizer never clips far-away coordinates.
+  lo = max(lo - Dilation, vec2(-2.0));
+  hi = min(hi + Dilation, vec2(2.0));
   int box = gl_VertexID;
   gl_Position = vec4((box & 1) != 0 ? hi.x : lo.x, (box & 2) != 0 ? hi.y : lo.y, 0.0, 1.0);
   // The face's plane dot(n, x) = w (eye-relative world coordinates). The ray through NDC
@@ -136,12 +136,17 @@ void main()
   vec3 d = vec3(dot(n, RayDirection[0]), dot(n, RayDirection[1]), dot(n, RayDirection[2]));
   gDenominator = d;
   gDepthNumerator = Numerator(ViewDirection, 0.0, d, m);
-  vec3 q1 = e1 / dot(e1, e1);
-  vec3 q3 = e3 / dot(e3, e3);
+  // The face coordinates of a point p of the plane are dot(p - relative[0], q) for the dual
+  // basis q1, q3 of the edges (dot(q1, e1) = dot(q3, e3) = 1, dot(q1, e3) = dot(q3, e1) = 0):
+  // a quad of a sheared volume is a parallelogram whose edges are not orthogonal. A point
+  // at distance r from p changes them by at most r |q|.
+  vec3 normal = cross(e1, e3);
+  vec3 q1 = cross(e3, normal) / dot(normal, normal);
+  vec3 q3 = cross(normal, e1) / dot(normal, normal);
   gEdgeNumerator[0] = Numerator(q1, dot(relative[0], q1), d, m);
   gEdgeNumerator[1] = Numerator(q3, dot(relative[0], q3), d, m);
-  gInverseEdgeLength = vec2(inversesqrt(dot(e1, e1)), inversesqrt(dot(e3, e3)));
-  gFaceScale = length(relative[0]) + EyeDistance + length(e1) + length(e3) +
+  gInverseEdgeLength = vec2(length(q1), length(q3));
+  gFaceScale = length(relative[0]) + FrameScale + length(e1) + length(e3) +
     length(RayBase[0]) + length(RayBase[1]) + length(RayBase[2]);
 }
 )";
@@ -327,6 +332,7 @@ struct GPUModel
   GLsizei Count = 0; ///< quads (instances)
   std::uint64_t Version = ~std::uint64_t(0);
   std::size_t Bytes = 0; ///< buffer storage
+  double LargestCorner = 0.0; ///< the largest |vertex| (voxel-index coordinates)
 
   void Release()
   {
@@ -582,6 +588,7 @@ void vtkPARCRasterizer::vtkInternals::Upload(
     glGenBuffers(1, &gpu.Positions);
     glGenBuffers(1, &gpu.Planes);
   }
+  gpu.LargestCorner = 0.0;
   // Per quad: its first corner and the edges to its second and fourth corners (the model's
   // quads are parallelograms), then its plane.
   const std::size_t quads = model.GetNumberOfQuads();
@@ -591,6 +598,10 @@ void vtkPARCRasterizer::vtkInternals::Upload(
   for (std::size_t q = 0; q < quads; ++q)
   {
     const parc::Vec3* v = model.Vertices.data() + 4 * q;
+    for (int corner = 0; corner < 4; ++corner)
+    {
+      gpu.LargestCorner = std::max(gpu.LargestCorner, parc::Length(v[corner]));
+    }
     for (const parc::Vec3& x : { v[0], v[1] - v[0], v[3] - v[0] })
     {
       geometry.insert(geometry.end(),
@@ -628,12 +639,36 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
 {
   glUseProgram(program);
   SetVector(program, "SkipNormal", skipNormal);
-  SetMatrix(program, "IndexToWorld", indexToWorld);
-  SetMatrix(program, "WorldToClip", view.WorldToClip);
-  SetVector(program, "Eye", view.Eye);
+  // The shaders work in world coordinates relative to the eye, set up here in double: far
+  // from the origin, float then never holds a large coordinate.
+  parc::Matrix4 indexToRelative = indexToWorld;
+  parc::Matrix4 relativeToClip = view.WorldToClip;
+  for (int r = 0; r < 4; ++r)
+  {
+    if (r < 3)
+    {
+      indexToRelative(r, 3) -= view.Eye[r];
+    }
+    relativeToClip(r, 3) += relativeToClip(r, 0) * view.Eye.X + relativeToClip(r, 1) * view.Eye.Y +
+      relativeToClip(r, 2) * view.Eye.Z;
+  }
+  SetMatrix(program, "IndexToRelative", indexToRelative);
+  SetMatrix(program, "RelativeToClip", relativeToClip);
+  // A bound of the magnitudes in the float transform of any vertex.
+  double linear = 0.0;
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 3; ++c)
+    {
+      linear += indexToRelative(r, c) * indexToRelative(r, c);
+    }
+  }
+  const double frameScale = parc::Length(parc::Vec3{ indexToRelative(0, 3), indexToRelative(1, 3),
+                              indexToRelative(2, 3) }) +
+    std::sqrt(linear) * gpu.LargestCorner;
   SetVector(program, "ViewDirection", view.Pass.Direction);
   glUniform1f(glGetUniformLocation(program, "Empty"), parc::DepthBufferSource::Empty);
-  glUniform1f(glGetUniformLocation(program, "EyeDistance"), static_cast<float>(parc::Length(view.Eye)));
+  glUniform1f(glGetUniformLocation(program, "FrameScale"), static_cast<float>(frameScale));
   SetVectors(program, "RayBase", view.RayBase);
   SetVectors(program, "RayDirection", view.RayDirection);
   glUniform2f(glGetUniformLocation(program, "PixelToNDC"), 2.0f / view.Pass.Width,
