@@ -57,7 +57,9 @@ struct CastParameters
   bool Shade = false;
   double Ambient = 0.1, Diffuse = 0.7, Specular = 0.2, SpecularPower = 10.0;
   std::vector<Light> Lights;
-  Matrix4 WorldToIndex; ///< world -> voxel-index coordinates (affine)
+  /// World -> voxel-index coordinates (affine). "World" is whatever frame the caller uses for
+  /// rays, lights and planes alike; the mapper centres it on the camera.
+  Matrix4 WorldToIndex;
   /// Rays are cut to the part every clipping plane keeps (world coordinates) ...
   std::vector<ClipPlane> ClipPlanes;
   /// ... and to the rendered cropping regions (voxel-index coordinates). A sample outside

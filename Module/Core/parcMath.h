@@ -109,6 +109,17 @@ struct Matrix4
   }
 };
 
+/// The affine map m followed by a translation by offset (offset added to m's translation).
+inline Matrix4 Translated(const Matrix4& m, const Vec3& offset)
+{
+  Matrix4 out = m;
+  for (int r = 0; r < 3; ++r)
+  {
+    out(r, 3) += offset[r];
+  }
+  return out;
+}
+
 /// The inverse of m; returns false (and leaves out untouched) when m is singular.
 bool Invert(const Matrix4& m, Matrix4& out);
 /// a * b.

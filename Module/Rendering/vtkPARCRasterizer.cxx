@@ -1,5 +1,7 @@
 #include "vtkPARCRasterizer.h"
 
+#include "parcVTKConversion.h"
+
 #include "vtkCamera.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
@@ -757,20 +759,21 @@ bool vtkPARCRasterizer::MakeViews(
   vtkRenderer* ren, int width, int height, parc::ViewGeometry& rays, View& pass)
 {
   vtkCamera* camera = ren->GetActiveCamera();
-  vtkMatrix4x4* worldToNDC =
-    camera->GetCompositeProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1);
-  for (int r = 0; r < 4; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      pass.WorldToClip(r, c) = worldToNDC->GetElement(r, c);
-    }
-  }
+  // The view transform of the camera's frame: the translation by the camera position, large
+  // far from the origin, cancels in double here (leaving at most a constant offset that the
+  // rays and the passes share) and never enters float.
+  const double* eye = camera->GetPosition();
+  pass.FrameOrigin = { eye[0], eye[1], eye[2] };
+  const parc::Matrix4 worldToView = parc::vtk::ToMatrix4(camera->GetViewTransformMatrix());
+  const parc::Matrix4 frameToView =
+    parc::Translated(worldToView, worldToView.TransformVector(pass.FrameOrigin));
+  pass.WorldToClip = parc::Multiply(
+    parc::vtk::ToMatrix4(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1)),
+    frameToView);
   rays.Width = pass.Pass.Width = width;
   rays.Height = pass.Pass.Height = height;
   rays.Parallel = pass.Pass.Parallel = camera->GetParallelProjection() != 0;
-  const double* eye = camera->GetPosition();
-  rays.Eye = pass.Eye = { eye[0], eye[1], eye[2] };
+  rays.Eye = pass.Eye = parc::Vec3();
   const double* direction = camera->GetDirectionOfProjection();
   pass.Pass.Direction = parc::Normalized({ direction[0], direction[1], direction[2] });
   pass.NearDistance = camera->GetClippingRange()[0];

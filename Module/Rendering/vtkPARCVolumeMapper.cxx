@@ -45,7 +45,17 @@ constexpr float DisplayDepth = 1e-6f; ///< window depth of the displayed image q
 /// A sample distance must leave at most this many samples along the volume's diagonal.
 constexpr double MaxSamplesPerDiagonal = 1e7;
 
-void ConvertLights(vtkRenderer* ren, std::vector<parc::Light>& lights)
+/// The origin of the render's coordinates: the active camera's position. The mapper hands
+/// the core world coordinates minus it (as vtkPARCRasterizer::MakeViews does), so that a
+/// volume far from the world's origin keeps its precision.
+parc::Vec3 FrameOrigin(vtkRenderer* ren)
+{
+  const double* eye = ren->GetActiveCamera()->GetPosition();
+  return { eye[0], eye[1], eye[2] };
+}
+
+/// The renderer's lights that are on, in the render frame (origin at frame).
+void ConvertLights(vtkRenderer* ren, const parc::Vec3& frame, std::vector<parc::Light>& lights)
 {
   lights.clear();
   vtkLightCollection* collection = ren->GetLights();
@@ -62,8 +72,8 @@ void ConvertLights(vtkRenderer* ren, std::vector<parc::Light>& lights)
     double p[3], f[3];
     light->GetTransformedPosition(p);
     light->GetTransformedFocalPoint(f);
-    l.Position = { p[0], p[1], p[2] };
-    l.FocalPoint = { f[0], f[1], f[2] };
+    l.Position = parc::Vec3{ p[0], p[1], p[2] } - frame;
+    l.FocalPoint = parc::Vec3{ f[0], f[1], f[2] } - frame;
     const double* c = light->GetDiffuseColor();
     const double i = light->GetIntensity();
     l.Color = { c[0] * i, c[1] * i, c[2] * i };
@@ -75,14 +85,17 @@ void ConvertLights(vtkRenderer* ren, std::vector<parc::Light>& lights)
   }
 }
 
-/// The matrix from 0-based voxel indices of the image to world coordinates.
-parc::Matrix4 IndexToWorld(vtkImageData* image, vtkVolume* vol)
+/// The matrix from 0-based voxel indices of the image to the render frame (origin at frame).
+parc::Matrix4 IndexToFrame(vtkImageData* image, vtkVolume* vol, const parc::Vec3& frame)
 {
-  return parc::Multiply(parc::vtk::ToMatrix4(vol->GetMatrix()), parc::vtk::IndexToPhysical(image));
+  return parc::Translated(
+    parc::Multiply(parc::vtk::ToMatrix4(vol->GetMatrix()), parc::vtk::IndexToPhysical(image)),
+    -frame);
 }
 
-/// The planes of a vtkPlaneCollection (world coordinates).
-void ConvertClippingPlanes(vtkPlaneCollection* planes, std::vector<parc::ClipPlane>& out)
+/// The planes of a vtkPlaneCollection, in the render frame (origin at frame).
+void ConvertClippingPlanes(
+  vtkPlaneCollection* planes, const parc::Vec3& frame, std::vector<parc::ClipPlane>& out)
 {
   out.clear();
   if (!planes)
@@ -95,7 +108,7 @@ void ConvertClippingPlanes(vtkPlaneCollection* planes, std::vector<parc::ClipPla
   {
     const double* o = plane->GetOrigin();
     const double* n = plane->GetNormal();
-    out.push_back({ { o[0], o[1], o[2] }, { n[0], n[1], n[2] } });
+    out.push_back({ parc::Vec3{ o[0], o[1], o[2] } - frame, { n[0], n[1], n[2] } });
   }
 }
 
@@ -177,7 +190,9 @@ public:
   vtkMTimeType FixesWarnedTime = 0; ///< the property whose conversion fixes were reported
   vtkSmartPointer<vtkDataArray> FieldArray; ///< the values Field reads
   parc::CastParameters Parameters;
-  parc::Matrix4 IndexToWorld; ///< voxel index -> world, of the last PrepareParameters
+  /// Voxel index -> render frame (world minus the camera position), of the last
+  /// PrepareParameters; every world quantity the core sees is in that frame.
+  parc::Matrix4 IndexToFrame;
   parc::RayCaster Caster;
   std::vector<float> Image;
   int ImageSize[2] = { 0, 0 };
@@ -500,8 +515,9 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
   p.AverageRange[1] = this->AverageIPScalarRange[1];
   p.TerminationOpacity = this->TerminationOpacity;
 
-  in.IndexToWorld = IndexToWorld(vtkImageData::SafeDownCast(this->GetInput()), vol);
-  const parc::Matrix4& indexToWorld = in.IndexToWorld;
+  const parc::Vec3 frame = FrameOrigin(ren);
+  in.IndexToFrame = IndexToFrame(vtkImageData::SafeDownCast(this->GetInput()), vol, frame);
+  const parc::Matrix4& indexToWorld = in.IndexToFrame;
   if (!parc::Invert(indexToWorld, p.WorldToIndex))
   {
     vtkErrorMacro("The volume's index-to-world transform is singular (zero scale?).");
@@ -524,7 +540,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
     return false;
   }
   this->LastSampleDistance = p.SampleDistance;
-  ConvertClippingPlanes(this->ClippingPlanes, p.ClipPlanes);
+  ConvertClippingPlanes(this->ClippingPlanes, frame, p.ClipPlanes);
   p.Crop.Enabled = this->Cropping != 0;
   if (p.Crop.Enabled)
   {
@@ -533,7 +549,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
   }
   if (p.Shade)
   {
-    ConvertLights(ren, p.Lights);
+    ConvertLights(ren, frame, p.Lights);
   }
   else
   {
@@ -654,7 +670,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(vtkPARCV
   {
     return in.WholeRays;
   }
-  const parc::Matrix4& indexToWorld = in.IndexToWorld;
+  const parc::Matrix4& indexToWorld = in.IndexToFrame;
   vtkRenderWindow* window = ren->GetRenderWindow();
   const bool depth = mode == ACCELERATION_DEPTH_BUFFER || mode == ACCELERATION_BOTH;
   const bool color = mode == ACCELERATION_COLOR_BUFFER || mode == ACCELERATION_BOTH;

@@ -24,8 +24,8 @@ struct Tally
 /// Checks every pixel of the current camera; returns false on the first violation.
 bool CheckCamera(vtkRenderWindow* window, vtkRenderer* ren, vtkPARCRasterizer* rasterizer,
   const parc::SupercellGrid& grid, const parc::PolygonModel& depthModel,
-  const parc::PolygonModel* colorModels, const parc::Matrix4& indexToWorld,
-  const parc::Matrix4& worldToIndex, const char* name, Tally& tally)
+  const parc::PolygonModel* colorModels, const parc::Matrix4& placement, const char* name,
+  Tally& tally)
 {
   static std::uint64_t version = 0;
   ++version; // force uploads: the test switches models freely
@@ -38,6 +38,10 @@ bool CheckCamera(vtkRenderWindow* window, vtkRenderer* ren, vtkPARCRasterizer* r
     std::cerr << name << ": singular camera\n";
     return false;
   }
+  // The views are in the camera's frame: so is the volume's placement.
+  const parc::Matrix4 indexToWorld = parc::Translated(placement, -view.FrameOrigin);
+  parc::Matrix4 worldToIndex;
+  parc::Invert(indexToWorld, worldToIndex);
   std::vector<float> nearFar;
   if (!rasterizer->RenderDepth(window, depthModel, version, indexToWorld, view, nearFar))
   {
@@ -187,8 +191,6 @@ int TestPARCRasterizer(int argc, char* argv[])
       placed(r, 3) = offset;
     }
   }
-  parc::Matrix4 unplaced;
-  parc::Invert(placed, unplaced);
   for (int run = 0; run < 7; ++run)
   {
     // Each size with separate faces and with merged faces (the mapper's models), then the
@@ -196,8 +198,7 @@ int TestPARCRasterizer(int argc, char* argv[])
     const double twos[3] = { 2, 2, 2 };
     const double* size = run < 6 ? sizes[run / 2] : twos;
     const bool merge = run >= 6 || (run % 2) == 1;
-    const parc::Matrix4& indexToWorld = run < 6 ? identity : placed;
-    const parc::Matrix4& worldToIndex = run < 6 ? identity : unplaced;
+    const parc::Matrix4& placement = run < 6 ? identity : placed;
     parc::SupercellGrid grid;
     grid.Configure(pyramid.GetCellDimensions(), size);
     grid.Classify(pyramid, rule, parc::Interpolation::Linear);
@@ -210,8 +211,8 @@ int TestPARCRasterizer(int argc, char* argv[])
     auto check = [&](const char* name) {
       ren->ResetCameraClippingRange();
       ++cameras;
-      return CheckCamera(window, ren, rasterizer, grid, depthModel, colorModels, indexToWorld,
-        worldToIndex, name, tally);
+      return CheckCamera(
+        window, ren, rasterizer, grid, depthModel, colorModels, placement, name, tally);
     };
     // Axis-aligned parallel views with pixel centres exactly on cell planes: 64 x 48
     // pixels of one voxel each, centres on integer coordinates.
