@@ -749,9 +749,14 @@ std::size_t vtkPARCRasterizer::GetMemorySize() const
   return bytes;
 }
 
-void vtkPARCRasterizer::ReleaseGraphicsResources(vtkWindow*)
+void vtkPARCRasterizer::ReleaseGraphicsResources(vtkWindow* window)
 {
-  this->Internals->Release();
+  // Only the resources of that window's context: another window going away must not make
+  // this context current behind VTK's back nor throw away what it still uses.
+  if (!window || window == this->Internals->Context.GetPointer())
+  {
+    this->Internals->Release();
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -114,6 +114,7 @@ public:
   /// software GL all of it is main memory).
   std::size_t GetMemorySize() const;
 
+  /// Frees the GL objects when window is the context they belong to (or null).
   void ReleaseGraphicsResources(vtkWindow* window);
 
 protected:

@@ -10,6 +10,7 @@
 #include <vtkPlane.h>
 #include <vtkPlaneCollection.h>
 #include <vtkPolyDataMapper.h>
+#include <vtkRendererCollection.h>
 #include <vtkSphereSource.h>
 #include <vtkTransform.h>
 
@@ -50,20 +51,31 @@ vtkSmartPointer<vtkImageData> MakeImage()
   return image;
 }
 
+/// One scene in a window the test owns (the test reuses its windows: an X server serves a
+/// limited number of connections), with a spare window for the render-window case.
 struct Scene
 {
-  vtkNew<vtkRenderWindow> Window;
+  vtkRenderWindow* Window;
+  vtkRenderWindow* Spare;
   vtkNew<vtkRenderer> Renderer;
   vtkSmartPointer<vtkImageData> Image = MakeImage();
   vtkSmartPointer<vtkVolumeProperty> Property = parctest::MakeProperty(false);
   vtkNew<vtkVolume> Volume;
   vtkNew<vtkPARCVolumeMapper> Mapper;
-  vtkSmartPointer<vtkRenderWindow> Second; ///< the render window case
+  bool MovedToSpare = false; ///< the render window case
 
-  Scene()
+  Scene(vtkRenderWindow* window, vtkRenderWindow* spare)
+    : Window(window)
+    , Spare(spare)
   {
-    this->Window->SetOffScreenRendering(1);
-    this->Window->SetSize(64, 56);
+    for (vtkRenderWindow* w : { window, spare })
+    {
+      if (w)
+      {
+        w->GetRenderers()->RemoveAllItems();
+        w->SetSize(64, 56);
+      }
+    }
     this->Window->AddRenderer(this->Renderer);
     this->Mapper->SetInputData(this->Image);
     this->Volume->SetMapper(this->Mapper);
@@ -74,7 +86,17 @@ struct Scene
     this->Renderer->GetActiveCamera()->Elevation(20);
     this->Renderer->ResetCameraClippingRange();
   }
-  vtkRenderWindow* Current() { return this->Second ? this->Second.Get() : this->Window.Get(); }
+  ~Scene()
+  {
+    for (vtkRenderWindow* w : { this->Window, this->Spare })
+    {
+      if (w)
+      {
+        w->GetRenderers()->RemoveAllItems();
+      }
+    }
+  }
+  vtkRenderWindow* Current() { return this->MovedToSpare ? this->Spare : this->Window; }
 
   /// The image of a fresh mapper with the same settings, unaccelerated, in the same view.
   std::vector<float> FreshImage()
@@ -122,7 +144,12 @@ int TwoWindows()
     vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER };
   for (int mode : modes)
   {
-    Scene one, two;
+    vtkNew<vtkRenderWindow> first, second;
+    for (vtkRenderWindow* w : { first.Get(), second.Get() })
+    {
+      w->SetOffScreenRendering(1);
+    }
+    Scene one(first, nullptr), two(second, nullptr);
     vtkNew<vtkPARCVolumeMapper> other; // a second mapper in window 1
     other->SetInputData(one.Image);
     vtkNew<vtkVolume> otherVolume;
@@ -133,7 +160,7 @@ int TwoWindows()
     vtkPARCVolumeMapper* mappers[3] = { one.Mapper, other, two.Mapper };
     auto check = [&](const char* when) {
       // Each mapper's image with acceleration against the same render without.
-      for (vtkRenderWindow* w : { one.Window.Get(), two.Window.Get() })
+      for (vtkRenderWindow* w : { one.Window, two.Window })
       {
         for (vtkPARCVolumeMapper* m : mappers)
         {
@@ -278,24 +305,27 @@ int TestPARCCacheInvalidation(int, char*[])
       [](Scene& s) { s.Mapper->SetCroppingRegionFlagsToInvertedFence(); } },
     { "render window", nullptr,
       [](Scene& s) {
-        s.Second = vtkSmartPointer<vtkRenderWindow>::New();
-        s.Second->SetOffScreenRendering(1);
-        s.Second->SetSize(64, 56);
         vtkNew<vtkRenderer> renderer;
         renderer->SetActiveCamera(s.Renderer->GetActiveCamera());
         s.Renderer->RemoveVolume(s.Volume);
         renderer->AddVolume(s.Volume);
-        s.Second->AddRenderer(renderer);
+        s.Spare->AddRenderer(renderer);
+        s.MovedToSpare = true;
       } },
   };
   const int modes[] = { vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER,
     vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER, vtkPARCVolumeMapper::ACCELERATION_AUTO };
+  vtkNew<vtkRenderWindow> window, spare;
+  for (vtkRenderWindow* w : { window.Get(), spare.Get() })
+  {
+    w->SetOffScreenRendering(1);
+  }
   int failures = 0, cases = 0;
   for (int mode : modes)
   {
     for (const Change& change : changes)
     {
-      Scene s;
+      Scene s(window, spare);
       s.Mapper->SetAccelerationMode(mode);
       if (change.Setup)
       {
