@@ -16,14 +16,6 @@
 
 namespace
 {
-std::vector<float> RayImage(vtkPARCVolumeMapper* mapper)
-{
-  vtkNew<vtkImageData> image;
-  mapper->GetLastRayCastImage(image);
-  vtkFloatArray* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
-  return std::vector<float>(rgba->GetPointer(0), rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples());
-}
-
 struct CameraCase
 {
   const char* Name;
@@ -106,7 +98,7 @@ int TestPARCAccelerationExact(int argc, char* argv[])
       ren->ResetCameraClippingRange();
       mapper->SetAccelerationModeToNone();
       window->Render();
-      const std::vector<float> reference = RayImage(mapper);
+      const std::vector<float> reference = parctest::RayImage(mapper);
       const vtkIdType referenceSamples = mapper->GetLastSampleCount();
       for (const auto& size : sizes)
       {
@@ -116,7 +108,7 @@ int TestPARCAccelerationExact(int argc, char* argv[])
           mapper->SetAccelerationMode(mode);
           window->Render();
           ++cases;
-          const std::vector<float> fast = RayImage(mapper);
+          const std::vector<float> fast = parctest::RayImage(mapper);
           const bool same = fast.size() == reference.size() &&
             std::memcmp(fast.data(), reference.data(), fast.size() * sizeof(float)) == 0;
           // Auto may cast unaccelerated when it predicts that to be fastest; the other
@@ -186,10 +178,10 @@ int TestPARCAccelerationExact(int argc, char* argv[])
     second->AddRenderer(ren2);
     mapper->SetAccelerationModeToNone();
     second->Render();
-    const std::vector<float> reference = RayImage(mapper);
+    const std::vector<float> reference = parctest::RayImage(mapper);
     mapper->SetAccelerationModeToDepthBuffer();
     second->Render();
-    const std::vector<float> fast = RayImage(mapper);
+    const std::vector<float> fast = parctest::RayImage(mapper);
     if (reference.empty() || fast != reference || mapper->GetModelBuildCount() != builds + 1 ||
       mapper->GetLastAccelerationMode() != vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER)
     {

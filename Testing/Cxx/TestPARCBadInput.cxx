@@ -53,17 +53,6 @@ struct Harness
   }
 };
 
-/// The mapper's last float ray-cast image.
-std::vector<float> RayImage(vtkPARCVolumeMapper* mapper)
-{
-  vtkNew<vtkImageData> image;
-  mapper->GetLastRayCastImage(image);
-  vtkFloatArray* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
-  return rgba ? std::vector<float>(rgba->GetPointer(0),
-                  rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples())
-              : std::vector<float>();
-}
-
 vtkSmartPointer<vtkImageData> Image(int nx, int ny, int nz)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
@@ -187,7 +176,7 @@ int TestPARCBadInput(int, char*[])
       h.Window->Render();
       warnings += h.Observer->GetWarning() &&
         h.Observer->GetWarningMessage().find("left out and clamped") != std::string::npos;
-      images[m] = RayImage(h.Mapper);
+      images[m] = parctest::RayImage(h.Mapper);
     }
     const bool tfOk = warnings == 1 && !images[0].empty() && images[0] == images[1] &&
       h.Mapper->GetLastAccelerationMode() == vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER &&

@@ -20,16 +20,6 @@
 
 namespace
 {
-std::vector<float> RayImage(vtkPARCVolumeMapper* mapper)
-{
-  vtkNew<vtkImageData> image;
-  mapper->GetLastRayCastImage(image);
-  vtkFloatArray* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
-  return rgba ? std::vector<float>(rgba->GetPointer(0),
-                  rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples())
-              : std::vector<float>();
-}
-
 /// An image with point arrays "density" (the blobs, the active scalars), "inverted" and
 /// "shifted" (the blobs moved along x).
 vtkSmartPointer<vtkImageData> MakeImage()
@@ -122,7 +112,7 @@ struct Scene
     this->Volume->SetMapper(fresh);
     this->Current()->Render();
     this->Volume->SetMapper(this->Mapper);
-    return RayImage(fresh);
+    return parctest::RayImage(fresh);
   }
 };
 
@@ -170,13 +160,13 @@ int TwoWindows()
         std::vector<std::vector<float>> reference;
         for (vtkPARCVolumeMapper* m : mappers)
         {
-          reference.push_back(RayImage(m));
+          reference.push_back(parctest::RayImage(m));
           m->SetAccelerationMode(mode);
         }
         w->Render();
         for (int i = 0; i < 3; ++i)
         {
-          if (RayImage(mappers[i]) != reference[i])
+          if (parctest::RayImage(mappers[i]) != reference[i])
           {
             std::cerr << "FAIL: two windows, " << when << ", mapper " << i << ", "
                       << vtkPARCVolumeMapper::GetAccelerationModeAsString(mode) << "\n";
@@ -337,7 +327,7 @@ int TestPARCCacheInvalidation(int, char*[])
       }
       change.Apply(s);
       s.Current()->Render();
-      const std::vector<float> image = RayImage(s.Mapper);
+      const std::vector<float> image = parctest::RayImage(s.Mapper);
       const std::vector<float> fresh = s.FreshImage();
       ++cases;
       if (image.empty() || image != fresh)

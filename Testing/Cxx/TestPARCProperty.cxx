@@ -35,16 +35,6 @@ double LogUniform(Rng& rng, double lo, double hi)
   return std::pow(10.0, Uniform(rng, lo, hi));
 }
 
-std::vector<float> RayImage(vtkPARCVolumeMapper* mapper)
-{
-  vtkNew<vtkImageData> image;
-  mapper->GetLastRayCastImage(image);
-  vtkFloatArray* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
-  return rgba ? std::vector<float>(rgba->GetPointer(0),
-                  rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples())
-              : std::vector<float>();
-}
-
 /// A smooth random field of a few Gaussian bumps (so that some cells are empty and some
 /// dense), as unsigned char or float.
 vtkSmartPointer<vtkImageData> RandomVolume(Rng& rng, std::string& what)
@@ -262,7 +252,7 @@ bool RunCase(std::uint64_t seed, vtkRenderWindow* window, Coverage& coverage)
   {
     mapper->SetAccelerationMode(mode);
     window->Render();
-    const std::vector<float> result = RayImage(mapper);
+    const std::vector<float> result = parctest::RayImage(mapper);
     if (mode == vtkPARCVolumeMapper::ACCELERATION_NONE)
     {
       reference = result;

@@ -20,6 +20,7 @@
 #include <vtkVolumeProperty.h>
 
 #include <cmath>
+#include <vector>
 
 namespace parctest
 {
@@ -101,6 +102,17 @@ inline vtkSmartPointer<vtkPARCVolumeMapper> AddVolume(vtkRenderWindow* window, c
   renderer->ResetCameraClippingRange();
   window->AddRenderer(renderer);
   return mapper;
+}
+
+/// The mapper's last float ray-cast image (RGBA, 4 floats a pixel; empty if none).
+inline std::vector<float> RayImage(vtkPARCVolumeMapper* mapper)
+{
+  vtkNew<vtkImageData> image;
+  mapper->GetLastRayCastImage(image);
+  vtkFloatArray* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
+  return rgba ? std::vector<float>(rgba->GetPointer(0),
+                  rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples())
+              : std::vector<float>();
 }
 
 /// The largest alpha of the mapper's last float ray-cast image (-1 if empty).
