@@ -102,6 +102,29 @@ void ContributionRule::Set(const CastParameters& p, const double range[2])
   }
 }
 
+bool ContributionRule::AllContributing(double lo, double hi) const
+{
+  switch (this->Blend)
+  {
+    case BlendMode::MaximumIntensity:
+      return lo + this->Margin >= this->Threshold; // every cell's maximum is at least lo
+    case BlendMode::MinimumIntensity:
+      return hi - this->Margin <= this->Threshold;
+    case BlendMode::IsoSurface:
+      return false; // a cell inside the range need not hold an iso value
+    default:
+      // A range inside one interval meets it.
+      for (std::size_t i = 0; i < this->Lo.size(); ++i)
+      {
+        if (this->Lo[i] <= lo && hi <= this->Hi[i])
+        {
+          return true;
+        }
+      }
+      return false;
+  }
+}
+
 void RangePyramid::Build(const ScalarField& field)
 {
   this->Field = &field;
@@ -217,9 +240,14 @@ bool RangePyramid::Query(int level, const int node[3], const int c0[3], const in
   const Level& l = this->Levels[level - 1];
   const std::size_t n = static_cast<std::size_t>(node[0]) +
     static_cast<std::size_t>(l.Dims[0]) * (node[1] + static_cast<std::size_t>(l.Dims[1]) * node[2]);
-  if (!rule.IsPossiblyContributing(this->CodeValues[l.Min[n]], this->CodeValues[l.Max[n]]))
+  const double lo = this->CodeValues[l.Min[n]], hi = this->CodeValues[l.Max[n]];
+  if (!rule.IsPossiblyContributing(lo, hi))
   {
     return false;
+  }
+  if (rule.AllContributing(lo, hi))
+  {
+    return true; // the node meets the box in at least one cell, and every cell is PC
   }
   for (int c = 0; c < 8; ++c)
   {

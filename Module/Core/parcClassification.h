@@ -49,6 +49,10 @@ public:
     }
   }
 
+  /// True when every cell whose samples lie within [lo, hi] is possibly contributing: a
+  /// query may then stop without looking at the cells (never true for isosurfaces).
+  bool AllContributing(double lo, double hi) const;
+
   /// The margin added on both sides of every range (scalar units).
   double GetMargin() const { return this->Margin; }
 
