@@ -229,7 +229,8 @@ public:
     double Average[2] = { 0, 0 }, Size[3] = { 0, 0, 0 };
     bool operator==(const ClassificationKey& o) const
     {
-      return FieldVersion == o.FieldVersion && Property == o.Property && PropertyTime == o.PropertyTime && Blend == o.Blend &&
+      return FieldVersion == o.FieldVersion && Property == o.Property &&
+        PropertyTime == o.PropertyTime && Blend == o.Blend &&
         std::equal(Average, Average + 2, o.Average) && std::equal(Size, Size + 3, o.Size);
     }
   } Classified;
