@@ -641,8 +641,8 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
 {
   glUseProgram(program);
   SetVector(program, "SkipNormal", skipNormal);
-  // The shaders work in world coordinates relative to the eye, set up here in double: far
-  // from the origin, float then never holds a large coordinate.
+  // The shaders work in coordinates relative to the eye, set up here in double, so float
+  // never holds a large coordinate (the views of MakeViews have the eye at 0 already).
   parc::Matrix4 indexToRelative = indexToWorld;
   parc::Matrix4 relativeToClip = view.WorldToClip;
   for (int r = 0; r < 4; ++r)
