@@ -1,5 +1,7 @@
 #include "parcClassification.h"
 
+#include <vtkSMPTools.h>
+
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
@@ -140,8 +142,13 @@ void RangePyramid::Build(const ScalarField& field)
   }
   this->CodeValues[CodeCount - 1] = range[1];
   this->Levels.clear();
-  int levelDims[3] = { this->CellDims[0], this->CellDims[1], this->CellDims[2] };
-  for (int level = 1; levelDims[0] > 1 || levelDims[1] > 1 || levelDims[2] > 1; ++level)
+  if (this->CellDims[0] < 1 || this->CellDims[1] < 1 || this->CellDims[2] < 1)
+  {
+    return;
+  }
+  this->Levels.push_back(this->FirstLevel());
+  int levelDims[3] = { this->Levels[0].Dims[0], this->Levels[0].Dims[1], this->Levels[0].Dims[2] };
+  while (levelDims[0] > 1 || levelDims[1] > 1 || levelDims[2] > 1) // each level from the last
   {
     Level next;
     for (int a = 0; a < 3; ++a)
@@ -165,25 +172,12 @@ void RangePyramid::Build(const ScalarField& field)
             {
               for (int ci = 2 * i; ci < std::min(2 * i + 2, levelDims[0]); ++ci)
               {
-                Code lo, hi;
-                if (level == 1)
-                {
-                  float cellLo, cellHi;
-                  this->CellRange(ci, cj, ck, cellLo, cellHi);
-                  lo = this->CodeBelow(cellLo);
-                  hi = this->CodeAbove(cellHi);
-                }
-                else
-                {
-                  const Level& below = this->Levels.back();
-                  const std::size_t c = static_cast<std::size_t>(ci) +
-                    static_cast<std::size_t>(below.Dims[0]) *
-                      (cj + static_cast<std::size_t>(below.Dims[1]) * ck);
-                  lo = below.Min[c];
-                  hi = below.Max[c];
-                }
-                next.Min[out] = std::min(next.Min[out], lo);
-                next.Max[out] = std::max(next.Max[out], hi);
+                const Level& below = this->Levels.back();
+                const std::size_t c = static_cast<std::size_t>(ci) +
+                  static_cast<std::size_t>(below.Dims[0]) *
+                    (cj + static_cast<std::size_t>(below.Dims[1]) * ck);
+                next.Min[out] = std::min(next.Min[out], below.Min[c]);
+                next.Max[out] = std::max(next.Max[out], below.Max[c]);
               }
             }
           }
@@ -196,6 +190,53 @@ void RangePyramid::Build(const ScalarField& field)
       levelDims[a] = this->Levels.back().Dims[a];
     }
   }
+}
+
+RangePyramid::Level RangePyramid::FirstLevel() const
+{
+  // Node (i, j, k) holds cells 2i, 2i + 1 (where they exist) along x, and so on: the
+  // voxels 2i to 2i + 2. Their range is read from the field in its own type, in parallel
+  // over slices of nodes, and coded once per node.
+  Level first;
+  for (int a = 0; a < 3; ++a)
+  {
+    first.Dims[a] = (this->CellDims[a] + 1) / 2;
+  }
+  const std::size_t n = static_cast<std::size_t>(first.Dims[0]) * first.Dims[1] * first.Dims[2];
+  first.Min.resize(n);
+  first.Max.resize(n);
+  const int* dims = this->Field->GetDimensions();
+  this->Field->Dispatch([&](const auto& field) {
+    vtkSMPTools::For(0, first.Dims[2], [&](vtkIdType k0, vtkIdType k1) {
+      for (int k = static_cast<int>(k0); k < k1; ++k)
+      {
+        for (int j = 0; j < first.Dims[1]; ++j)
+        {
+          for (int i = 0; i < first.Dims[0]; ++i)
+          {
+            float lo = field.Value(2 * i, 2 * j, 2 * k), hi = lo;
+            for (int z = 2 * k; z <= std::min(2 * k + 2, dims[2] - 1); ++z)
+            {
+              for (int y = 2 * j; y <= std::min(2 * j + 2, dims[1] - 1); ++y)
+              {
+                for (int x = 2 * i; x <= std::min(2 * i + 2, dims[0] - 1); ++x)
+                {
+                  const float v = field.Value(x, y, z);
+                  lo = std::min(lo, v);
+                  hi = std::max(hi, v);
+                }
+              }
+            }
+            const std::size_t node = static_cast<std::size_t>(i) +
+              static_cast<std::size_t>(first.Dims[0]) * (j + static_cast<std::size_t>(first.Dims[1]) * k);
+            first.Min[node] = this->CodeBelow(lo);
+            first.Max[node] = this->CodeAbove(hi);
+          }
+        }
+      }
+    });
+  });
+  return first;
 }
 
 RangePyramid::Code RangePyramid::CodeBelow(double v) const
@@ -297,6 +338,87 @@ bool RangePyramid::AnyContributing(const int c0[3], const int c1[3],
     }
   }
   return false;
+}
+
+void RangePyramid::ClassifyLevel(
+  int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const
+{
+  const Level& target = this->Levels[level - 1];
+  flags.assign(static_cast<std::size_t>(target.Dims[0]) * target.Dims[1] * target.Dims[2], 0);
+  // Start a few levels up (enough nodes to share among threads, each settling many).
+  constexpr int LevelsAbove = 3;
+  const int top = std::min(level + LevelsAbove, static_cast<int>(this->Levels.size()));
+  const Level& start = this->Levels[top - 1];
+  vtkSMPTools::For(0, start.Dims[2], [&](vtkIdType k0, vtkIdType k1) {
+    int node[3];
+    for (node[2] = static_cast<int>(k0); node[2] < k1; ++node[2])
+    {
+      for (node[1] = 0; node[1] < start.Dims[1]; ++node[1])
+      {
+        for (node[0] = 0; node[0] < start.Dims[0]; ++node[0])
+        {
+          this->Descend(top, node, level, rule, flags);
+        }
+      }
+    }
+  });
+}
+
+void RangePyramid::Descend(int m, const int node[3], int level, const ContributionRule& rule,
+  std::vector<std::uint8_t>& flags) const
+{
+  const Level& l = this->Levels[m - 1];
+  if (node[0] >= l.Dims[0] || node[1] >= l.Dims[1] || node[2] >= l.Dims[2])
+  {
+    return; // a child past the volume's end
+  }
+  const std::size_t n = static_cast<std::size_t>(node[0]) +
+    static_cast<std::size_t>(l.Dims[0]) * (node[1] + static_cast<std::size_t>(l.Dims[1]) * node[2]);
+  const double lo = this->CodeValues[l.Min[n]], hi = this->CodeValues[l.Max[n]];
+  if (!rule.IsPossiblyContributing(lo, hi))
+  {
+    return; // no cell below contributes: the flags stay 0
+  }
+  const Level& target = this->Levels[level - 1];
+  const int shift = m - level;
+  int first[3], last[3];
+  for (int a = 0; a < 3; ++a)
+  {
+    first[a] = node[a] << shift;
+    last[a] = std::min(((node[a] + 1) << shift) - 1, target.Dims[a] - 1);
+  }
+  auto flag = [&](int i, int j, int k) -> std::uint8_t& {
+    return flags[static_cast<std::size_t>(i) +
+      static_cast<std::size_t>(target.Dims[0]) * (j + static_cast<std::size_t>(target.Dims[1]) * k)];
+  };
+  if (m == level)
+  {
+    int c0[3], c1[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      c0[a] = node[a] << level;
+      c1[a] = std::min(((node[a] + 1) << level) - 1, this->CellDims[a] - 1);
+    }
+    flag(node[0], node[1], node[2]) = this->Query(level, node, c0, c1, rule) ? 1 : 0;
+    return;
+  }
+  if (rule.AllContributing(lo, hi))
+  {
+    for (int k = first[2]; k <= last[2]; ++k)
+    {
+      for (int j = first[1]; j <= last[1]; ++j)
+      {
+        std::fill_n(&flag(first[0], j, k), last[0] - first[0] + 1, 1);
+      }
+    }
+    return;
+  }
+  for (int c = 0; c < 8; ++c)
+  {
+    const int child[3] = { 2 * node[0] + (c & 1), 2 * node[1] + ((c >> 1) & 1),
+      2 * node[2] + ((c >> 2) & 1) };
+    this->Descend(m - 1, child, level, rule, flags);
+  }
 }
 
 std::size_t RangePyramid::GetMemorySize() const

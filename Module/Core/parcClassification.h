@@ -99,6 +99,14 @@ public:
   /// Whether some cell of the inclusive cell-index box [c0, c1] is PC under rule.
   bool AnyContributing(const int c0[3], const int c1[3], const ContributionRule& rule) const;
 
+  /// For every node of level (1 to the number of levels, see GetNumberOfLevels), whether
+  /// one of its cells is PC under rule, into flags (x fastest, ceil(cells / 2^level) per
+  /// axis): what AnyContributing says of each node's cells, found top-down so that a node
+  /// whose whole range decides (nothing or everything contributes) settles all its
+  /// descendants at once.
+  void ClassifyLevel(int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const;
+  int GetNumberOfLevels() const { return static_cast<int>(this->Levels.size()); }
+
   /// Memory held by the pyramid, in bytes.
   std::size_t GetMemorySize() const;
 
@@ -110,11 +118,16 @@ private:
     int Dims[3];
     std::vector<Code> Min, Max;
   };
+  /// Level 1, from the field's voxels.
+  Level FirstLevel() const;
   /// The code of the largest code value at most v, and of the smallest at least v.
   Code CodeBelow(double v) const;
   Code CodeAbove(double v) const;
   bool Query(int level, const int node[3], const int c0[3], const int c1[3],
     const ContributionRule& rule) const;
+  /// ClassifyLevel below the node of level m (>= level).
+  void Descend(int m, const int node[3], int level, const ContributionRule& rule,
+    std::vector<std::uint8_t>& flags) const;
 
   const ScalarField* Field = nullptr;
   int CellDims[3] = { 0, 0, 0 };

@@ -1,5 +1,7 @@
 #include "parcPolygonModel.h"
 
+#include <vtkSMPTools.h>
+
 #include <algorithm>
 #include <cmath>
 
@@ -69,6 +71,30 @@ void CoverMask(std::vector<char>& mask, int nu, int nv, bool merge, Emit&& emit)
   }
 }
 
+/// Runs build(i, part) for every slice i in [first, last] in parallel, each into a part of
+/// its own, then appends the parts to model in the order of i: the model a loop over i in
+/// order would make, whatever the threads.
+template <class Build>
+void BuildSlices(int first, int last, PolygonModel& model, Build&& build)
+{
+  if (first > last)
+  {
+    return;
+  }
+  std::vector<PolygonModel> parts(static_cast<std::size_t>(last - first + 1));
+  vtkSMPTools::For(first, last + 1, [&](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      build(static_cast<int>(i), parts[static_cast<std::size_t>(i - first)]);
+    }
+  });
+  for (const PolygonModel& part : parts)
+  {
+    model.Vertices.insert(model.Vertices.end(), part.Vertices.begin(), part.Vertices.end());
+    model.Planes.insert(model.Planes.end(), part.Planes.begin(), part.Planes.end());
+  }
+}
+
 /// The supercell with index i along axis and (u, v) along the two other axes (cyclic).
 void Compose(int axis, int i, int u, int v, int idx[3])
 {
@@ -97,26 +123,29 @@ void BuildDepthModel(const SupercellGrid& grid, bool merge, PolygonModel& model)
   for (int axis = 0; axis < 3; ++axis)
   {
     const int nu = n[(axis + 1) % 3], nv = n[(axis + 2) % 3];
-    std::vector<char> mask(static_cast<std::size_t>(nu) * nv);
     for (int side = 0; side < 2; ++side)
     {
-      for (int i = 0; i < n[axis]; ++i)
-      {
+      const std::size_t su = grid.Stride((axis + 1) % 3), sv = grid.Stride((axis + 2) % 3);
+      BuildSlices(0, n[axis] - 1, model, [&](int i, PolygonModel& part) {
+        // A face is exposed where a PC supercell's neighbour across it is empty or outside.
+        const int neighbour = side ? i + 1 : i - 1;
+        const bool inside = neighbour >= 0 && neighbour < n[axis];
+        const std::size_t slice = static_cast<std::size_t>(i) * grid.Stride(axis);
+        const std::size_t next = inside ? static_cast<std::size_t>(neighbour) * grid.Stride(axis) : 0;
+        std::vector<char> mask(static_cast<std::size_t>(nu) * nv);
         for (int v = 0; v < nv; ++v)
         {
           for (int u = 0; u < nu; ++u)
           {
-            int idx[3], other[3];
-            Compose(axis, i, u, v, idx);
-            Compose(axis, side ? i + 1 : i - 1, u, v, other);
-            mask[u + static_cast<std::size_t>(nu) * v] = grid.IsContributing(idx[0], idx[1], idx[2]) &&
-              !grid.IsContributingOrOutside(other[0], other[1], other[2]);
+            const std::size_t at = u * su + v * sv;
+            mask[u + static_cast<std::size_t>(nu) * v] = grid.IsContributing(slice + at) &&
+              !(inside && grid.IsContributing(next + at));
           }
         }
         CoverMask(mask, nu, nv, merge, [&](int u0, int u1, int v0, int v1) {
-          AddQuad(grid, axis, side, i, u0, u1, v0, v1, model);
+          AddQuad(grid, axis, side, i, u0, u1, v0, v1, part);
         });
-      }
+      });
     }
   }
 }
@@ -138,10 +167,9 @@ void BuildColorModel(const SupercellGrid& grid, int axis, bool merge, PolygonMod
   const int* n = grid.GetCounts();
   const int b = (axis + 1) % 3, c = (axis + 2) % 3; // in-plane axes, indices u and v
   const int nu = n[b], nv = n[c];
-  std::vector<char> pc(static_cast<std::size_t>(nu) * nv), mask(pc.size());
   auto at = [nu](int u, int v) { return u + static_cast<std::size_t>(nu) * v; };
-  for (int i = first; i <= last; ++i)
-  {
+  BuildSlices(first, last, model, [&](int i, PolygonModel& part) {
+    std::vector<char> pc(static_cast<std::size_t>(nu) * nv), mask(pc.size());
     for (int v = 0; v < nv; ++v)
     {
       for (int u = 0; u < nu; ++u)
@@ -154,8 +182,8 @@ void BuildColorModel(const SupercellGrid& grid, int axis, bool merge, PolygonMod
     // Across the axis: both faces of every PC supercell (the neighbours are in other planes).
     mask = pc;
     CoverMask(mask, nu, nv, merge, [&](int u0, int u1, int v0, int v1) {
-      AddQuad(grid, axis, 0, i, u0, u1, v0, v1, model);
-      AddQuad(grid, axis, 1, i, u0, u1, v0, v1, model);
+      AddQuad(grid, axis, 0, i, u0, u1, v0, v1, part);
+      AddQuad(grid, axis, 1, i, u0, u1, v0, v1, part);
     });
     // Within the plane: only towards an empty supercell or the outside. A face normal to b
     // spans (c, axis), one normal to c spans (axis, b); runs along the free in-plane axis
@@ -179,7 +207,7 @@ void BuildColorModel(const SupercellGrid& grid, int axis, bool merge, PolygonMod
             {
               ++v1;
             }
-            AddQuad(grid, b, side, u, v, v1, i, i, model);
+            AddQuad(grid, b, side, u, v, v1, i, i, part);
             v = v1;
           }
         }
@@ -195,14 +223,14 @@ void BuildColorModel(const SupercellGrid& grid, int axis, bool merge, PolygonMod
             {
               ++u1;
             }
-            AddQuad(grid, c, side, v, i, i, u, u1, model);
+            AddQuad(grid, c, side, v, i, i, u, u1, part);
             u = u1;
           }
         }
       }
     }
-    model.Planes.resize(model.GetNumberOfQuads(), i - first);
-  }
+    part.Planes.resize(part.GetNumberOfQuads(), i - first);
+  });
 }
 
 int RayAxisSign(const PolygonModel& model, const std::vector<Vec3>& starts,

@@ -168,6 +168,17 @@ bool SupercellGrid::ClassifySupercell(const RangePyramid& pyramid, const Contrib
 void SupercellGrid::Classify(const RangePyramid& pyramid, const ContributionRule& rule,
   Interpolation interpolation)
 {
+  // Supercells of 2^L cells along every axis are the pyramid's nodes of level L: classified
+  // top-down there (the same answer as each supercell's query, far fewer visits).
+  const int level = static_cast<int>(std::lround(std::log2(this->Size[0])));
+  if (level >= 1 && level <= pyramid.GetNumberOfLevels() && this->Size[0] == std::ldexp(1.0, level) &&
+    this->Size[1] == this->Size[0] && this->Size[2] == this->Size[0])
+  {
+    pyramid.ClassifyLevel(level, rule, this->Flags);
+    this->ContributingCount =
+      static_cast<std::size_t>(std::count(this->Flags.begin(), this->Flags.end(), 1));
+    return;
+  }
   std::atomic<std::size_t> contributing{ 0 };
   const int nx = this->Counts[0], ny = this->Counts[1];
   vtkSMPTools::For(0, this->Counts[2], [&](vtkIdType k0, vtkIdType k1) {
@@ -187,16 +198,6 @@ void SupercellGrid::Classify(const RangePyramid& pyramid, const ContributionRule
     contributing += local;
   });
   this->ContributingCount = contributing;
-}
-
-bool SupercellGrid::IsContributingOrOutside(int i, int j, int k) const
-{
-  if (i < 0 || j < 0 || k < 0 || i >= this->Counts[0] || j >= this->Counts[1] ||
-    k >= this->Counts[2])
-  {
-    return false;
-  }
-  return this->IsContributing(i, j, k);
 }
 
 bool SupercellGrid::Locate(int axis, double x, double eps, int& first, int& last) const

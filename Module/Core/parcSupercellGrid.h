@@ -62,8 +62,19 @@ public:
       static_cast<std::size_t>(this->Counts[0]) * (j + static_cast<std::size_t>(this->Counts[1]) * k);
   }
   bool IsContributing(int i, int j, int k) const { return this->Flags[this->Index(i, j, k)] != 0; }
+  /// The same by Index; Stride(axis) is the step of Index along axis.
+  bool IsContributing(std::size_t index) const { return this->Flags[index] != 0; }
+  std::size_t Stride(int axis) const
+  {
+    return axis == 0 ? 1
+                     : static_cast<std::size_t>(this->Counts[0]) * (axis == 1 ? 1 : this->Counts[1]);
+  }
   /// Same, false outside the grid.
-  bool IsContributingOrOutside(int i, int j, int k) const;
+  bool IsContributingOrOutside(int i, int j, int k) const
+  {
+    return i >= 0 && j >= 0 && k >= 0 && i < this->Counts[0] && j < this->Counts[1] &&
+      k < this->Counts[2] && this->IsContributing(i, j, k);
+  }
 
   /// The inclusive range [first, last] of supercells along axis whose closed extent comes
   /// within eps of coordinate x; false if none.

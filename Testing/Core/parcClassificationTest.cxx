@@ -181,7 +181,8 @@ Key KeyOf(const Vec3& p) { return Key(p.X, p.Y, p.Z); }
   return ::testing::AssertionSuccess();
 }
 
-const double SupercellSizes[][3] = { { 1, 1, 1 }, { 2, 2, 2 }, { 3, 5, 5 }, { 1.03, 1.03, 1.03 },
+const double SupercellSizes[][3] = { { 1, 1, 1 }, { 2, 2, 2 }, { 4, 4, 4 }, { 8, 8, 8 }, { 3, 5, 5 },
+  { 1.03, 1.03, 1.03 },
   { 3.125, 3.125, 0.15 }, { 6, 4, 3.125 }, { 0.5, 0.7, 0.4 }, { 2.5, 1, 0.75 } };
 }
 
