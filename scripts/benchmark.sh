@@ -88,6 +88,17 @@ scene() { # title, file, options...
   xrun "$here/build/bin/parc-render" "$head" --tf mri --shade --elevation -80 --azimuth 30 --size 400 \
     --output "$here/out/benchmark.png" --accuracy-curve 3 | sed -n '/^| sample distance/,/^3 interleaved/p'
   echo
+  echo "## Transfer-function edits (issue 11; goal: the frame after an edit at most 1.2x a warm one)"
+  for args in "$head --tf mri --shade --elevation -80 --azimuth 30" \
+              "$head --tf mri --elevation -80 --azimuth 30" \
+              "$data/ironProt_68x68x68_uint8.raw --tf $tf/iron-protein-cloud.txt"; do
+    set -- $args
+    [ -f "$1" ] || continue
+    echo; echo "### $(basename "$1") $(echo "${*:2}" | sed "s|$here/||g"), 400x400"; echo
+    xrun "$here/build/bin/parc-render" "$@" --size 400 --sample-distance 0.5 \
+      --output "$here/out/benchmark.png" --edit-cost 8 | sed -n '/^| frame/,/^edit frame/p'
+  done
+  echo
   echo "## Memory held by the mapper, per structure (MRI head, shaded, 400x400, after Auto's trials)"
   echo
   xrun "$here/build/bin/parc-render" "$head" --tf mri --shade --elevation -80 --azimuth 30 --size 400 \

@@ -67,6 +67,8 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
                         smallest spacing): RMSE in grey levels of each mapper's window
                         image against a reference cast at 1/16 voxel, and the median of
                         R interleaved frames, this mapper (Auto) and FixedPoint (table)
+  --edit-cost R         R rounds of a transfer-function edit: the frame right after the
+                        edit against the warm frame after it (minimum, median, ratio)
   --threads N           threads for vtkSMPTools (default: all cores)
   --memory              print the bytes the mapper holds, per structure
   --json                print statistics as JSON
@@ -79,7 +81,7 @@ struct Options
   double Iso = 0.0, Azimuth = 30.0, Elevation = 20.0, Zoom = 1.0, SampleDistance = 0.0;
   bool HasIso = false, Shade = false, Parallel = false, Compare = false, Json = false;
   bool HasPosition = false, HasFocal = false, CompareAcceleration = false, Memory = false;
-  int Versus = 0, SampleCost = 0, Threads = 0, Accuracy = 0;
+  int Versus = 0, SampleCost = 0, Threads = 0, Accuracy = 0, EditCost = 0;
   double Supercell[3] = { 2, 2, 2 };
   std::vector<double> Sweep;
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
@@ -153,6 +155,7 @@ Options Parse(int argc, char* argv[])
     else if (a == "--versus-fixed-point") { o.Versus = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--sample-cost") { o.SampleCost = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--accuracy-curve") { o.Accuracy = static_cast<int>(ToNumber(a, value())); }
+    else if (a == "--edit-cost") { o.EditCost = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--threads") { o.Threads = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--memory") { o.Memory = true; }
     else if (a == "--supercell") { ToTriple(a, value(), o.Supercell); }
@@ -194,10 +197,10 @@ Options Parse(int argc, char* argv[])
   {
     Fail("cannot write " + o.Output + ": no such folder " + folder.string());
   }
-  if (o.Versus < 0 || o.SampleCost < 0 || o.Threads < 0 || o.Accuracy < 0)
+  if (o.Versus < 0 || o.SampleCost < 0 || o.Threads < 0 || o.Accuracy < 0 || o.EditCost < 0)
   {
-    Fail("--versus-fixed-point, --sample-cost, --accuracy-curve and --threads take a positive "
-         "number");
+    Fail("--versus-fixed-point, --sample-cost, --accuracy-curve, --edit-cost and --threads "
+         "take a positive number");
   }
   return o;
 }
@@ -519,6 +522,39 @@ void AccuracyCurve(vtkRenderWindow* window, vtkVolume* volume, vtkPARCVolumeMapp
   volume->SetMapper(parc);
 }
 
+/// Transfer-function edits: rounds times, a small change of the scalar opacity (a node
+/// moved back and forth, so that the classification changes), then the frame right after it
+/// and the next, warm one (markdown table of wall times and the ratio of medians).
+void EditCost(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, vtkVolumeProperty* property,
+  int rounds)
+{
+  WarmUp(window, mapper);
+  vtkPiecewiseFunction* opacity = property->GetScalarOpacity();
+  double node[4];
+  opacity->GetNodeValue(opacity->GetSize() / 2, node);
+  const double range = mapper->GetInput()->GetScalarRange()[1] - mapper->GetInput()->GetScalarRange()[0];
+  std::vector<double> edited, warm;
+  std::vector<std::string> modes;
+  for (int r = 0; r < rounds; ++r)
+  {
+    double moved[4] = { node[0] + (r % 2 == 0 ? 0.01 : 0.0) * range, node[1], node[2], node[3] };
+    opacity->SetNodeValue(opacity->GetSize() / 2, moved);
+    edited.push_back(TimedRender(window));
+    modes.push_back(vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode()));
+    warm.push_back(TimedRender(window));
+  }
+  const auto e = MinMedian(edited), w = MinMedian(warm);
+  std::printf("| frame | min (s) | median (s) |\n|---|---|---|\n| right after an edit | %.4f | "
+              "%.4f |\n| warm, the next | %.4f | %.4f |\n",
+    e.first, e.second, w.first, w.second);
+  std::printf("edit frame / warm frame (medians): %.2fx; modes of the edit frames:", e.second / w.second);
+  for (const std::string& m : modes)
+  {
+    std::printf(" %s", m.c_str());
+  }
+  std::printf("\n");
+}
+
 /// Polygons against ray steps: cubic supercells of each size (markdown table).
 void SweepSupercells(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper,
   const std::vector<double>& sizes, int repeat)
@@ -660,7 +696,7 @@ int main(int argc, char* argv[])
     vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode());
   const vtkIdType samples = mapper->GetLastSampleCount();
   if (o.CompareAcceleration || !o.Sweep.empty() || o.Versus > 0 || o.SampleCost > 0 ||
-    o.Accuracy > 0)
+    o.Accuracy > 0 || o.EditCost > 0)
   {
     volume->SetMapper(mapper);
   }
@@ -681,6 +717,10 @@ int main(int argc, char* argv[])
   if (o.Accuracy > 0)
   {
     AccuracyCurve(window, volume, mapper, image, o.Accuracy);
+  }
+  if (o.EditCost > 0)
+  {
+    EditCost(window, mapper, property, o.EditCost);
   }
   if (o.CompareAcceleration)
   {
