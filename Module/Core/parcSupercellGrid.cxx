@@ -3,7 +3,6 @@
 #include <vtkSMPTools.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -75,7 +74,8 @@ bool SupercellGrid::FitSize(const int cellDims[3], const double size[3], double 
 
 bool SupercellGrid::Configure(const int cellDims[3], const double size[3])
 {
-  this->Flags.clear();
+  this->Bits.clear();
+  this->Count = 0;
   this->ContributingCount = 0;
   std::size_t total = 1;
   for (int a = 0; a < 3; ++a)
@@ -105,7 +105,8 @@ bool SupercellGrid::Configure(const int cellDims[3], const double size[3])
     this->Size[a] = size[a];
     this->Counts[a] = n;
   }
-  this->Flags.assign(total, 0);
+  this->Count = total;
+  this->Bits.assign((total + 63) / 64, 0);
   return true;
 }
 
@@ -168,36 +169,42 @@ bool SupercellGrid::ClassifySupercell(const RangePyramid& pyramid, const Contrib
 void SupercellGrid::Classify(const RangePyramid& pyramid, const ContributionRule& rule,
   Interpolation interpolation)
 {
+  // One byte a supercell while classifying in parallel (threads write different bytes),
+  // packed into bits after.
+  std::vector<std::uint8_t> flags;
   // Supercells of 2^L cells along every axis are the pyramid's nodes of level L: classified
   // top-down there (the same answer as each supercell's query, far fewer visits).
   const int level = static_cast<int>(std::lround(std::log2(this->Size[0])));
   if (level >= 1 && level <= pyramid.GetNumberOfLevels() && this->Size[0] == std::ldexp(1.0, level) &&
     this->Size[1] == this->Size[0] && this->Size[2] == this->Size[0])
   {
-    pyramid.ClassifyLevel(level, rule, this->Flags);
-    this->ContributingCount =
-      static_cast<std::size_t>(std::count(this->Flags.begin(), this->Flags.end(), 1));
-    return;
+    pyramid.ClassifyLevel(level, rule, flags);
   }
-  std::atomic<std::size_t> contributing{ 0 };
-  const int nx = this->Counts[0], ny = this->Counts[1];
-  vtkSMPTools::For(0, this->Counts[2], [&](vtkIdType k0, vtkIdType k1) {
-    std::size_t local = 0;
-    for (int k = static_cast<int>(k0); k < k1; ++k)
-    {
-      for (int j = 0; j < ny; ++j)
+  else
+  {
+    flags.assign(this->Count, 0);
+    const int nx = this->Counts[0], ny = this->Counts[1];
+    vtkSMPTools::For(0, this->Counts[2], [&](vtkIdType k0, vtkIdType k1) {
+      for (int k = static_cast<int>(k0); k < k1; ++k)
       {
-        for (int i = 0; i < nx; ++i)
+        for (int j = 0; j < ny; ++j)
         {
-          const bool pc = this->ClassifySupercell(pyramid, rule, interpolation, i, j, k);
-          this->Flags[this->Index(i, j, k)] = pc ? 1 : 0;
-          local += pc ? 1 : 0;
+          for (int i = 0; i < nx; ++i)
+          {
+            flags[this->Index(i, j, k)] =
+              this->ClassifySupercell(pyramid, rule, interpolation, i, j, k) ? 1 : 0;
+          }
         }
       }
-    }
-    contributing += local;
-  });
-  this->ContributingCount = contributing;
+    });
+  }
+  std::fill(this->Bits.begin(), this->Bits.end(), 0);
+  this->ContributingCount = 0;
+  for (std::size_t n = 0; n < flags.size() && n < this->Count; ++n)
+  {
+    this->Bits[n >> 6] |= static_cast<std::uint64_t>(flags[n] != 0) << (n & 63);
+    this->ContributingCount += flags[n] != 0;
+  }
 }
 
 bool SupercellGrid::Locate(int axis, double x, double eps, int& first, int& last) const

@@ -44,10 +44,10 @@ public:
   const int* GetCounts() const { return this->Counts; }
   const int* GetCellDimensions() const { return this->CellDims; }
   const double* GetSize() const { return this->Size; }
-  std::size_t GetNumberOfSupercells() const { return this->Flags.size(); }
+  std::size_t GetNumberOfSupercells() const { return this->Count; }
   std::size_t GetNumberOfContributing() const { return this->ContributingCount; }
-  /// Memory held by the grid's flags, in bytes.
-  std::size_t GetMemorySize() const { return this->Flags.capacity(); }
+  /// Memory held by the grid's flags (one bit a supercell), in bytes.
+  std::size_t GetMemorySize() const { return this->Bits.capacity() * sizeof(std::uint64_t); }
 
   /// The coordinate (voxel index) of the lower face of supercell i along axis; i may be
   /// Counts[axis], the upper face of the last one.
@@ -61,9 +61,12 @@ public:
     return static_cast<std::size_t>(i) +
       static_cast<std::size_t>(this->Counts[0]) * (j + static_cast<std::size_t>(this->Counts[1]) * k);
   }
-  bool IsContributing(int i, int j, int k) const { return this->Flags[this->Index(i, j, k)] != 0; }
+  bool IsContributing(int i, int j, int k) const { return this->IsContributing(this->Index(i, j, k)); }
   /// The same by Index; Stride(axis) is the step of Index along axis.
-  bool IsContributing(std::size_t index) const { return this->Flags[index] != 0; }
+  bool IsContributing(std::size_t index) const
+  {
+    return ((this->Bits[index >> 6] >> (index & 63)) & 1) != 0;
+  }
   std::size_t Stride(int axis) const
   {
     return axis == 0 ? 1
@@ -93,7 +96,8 @@ private:
   int CellDims[3] = { 0, 0, 0 };
   double Size[3] = { 1.0, 1.0, 1.0 };
   int Counts[3] = { 0, 0, 0 };
-  std::vector<std::uint8_t> Flags;
+  std::size_t Count = 0;            ///< supercells
+  std::vector<std::uint64_t> Bits; ///< the PC flags, supercell n at bit n % 64 of word n / 64
   std::size_t ContributingCount = 0;
 };
 

@@ -738,6 +738,27 @@ bool vtkPARCRasterizer::HasModel(
     in.Models[colour ? 1 : 0].Version == modelVersion;
 }
 
+void vtkPARCRasterizer::ReleasePass(vtkRenderWindow* window, bool colour)
+{
+  vtkInternals& in = *this->Internals;
+  if (!window || window != in.Context.GetPointer() || !in.DepthProgram)
+  {
+    return;
+  }
+  const int slot = colour ? 1 : 0;
+  if (!in.Models[slot].VertexArray && in.Targets[slot].GetMemorySize() == 0)
+  {
+    return; // nothing held
+  }
+  in.Context->MakeCurrent();
+  in.Models[slot].Release();
+  in.Targets[slot].Release();
+  if (colour)
+  {
+    std::vector<std::uint32_t>().swap(in.Texels);
+  }
+}
+
 std::size_t vtkPARCRasterizer::GetMemorySize() const
 {
   const vtkInternals& in = *this->Internals;

@@ -114,6 +114,9 @@ public:
   /// software GL all of it is main memory).
   std::size_t GetMemorySize() const;
 
+  /// Frees the model and render target of one pass (depth or colour) when window is the
+  /// context they belong to: a pass the view no longer uses holds no memory.
+  void ReleasePass(vtkRenderWindow* window, bool colour);
   /// Frees the GL objects when window is the context they belong to (or null).
   void ReleaseGraphicsResources(vtkWindow* window);
 

@@ -347,6 +347,26 @@ public:
     }
   }
 
+  /// Frees the buffers and GL objects of the passes a settled mode does not use (Auto
+  /// keeps them while it still has modes to try).
+  void ReleaseUnusedPasses(vtkRenderWindow* window, bool depth, bool color)
+  {
+    if (this->Trials.Remaining() > 0 && this->Trials.Chosen >= 0)
+    {
+      return;
+    }
+    if (!depth)
+    {
+      this->DepthSource.ReleaseBuffer();
+      this->Rasterizer->ReleasePass(window, false);
+    }
+    if (!color)
+    {
+      this->PlaneSource.ReleaseBuffer();
+      this->Rasterizer->ReleasePass(window, true);
+    }
+  }
+
   /// Bytes held per structure (see GetMemorySize).
   std::vector<std::pair<const char*, std::size_t>> Memory() const;
 
@@ -656,23 +676,26 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(vtkPARCV
 {
   vtkInternals& in = *this;
   const int requested = self->AccelerationMode;
+  vtkRenderWindow* window = ren->GetRenderWindow();
   in.LastMode = ACCELERATION_NONE;
   if (requested == ACCELERATION_NONE || !self->PrepareModels(vol))
   {
+    in.ReleaseUnusedPasses(window, false, false);
     return in.WholeRays;
   }
   if (in.Grid.GetNumberOfContributing() == 0)
   {
     in.LastMode = requested;
+    in.ReleaseUnusedPasses(window, false, false);
     return in.NoRays; // nothing can show: no pass, no sample
   }
   const int mode = in.ChooseMode(requested, passView);
   if (mode == ACCELERATION_NONE)
   {
+    in.ReleaseUnusedPasses(window, false, false);
     return in.WholeRays;
   }
   const parc::Matrix4& indexToWorld = in.IndexToFrame;
-  vtkRenderWindow* window = ren->GetRenderWindow();
   const bool depth = mode == ACCELERATION_DEPTH_BUFFER || mode == ACCELERATION_BOTH;
   const bool color = mode == ACCELERATION_COLOR_BUFFER || mode == ACCELERATION_BOTH;
   bool ok = true;
@@ -721,6 +744,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(vtkPARCV
     return in.WholeRays;
   }
   in.LastMode = mode;
+  in.ReleaseUnusedPasses(window, depth, color);
   if (mode == ACCELERATION_BOTH)
   {
     return in.Both;
