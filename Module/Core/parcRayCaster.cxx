@@ -271,11 +271,13 @@ struct RayContext
     s = View::Interpolate(this->Corners.Values, f);
     return true;
   }
-  /// The world-space gradient at ray parameter t.
-  Vec3f WorldGradient(double t)
+  /// The world-space gradient at ray parameter t; atLastSample when t is the lattice sample
+  /// just taken (its cell and fractions are reused).
+  Vec3f WorldGradient(double t, bool atLastSample)
   {
     ++this->Stats.GradientEvaluations;
-    const Vec3f g(this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences));
+    const Vec3f g(this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences,
+      atLastSample ? &this->Corners : nullptr));
     const float* m = this->K.GradientToWorld;
     return { m[0] * g.X + m[1] * g.Y + m[2] * g.Z, m[3] * g.X + m[4] * g.Y + m[5] * g.Z,
       m[6] * g.X + m[7] * g.Y + m[8] * g.Z };
@@ -296,7 +298,7 @@ struct RayContext
     {
       if (!haveGradient)
       {
-        g = this->WorldGradient(t);
+        g = this->WorldGradient(t, true);
         haveGradient = true;
       }
       a *= this->P.GradientOpacity.Evaluate(Length(g));
@@ -469,7 +471,7 @@ struct CompositeFunction
     this->C.P.Color.Lookup(s, rgb);
     if (this->C.P.Shade)
     {
-      this->C.Shade(rgb, t, haveGradient ? g : this->C.WorldGradient(t));
+      this->C.Shade(rgb, t, haveGradient ? g : this->C.WorldGradient(t, true));
     }
     const float w = (1.f - this->Alpha) * a;
     for (int c = 0; c < 3; ++c)
@@ -636,7 +638,7 @@ struct IsoSurfaceFunction
     this->C.P.Color.Lookup(v, rgb);
     if (this->C.P.Shade)
     {
-      this->C.Shade(rgb, t, this->C.WorldGradient(t));
+      this->C.Shade(rgb, t, this->C.WorldGradient(t, false));
     }
     const float w = (1.f - this->Alpha) * a;
     for (int c = 0; c < 3; ++c)

@@ -70,6 +70,8 @@ struct CellCorners
   std::ptrdiff_t Offset = -1; ///< the cell's first voxel, or -1
   float Values[8];
   bool Contributing = true; ///< the caller's verdict on the cell (see RayCaster)
+  int Cell[3] = { 0, 0, 0 }; ///< the cell of the last located point
+  float Fractions[3] = { 0.f, 0.f, 0.f }; ///< that point's fractions in the cell
 };
 
 /// The voxel differences v(c + e_a) - v(c - e_a) at the 8 corners of the cell a ray's
@@ -133,8 +135,9 @@ public:
   /// sets f to p's fractions in it; true when the cell changed.
   PARC_HOT_INLINE bool LocateCell(const Vec3& p, CellCorners& corners, float f[3]) const
   {
-    int cell[3];
+    int* cell = corners.Cell;
     this->Locate(p, cell, f);
+    std::copy_n(f, 3, corners.Fractions);
     const std::ptrdiff_t offset =
       cell[0] * this->Step[0] + cell[1] * this->Step[1] + cell[2] * this->Step[2];
     if (offset == corners.Offset)
@@ -187,9 +190,12 @@ public:
     return this->Gradient(p, mode, differences);
   }
   /// The same, reusing (and updating) the differences of the cell of the last gradient.
-  Vec3 Gradient(const Vec3& p, Interpolation mode, CellDifferences& differences) const
+  /// located (optional, linear interpolation only) holds p's cell and fractions when p is
+  /// the point its last LocateCell located: they are not computed again.
+  Vec3 Gradient(const Vec3& p, Interpolation mode, CellDifferences& differences,
+    const CellCorners* located = nullptr) const
   {
-    return mode == Interpolation::Linear ? this->GradientLinear(p, differences)
+    return mode == Interpolation::Linear ? this->GradientLinear(p, differences, located)
                                          : this->GradientNearest(p);
   }
 
@@ -235,11 +241,19 @@ private:
     return Interpolate(c, f);
   }
 
-  Vec3 GradientLinear(const Vec3& p, CellDifferences& differences) const
+  Vec3 GradientLinear(const Vec3& p, CellDifferences& differences, const CellCorners* located) const
   {
     int cell[3];
     float f[3];
-    this->Locate(p, cell, f);
+    if (located)
+    {
+      std::copy_n(located->Cell, 3, cell);
+      std::copy_n(located->Fractions, 3, f);
+    }
+    else
+    {
+      this->Locate(p, cell, f);
+    }
     bool interior = true;
     for (int a = 0; a < 3; ++a)
     {
