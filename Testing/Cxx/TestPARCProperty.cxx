@@ -1,10 +1,10 @@
 // Property test of exactness: random small volumes, transfer functions, blend modes,
-// supercell sizes, volume transforms (direction matrices and user matrices with shear,
-// origins up to 1e10, spacings from 1e-4 to 1e4) and cameras (parallel scales and view angles
-// over many orders of magnitude, the eye outside or inside); every acceleration mode must
-// give the float image of acceleration none bit for bit. Case i uses seed base + i; a failure
-// prints its seed. PARC_PROPERTY_SEED sets the base (default 20261123) and
-// PARC_PROPERTY_CASES the number of cases (default 400), to reproduce one case:
+// supercell sizes (also 2^L), volume transforms (direction matrices and user matrices with
+// shear, origins up to 1e10, spacings from 1e-4 to 1e4) and cameras (parallel scales and
+// view angles over many orders of magnitude, the eye outside or inside); every acceleration
+// mode must give the float image of acceleration none bit for bit. Case i uses seed
+// base + i; a failure prints its seed. PARC_PROPERTY_SEED sets the base (default 20261123)
+// and PARC_PROPERTY_CASES the number of cases (default 400), to reproduce one case:
 //   PARC_PROPERTY_SEED=<seed> PARC_PROPERTY_CASES=1 parcCxxTests TestPARCProperty
 #include "parcTestScene.h"
 
@@ -159,7 +159,15 @@ bool RunCase(std::uint64_t seed, vtkRenderWindow* window, Coverage& coverage)
     vtkVolumeMapper::ADDITIVE_BLEND, vtkVolumeMapper::ISOSURFACE_BLEND };
   const int blend = blends[static_cast<int>(Uniform(rng, 0, 6)) % 6];
   mapper->SetBlendMode(blend);
-  mapper->SetSupercellSize(Uniform(rng, 0.5, 4), Uniform(rng, 0.5, 4), Uniform(rng, 0.5, 4));
+  if (Uniform(rng, 0, 1) < 0.3) // 2^L cells: the pyramid-level classification
+  {
+    const double s = Uniform(rng, 0, 1) < 0.5 ? 2.0 : 4.0;
+    mapper->SetSupercellSize(s, s, s);
+  }
+  else
+  {
+    mapper->SetSupercellSize(Uniform(rng, 0.5, 4), Uniform(rng, 0.5, 4), Uniform(rng, 0.5, 4));
+  }
 
   const double* range = image->GetScalarRange();
   const double span = std::max(range[1] - range[0], 1.0);
