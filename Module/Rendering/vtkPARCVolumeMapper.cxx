@@ -250,32 +250,53 @@ public:
   /// Auto: each candidate (the passes, and none at all) is tried on one frame when the ray
   /// image size is new; then every frame takes the candidate with the least predicted time.
   /// A candidate's estimate is its fastest representative frame (projection + casting) for
-  /// the current classification, or, from an earlier classification, that frame with its
-  /// projection scaled by the number of PC supercells (the models grow with it). So an edit
-  /// of a transfer function brings no trial frames: a candidate runs again only when it is
-  /// predicted to be the fastest, and its estimate is then measured afresh.
+  /// the current classification and view, or, from an earlier classification, that frame
+  /// with its projection scaled by the number of PC supercells (the models grow with it).
+  /// So an edit of a transfer function brings no trial frames: a candidate runs again only
+  /// when it is predicted to be the fastest, and its estimate is then measured afresh. After
+  /// the view turns or moves markedly, the next frame of a candidate replaces its estimate
+  /// (a view can make any pass dearer or cheaper).
   struct AutoTrials
   {
     static constexpr int Count = 4;
     static constexpr int Candidates[Count] = { ACCELERATION_DEPTH_BUFFER,
       ACCELERATION_COLOR_BUFFER, ACCELERATION_BOTH, ACCELERATION_NONE };
+    /// A view change that makes the estimates stale: the view direction turns by more than
+    /// this angle (cosine), or the volume's distance from the eye changes by this fraction.
+    static constexpr double SameDirection = 0.985; // about 10 degrees
+    static constexpr double SameDistance = 0.2;
     struct Estimate
     {
       bool Measured = false;
       std::uint64_t ModelVersion = 0; ///< of the measured frame
+      std::uint64_t ViewVersion = 0;  ///< of the measured frame
       std::size_t Contributing = 0;   ///< PC supercells of that frame's classification
       double Projection = 0.0, Casting = 0.0;
     };
     int Size[2] = { 0, 0 };
     Estimate Estimates[Count];
     int Chosen = -1; ///< the candidate of the current frame, or -1
+    std::uint64_t ViewVersion = 0;
+    parc::Vec3 Direction;  ///< view direction at the last view change
+    double Distance = 0.0; ///< the volume's distance from the eye then
 
+    /// Notes the view: direction, and the volume's distance from the eye.
+    void SetView(const parc::Vec3& direction, double distance)
+    {
+      if (parc::Dot(direction, this->Direction) < SameDirection ||
+        std::fabs(distance - this->Distance) > SameDistance * this->Distance)
+      {
+        ++this->ViewVersion;
+        this->Direction = direction;
+        this->Distance = distance;
+      }
+    }
     /// The mode for this frame.
     int Mode(std::uint64_t modelVersion, std::size_t contributing, int width, int height)
     {
       if (width != this->Size[0] || height != this->Size[1])
       {
-        *this = AutoTrials();
+        std::fill_n(this->Estimates, Count, Estimate());
         this->Size[0] = width;
         this->Size[1] = height;
       }
@@ -310,10 +331,10 @@ public:
       if (this->Chosen >= 0 && representative)
       {
         Estimate& e = this->Estimates[this->Chosen];
-        if (!e.Measured || e.ModelVersion != modelVersion ||
+        if (!e.Measured || e.ModelVersion != modelVersion || e.ViewVersion != this->ViewVersion ||
           projection + casting < e.Projection + e.Casting)
         {
-          e = { true, modelVersion, contributing, projection, casting };
+          e = { true, modelVersion, this->ViewVersion, contributing, projection, casting };
         }
       }
       this->Chosen = -1;
@@ -666,6 +687,10 @@ int vtkPARCVolumeMapper::vtkInternals::ChooseMode(
   }
   // Which pass pays off, if any, depends on the GL implementation (software GL makes the
   // passes dear), the data, the ray function and the view: measure.
+  const int* dims = in.Field.GetDimensions();
+  const parc::Vec3 centre = in.IndexToFrame.TransformPoint( // the eye is the frame's origin
+    { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
+  in.Trials.SetView(passView.Pass.Direction, parc::Length(centre));
   return in.Trials.Mode(in.ModelVersion, pc, passView.Pass.Width, passView.Pass.Height);
 }
 

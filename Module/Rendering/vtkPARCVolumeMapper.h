@@ -89,7 +89,8 @@ public:
    * frame (GetAutoTrialsRemaining) when the ray image size is new, then every frame uses
    * the one predicted fastest. A prediction is the mode's fastest frame for the current
    * classification or, after a transfer-function edit, its last frame with the projection
-   * scaled by the number of PC supercells; an edit brings no trial frames.
+   * scaled by the number of PC supercells; an edit brings no trial frames. After the view
+   * turns or moves markedly, a mode's next frame replaces its estimate.
    * GetLastAccelerationMode says which mode a frame used. The image is bit-identical in
    * every mode. When no OpenGL 3.3 context or framebuffer is available, the mapper warns
    * once and casts unaccelerated.
