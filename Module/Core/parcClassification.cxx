@@ -228,7 +228,8 @@ RangePyramid::Level RangePyramid::FirstLevel() const
               }
             }
             const std::size_t node = static_cast<std::size_t>(i) +
-              static_cast<std::size_t>(first.Dims[0]) * (j + static_cast<std::size_t>(first.Dims[1]) * k);
+              static_cast<std::size_t>(first.Dims[0]) *
+                (j + static_cast<std::size_t>(first.Dims[1]) * k);
             first.Min[node] = this->CodeBelow(lo);
             first.Max[node] = this->CodeAbove(hi);
           }
@@ -389,7 +390,8 @@ void RangePyramid::Descend(int m, const int node[3], int level, const Contributi
   }
   auto flag = [&](int i, int j, int k) -> std::uint8_t& {
     return flags[static_cast<std::size_t>(i) +
-      static_cast<std::size_t>(target.Dims[0]) * (j + static_cast<std::size_t>(target.Dims[1]) * k)];
+      static_cast<std::size_t>(target.Dims[0]) *
+        (j + static_cast<std::size_t>(target.Dims[1]) * k)];
   };
   if (m == level)
   {

@@ -104,7 +104,8 @@ public:
   /// axis): what AnyContributing says of each node's cells, found top-down so that a node
   /// whose whole range decides (nothing or everything contributes) settles all its
   /// descendants at once.
-  void ClassifyLevel(int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const;
+  void ClassifyLevel(
+    int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const;
   int GetNumberOfLevels() const { return static_cast<int>(this->Levels.size()); }
 
   /// Memory held by the pyramid, in bytes.

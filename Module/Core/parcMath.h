@@ -69,8 +69,14 @@ struct Vec3f
   }
 };
 
-inline Vec3f operator+(const Vec3f& a, const Vec3f& b) { return { a.X + b.X, a.Y + b.Y, a.Z + b.Z }; }
-inline Vec3f operator*(float s, const Vec3f& a) { return { s * a.X, s * a.Y, s * a.Z }; }
+inline Vec3f operator+(const Vec3f& a, const Vec3f& b)
+{
+  return { a.X + b.X, a.Y + b.Y, a.Z + b.Z };
+}
+inline Vec3f operator*(float s, const Vec3f& a)
+{
+  return { s * a.X, s * a.Y, s * a.Z };
+}
 inline float Dot(const Vec3f& a, const Vec3f& b) { return a.X * b.X + a.Y * b.Y + a.Z * b.Z; }
 inline float Length(const Vec3f& a) { return std::sqrt(Dot(a, a)); }
 

@@ -131,7 +131,8 @@ void BuildDepthModel(const SupercellGrid& grid, bool merge, PolygonModel& model)
         const int neighbour = side ? i + 1 : i - 1;
         const bool inside = neighbour >= 0 && neighbour < n[axis];
         const std::size_t slice = static_cast<std::size_t>(i) * grid.Stride(axis);
-        const std::size_t next = inside ? static_cast<std::size_t>(neighbour) * grid.Stride(axis) : 0;
+        const std::size_t next =
+          inside ? static_cast<std::size_t>(neighbour) * grid.Stride(axis) : 0;
         std::vector<char> mask(static_cast<std::size_t>(nu) * nv);
         for (int v = 0; v < nv; ++v)
         {

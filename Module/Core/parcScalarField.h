@@ -272,8 +272,8 @@ private:
       this->LoadDifferences(this->Data + offset, differences.Values);
       differences.Offset = offset;
     }
-    return { 0.5 * Interpolate(differences.Values[0], f), 0.5 * Interpolate(differences.Values[1], f),
-      0.5 * Interpolate(differences.Values[2], f) };
+    return { 0.5 * Interpolate(differences.Values[0], f),
+      0.5 * Interpolate(differences.Values[1], f), 0.5 * Interpolate(differences.Values[2], f) };
   }
   /// The voxel differences v(c + e_a) - v(c - e_a) at the 8 corners c of the interior cell
   /// whose first voxel is v (corner n: x offset n & 1, y (n >> 1) & 1, z (n >> 2) & 1). Per

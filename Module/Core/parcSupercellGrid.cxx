@@ -175,8 +175,9 @@ void SupercellGrid::Classify(const RangePyramid& pyramid, const ContributionRule
   // Supercells of 2^L cells along every axis are the pyramid's nodes of level L: classified
   // top-down there (the same answer as each supercell's query, far fewer visits).
   const int level = static_cast<int>(std::lround(std::log2(this->Size[0])));
-  if (level >= 1 && level <= pyramid.GetNumberOfLevels() && this->Size[0] == std::ldexp(1.0, level) &&
-    this->Size[1] == this->Size[0] && this->Size[2] == this->Size[0])
+  if (level >= 1 && level <= pyramid.GetNumberOfLevels() &&
+    this->Size[0] == std::ldexp(1.0, level) && this->Size[1] == this->Size[0] &&
+    this->Size[2] == this->Size[0])
   {
     pyramid.ClassifyLevel(level, rule, flags);
   }

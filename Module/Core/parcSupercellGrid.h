@@ -59,9 +59,13 @@ public:
   std::size_t Index(int i, int j, int k) const
   {
     return static_cast<std::size_t>(i) +
-      static_cast<std::size_t>(this->Counts[0]) * (j + static_cast<std::size_t>(this->Counts[1]) * k);
+      static_cast<std::size_t>(this->Counts[0]) *
+        (j + static_cast<std::size_t>(this->Counts[1]) * k);
   }
-  bool IsContributing(int i, int j, int k) const { return this->IsContributing(this->Index(i, j, k)); }
+  bool IsContributing(int i, int j, int k) const
+  {
+    return this->IsContributing(this->Index(i, j, k));
+  }
   /// The same by Index; Stride(axis) is the step of Index along axis.
   bool IsContributing(std::size_t index) const
   {

@@ -81,7 +81,8 @@ void ConvertPiecewise(vtkPiecewiseFunction* f, const char* what, PiecewiseLinear
   {
     std::vector<std::size_t> order(x.size());
     std::iota(order.begin(), order.end(), 0);
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
+    std::stable_sort(
+      order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return x[a] < x[b]; });
     std::vector<double> sx, sy;
     for (std::size_t i : order)
     {

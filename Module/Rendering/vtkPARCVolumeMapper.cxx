@@ -539,9 +539,9 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
     vtkWarningMacro(<< fixes);
     in.FixesWarnedTime = property->GetMTime();
   }
+  const auto notFinite = [](double v) { return !std::isfinite(v); };
   if (p.Blend == parc::BlendMode::IsoSurface &&
-    (p.IsoValues.empty() ||
-      std::any_of(p.IsoValues.begin(), p.IsoValues.end(), [](double v) { return !std::isfinite(v); })))
+    (p.IsoValues.empty() || std::any_of(p.IsoValues.begin(), p.IsoValues.end(), notFinite)))
   {
     vtkErrorMacro("The isosurface blend mode needs at least one iso value, all finite "
                   "(vtkVolumeProperty::GetIsoSurfaceValues); nothing is drawn.");
@@ -576,9 +576,12 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
   if (std::isnan(this->SampleDistance) || !std::isfinite(p.SampleDistance) ||
     p.SampleDistance * MaxSamplesPerDiagonal < diagonal)
   {
-    vtkErrorMacro("SampleDistance " << this->SampleDistance << " is not usable: it must be "
-                  "finite, and at least 1/" << MaxSamplesPerDiagonal << " of the volume's diagonal ("
-                  << diagonal << "), or <= 0 for half the smallest spacing; nothing is drawn.");
+    vtkErrorMacro("SampleDistance " << this->SampleDistance
+                                    << " is not usable: it must be finite, and at least 1/"
+                                    << MaxSamplesPerDiagonal << " of the volume's diagonal ("
+                                    << diagonal
+                                    << "), or <= 0 for half the smallest spacing; nothing is "
+                                       "drawn.");
     return false;
   }
   this->LastSampleDistance = p.SampleDistance;
