@@ -592,11 +592,12 @@ void vtkPARCRasterizer::vtkInternals::Upload(
   }
   gpu.LargestCorner = 0.0;
   // Per quad: its first corner and the edges to its second and fourth corners (the model's
-  // quads are parallelograms), then its plane.
+  // quads are parallelograms), then its plane (colour models only: without planes the
+  // attribute keeps its default 0).
   const std::size_t quads = model.GetNumberOfQuads();
   std::vector<float> geometry;
   geometry.reserve(9 * quads);
-  std::vector<GLint> planes(quads, 0);
+  std::vector<GLint> planes(model.Planes.empty() ? 0 : quads, 0);
   for (std::size_t q = 0; q < quads; ++q)
   {
     const parc::Vec3* v = model.Vertices.data() + 4 * q;
@@ -609,7 +610,7 @@ void vtkPARCRasterizer::vtkInternals::Upload(
       geometry.insert(geometry.end(),
         { static_cast<float>(x.X), static_cast<float>(x.Y), static_cast<float>(x.Z) });
     }
-    if (q < model.Planes.size())
+    if (q < model.Planes.size() && q < planes.size())
     {
       planes[q] = model.Planes[q];
     }
@@ -624,11 +625,18 @@ void vtkPARCRasterizer::vtkInternals::Upload(
     glVertexAttribDivisor(a, 1);
     glEnableVertexAttribArray(a);
   }
-  glBindBuffer(GL_ARRAY_BUFFER, gpu.Planes);
-  glBufferData(GL_ARRAY_BUFFER, planes.size() * sizeof(GLint), planes.data(), GL_STATIC_DRAW);
-  glVertexAttribIPointer(3, 1, GL_INT, 0, nullptr);
-  glVertexAttribDivisor(3, 1);
-  glEnableVertexAttribArray(3);
+  if (planes.empty())
+  {
+    glDisableVertexAttribArray(3);
+  }
+  else
+  {
+    glBindBuffer(GL_ARRAY_BUFFER, gpu.Planes);
+    glBufferData(GL_ARRAY_BUFFER, planes.size() * sizeof(GLint), planes.data(), GL_STATIC_DRAW);
+    glVertexAttribIPointer(3, 1, GL_INT, 0, nullptr);
+    glVertexAttribDivisor(3, 1);
+    glEnableVertexAttribArray(3);
+  }
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   gpu.Count = static_cast<GLsizei>(quads);
   gpu.Bytes = geometry.size() * sizeof(float) + planes.size() * sizeof(GLint);
