@@ -99,6 +99,16 @@ scene() { # title, file, options...
       --output "$here/out/benchmark.png" --edit-cost 8 | sed -n '/^| frame/,/^edit frame/p'
   done
   echo
+  echo "## Threads (issue 11; goal: 2 threads at least 1.8x in every mode)"
+  echo
+  echo "One caster thread against $(nproc), interleaved, median of 7 frames each; llvmpipe runs the GL passes on every core in both."
+  if [ -f "$data/ironProt_68x68x68_uint8.raw" ]; then
+    echo
+    xrun "$here/build/bin/parc-render" "$data/ironProt_68x68x68_uint8.raw" \
+      --tf "$tf/iron-protein-cloud.txt" --size 400 --sample-distance 0.5 \
+      --output "$here/out/benchmark.png" --thread-scaling 7 | sed -n '/^| mode/,/^| Auto\|^| [A-Za-z]*Buffer\|^| None/p'
+  fi
+  echo
   echo "## Memory held by the mapper, per structure (MRI head, shaded, 400x400, after Auto's trials)"
   echo
   xrun "$here/build/bin/parc-render" "$head" --tf mri --shade --elevation -80 --azimuth 30 --size 400 \

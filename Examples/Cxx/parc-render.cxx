@@ -69,6 +69,8 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
                         R interleaved frames, this mapper (Auto) and FixedPoint (table)
   --edit-cost R         R rounds of a transfer-function edit: the frame right after the
                         edit against the warm frame after it (minimum, median, ratio)
+  --thread-scaling R    R interleaved rounds of one thread and all threads per acceleration
+                        mode: median frame times and their ratio (table)
   --threads N           threads for vtkSMPTools (default: all cores)
   --memory              print the bytes the mapper holds, per structure
   --json                print statistics as JSON
@@ -81,7 +83,7 @@ struct Options
   double Iso = 0.0, Azimuth = 30.0, Elevation = 20.0, Zoom = 1.0, SampleDistance = 0.0;
   bool HasIso = false, Shade = false, Parallel = false, Compare = false, Json = false;
   bool HasPosition = false, HasFocal = false, CompareAcceleration = false, Memory = false;
-  int Versus = 0, SampleCost = 0, Threads = 0, Accuracy = 0, EditCost = 0;
+  int Versus = 0, SampleCost = 0, Threads = 0, Accuracy = 0, EditCost = 0, ThreadScaling = 0;
   double Supercell[3] = { 2, 2, 2 };
   std::vector<double> Sweep;
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
@@ -156,6 +158,7 @@ Options Parse(int argc, char* argv[])
     else if (a == "--sample-cost") { o.SampleCost = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--accuracy-curve") { o.Accuracy = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--edit-cost") { o.EditCost = static_cast<int>(ToNumber(a, value())); }
+    else if (a == "--thread-scaling") { o.ThreadScaling = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--threads") { o.Threads = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--memory") { o.Memory = true; }
     else if (a == "--supercell") { ToTriple(a, value(), o.Supercell); }
@@ -197,10 +200,11 @@ Options Parse(int argc, char* argv[])
   {
     Fail("cannot write " + o.Output + ": no such folder " + folder.string());
   }
-  if (o.Versus < 0 || o.SampleCost < 0 || o.Threads < 0 || o.Accuracy < 0 || o.EditCost < 0)
+  if (o.Versus < 0 || o.SampleCost < 0 || o.Threads < 0 || o.Accuracy < 0 || o.EditCost < 0 ||
+    o.ThreadScaling < 0)
   {
-    Fail("--versus-fixed-point, --sample-cost, --accuracy-curve, --edit-cost and --threads "
-         "take a positive number");
+    Fail("--versus-fixed-point, --sample-cost, --accuracy-curve, --edit-cost, "
+         "--thread-scaling and --threads take a positive number");
   }
   return o;
 }
@@ -555,6 +559,37 @@ void EditCost(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, vtkVolumePro
   std::printf("\n");
 }
 
+/// Scaling with threads: per acceleration mode, rounds frames with one thread interleaved
+/// with frames with all threads (markdown table of medians and their ratio).
+void ThreadScaling(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, int rounds)
+{
+  const int all = vtkSMPTools::GetEstimatedNumberOfThreads();
+  const int modes[] = { vtkPARCVolumeMapper::ACCELERATION_NONE,
+    vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER, vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER,
+    vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_AUTO };
+  std::printf("| mode | 1 thread, median (s) | %d threads, median (s) | speedup |\n|---|---|---|---|\n",
+    all);
+  for (int mode : modes)
+  {
+    mapper->SetAccelerationMode(mode);
+    WarmUp(window, mapper);
+    std::vector<double> times[2];
+    for (int r = 0; r < rounds; ++r)
+    {
+      for (int i = 0; i < 2; ++i)
+      {
+        vtkSMPTools::Initialize(i == 0 ? 1 : all);
+        times[i].push_back(TimedRender(window));
+      }
+    }
+    const double one = MinMedian(times[0]).second, many = MinMedian(times[1]).second;
+    std::printf("| %s | %.4f | %.4f | %.2fx |\n",
+      vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode()), one,
+      many, one / many);
+  }
+  vtkSMPTools::Initialize(all);
+}
+
 /// Polygons against ray steps: cubic supercells of each size (markdown table).
 void SweepSupercells(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper,
   const std::vector<double>& sizes, int repeat)
@@ -696,7 +731,7 @@ int main(int argc, char* argv[])
     vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode());
   const vtkIdType samples = mapper->GetLastSampleCount();
   if (o.CompareAcceleration || !o.Sweep.empty() || o.Versus > 0 || o.SampleCost > 0 ||
-    o.Accuracy > 0 || o.EditCost > 0)
+    o.Accuracy > 0 || o.EditCost > 0 || o.ThreadScaling > 0)
   {
     volume->SetMapper(mapper);
   }
@@ -721,6 +756,10 @@ int main(int argc, char* argv[])
   if (o.EditCost > 0)
   {
     EditCost(window, mapper, property, o.EditCost);
+  }
+  if (o.ThreadScaling > 0)
+  {
+    ThreadScaling(window, mapper, o.ThreadScaling);
   }
   if (o.CompareAcceleration)
   {
