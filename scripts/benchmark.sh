@@ -106,7 +106,7 @@ scene() { # title, file, options...
     echo
     xrun "$here/build/bin/parc-render" "$data/ironProt_68x68x68_uint8.raw" \
       --tf "$tf/iron-protein-cloud.txt" --size 400 --sample-distance 0.5 \
-      --output "$here/out/benchmark.png" --thread-scaling 7 | sed -n '/^| mode/,/^| Auto\|^| [A-Za-z]*Buffer\|^| None/p'
+      --output "$here/out/benchmark.png" --thread-scaling 7 | grep '^|'
   fi
   echo
   echo "## Memory held by the mapper, per structure (MRI head, shaded, 400x400, after Auto's trials)"
