@@ -583,9 +583,11 @@ void ThreadScaling(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, int rou
       }
     }
     const double one = MinMedian(times[0]).second, many = MinMedian(times[1]).second;
+    const std::string used =
+      vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode());
     std::printf("| %s | %.4f | %.4f | %.2fx |\n",
-      vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode()), one,
-      many, one / many);
+      (mode == vtkPARCVolumeMapper::ACCELERATION_AUTO ? "Auto: " + used : used).c_str(), one, many,
+      one / many);
   }
   vtkSMPTools::Initialize(all);
 }
