@@ -12,6 +12,7 @@
 #include <cstring>
 #include <functional>
 #include <iostream>
+#include <sstream>
 #include <vector>
 
 namespace
@@ -164,6 +165,37 @@ int TestPARCAccelerationExact(int argc, char* argv[])
     {
       std::cerr << "FAIL: a transfer-function change should reclassify once\n";
       ++failures;
+    }
+    // A settled mode holds nothing for the passes it does not use, and no CPU copy of a
+    // model; acceleration none holds no pass memory at all.
+    {
+      auto memory = [&](int mode) {
+        mapper->SetAccelerationMode(mode);
+        window->Render();
+        std::ostringstream lines;
+        mapper->PrintMemory(lines);
+        return lines.str();
+      };
+      auto holds = [](const std::string& lines, const std::string& what) {
+        return lines.find("Memory, " + what + " (bytes): 0\n") == std::string::npos;
+      };
+      const std::string both = memory(vtkPARCVolumeMapper::ACCELERATION_BOTH);
+      const vtkIdType bothBytes = mapper->GetMemorySize();
+      const std::string depthOnly = memory(vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER);
+      const vtkIdType depthBytes = mapper->GetMemorySize();
+      const std::string none = memory(vtkPARCVolumeMapper::ACCELERATION_NONE);
+      const bool ok = holds(both, "bit-plane buffer") && holds(both, "depth buffer") &&
+        !holds(both, "depth model") && !holds(both, "colour models") &&
+        !holds(depthOnly, "bit-plane buffer") && holds(depthOnly, "depth buffer") &&
+        holds(depthOnly, "OpenGL models and targets") && depthBytes < bothBytes &&
+        !holds(none, "depth buffer") && !holds(none, "bit-plane buffer") &&
+        !holds(none, "OpenGL models and targets");
+      if (!ok)
+      {
+        std::cerr << "FAIL: memory of unused passes or model copies kept:\n"
+                  << both << "--\n" << depthOnly << "--\n" << none;
+        ++failures;
+      }
     }
     // The mapper keeps no vertices once its model is uploaded; the same volume in a second
     // window (another GL context) gets the model built again, and the image stays exact.
