@@ -649,32 +649,21 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
 {
   glUseProgram(program);
   SetVector(program, "SkipNormal", skipNormal);
-  // The shaders work in coordinates relative to the eye, set up here in double, so float
-  // never holds a large coordinate (the views of MakeViews have the eye at 0 already).
-  parc::Matrix4 indexToRelative = indexToWorld;
-  parc::Matrix4 relativeToClip = view.WorldToClip;
-  for (int r = 0; r < 4; ++r)
-  {
-    if (r < 3)
-    {
-      indexToRelative(r, 3) -= view.Eye[r];
-    }
-    relativeToClip(r, 3) += relativeToClip(r, 0) * view.Eye.X + relativeToClip(r, 1) * view.Eye.Y +
-      relativeToClip(r, 2) * view.Eye.Z;
-  }
-  SetMatrix(program, "IndexToRelative", indexToRelative);
-  SetMatrix(program, "RelativeToClip", relativeToClip);
+  // The view's frame has the eye at its origin (see MakeViews): the shaders' coordinates
+  // stay small, and float never holds a large coordinate.
+  SetMatrix(program, "IndexToRelative", indexToWorld);
+  SetMatrix(program, "RelativeToClip", view.WorldToClip);
   // A bound of the magnitudes in the float transform of any vertex.
   double linear = 0.0;
   for (int r = 0; r < 3; ++r)
   {
     for (int c = 0; c < 3; ++c)
     {
-      linear += indexToRelative(r, c) * indexToRelative(r, c);
+      linear += indexToWorld(r, c) * indexToWorld(r, c);
     }
   }
-  const double frameScale = parc::Length(parc::Vec3{ indexToRelative(0, 3), indexToRelative(1, 3),
-                              indexToRelative(2, 3) }) +
+  const double frameScale =
+    parc::Length(parc::Vec3{ indexToWorld(0, 3), indexToWorld(1, 3), indexToWorld(2, 3) }) +
     std::sqrt(linear) * gpu.LargestCorner;
   SetVector(program, "ViewDirection", view.Pass.Direction);
   glUniform1f(glGetUniformLocation(program, "Empty"), parc::DepthBufferSource::Empty);
@@ -789,6 +778,13 @@ void vtkPARCRasterizer::ReleaseGraphicsResources(vtkWindow* window)
 }
 
 //------------------------------------------------------------------------------
+parc::Vec3 vtkPARCRasterizer::FrameOrigin(vtkRenderer* ren)
+{
+  const double* eye = ren->GetActiveCamera()->GetPosition();
+  return { eye[0], eye[1], eye[2] };
+}
+
+//------------------------------------------------------------------------------
 bool vtkPARCRasterizer::MakeViews(
   vtkRenderer* ren, int width, int height, parc::ViewGeometry& rays, View& pass)
 {
@@ -796,8 +792,7 @@ bool vtkPARCRasterizer::MakeViews(
   // The view transform of the camera's frame: the translation by the camera position, large
   // far from the origin, cancels in double here (leaving at most a constant offset that the
   // rays and the passes share) and never enters float.
-  const double* eye = camera->GetPosition();
-  pass.FrameOrigin = { eye[0], eye[1], eye[2] };
+  pass.FrameOrigin = FrameOrigin(ren);
   const parc::Matrix4 worldToView = parc::vtk::ToMatrix4(camera->GetViewTransformMatrix());
   const parc::Matrix4 frameToView =
     parc::Translated(worldToView, worldToView.TransformVector(pass.FrameOrigin));
@@ -807,7 +802,7 @@ bool vtkPARCRasterizer::MakeViews(
   rays.Width = pass.Pass.Width = width;
   rays.Height = pass.Pass.Height = height;
   rays.Parallel = pass.Pass.Parallel = camera->GetParallelProjection() != 0;
-  rays.Eye = pass.Eye = parc::Vec3();
+  rays.Eye = parc::Vec3();
   const double* direction = camera->GetDirectionOfProjection();
   pass.Pass.Direction = parc::Normalized({ direction[0], direction[1], direction[2] });
   pass.NearDistance = camera->GetClippingRange()[0];

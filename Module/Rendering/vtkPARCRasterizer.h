@@ -63,15 +63,15 @@ public:
   vtkTypeMacro(vtkPARCRasterizer, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// The camera of a pass: the caster's view plus what the shaders need. MakeViews gives
-  /// both views in the camera's frame: world coordinates minus the camera position
-  /// (FrameOrigin), so that a volume far from the world's origin loses no precision.
+  /// The camera of a pass: the caster's view plus what the shaders need, in the camera's
+  /// frame: world coordinates minus the camera position (FrameOrigin), so that a volume far
+  /// from the world's origin loses no precision. The eye is the frame's origin; the models'
+  /// index-to-world matrices given to the passes must be in the same frame.
   struct View
   {
     parc::PassView Pass;
     parc::Matrix4 WorldToClip; ///< the camera's composite projection (NDC z in [-1, 1])
-    parc::Vec3 Eye;
-    parc::Vec3 FrameOrigin; ///< world position of the coordinates' origin
+    parc::Vec3 FrameOrigin;    ///< world position of the coordinates' origin
     double NearDistance = 0.0; ///< near clipping distance along the view direction
     /// The ray through NDC (x, y) in eye-relative world coordinates: it starts at
     /// RayBase[0] + x RayBase[1] + y RayBase[2] (0 in perspective) and runs along
@@ -82,6 +82,8 @@ public:
     bool AffineRays = false; ///< false: the coefficients do not describe the rays
   };
 
+  /// The world position of the frame's origin for the renderer's active camera: its position.
+  static parc::Vec3 FrameOrigin(vtkRenderer* ren);
   /// The rays of a width x height ray image of the renderer's active camera, and the
   /// matching pass camera, in the camera's frame (see View; the eye is at 0). False when
   /// the projection is singular.

@@ -45,15 +45,6 @@ constexpr float DisplayDepth = 1e-6f; ///< window depth of the displayed image q
 /// A sample distance must leave at most this many samples along the volume's diagonal.
 constexpr double MaxSamplesPerDiagonal = 1e7;
 
-/// The origin of the render's coordinates: the active camera's position. The mapper hands
-/// the core world coordinates minus it (as vtkPARCRasterizer::MakeViews does), so that a
-/// volume far from the world's origin keeps its precision.
-parc::Vec3 FrameOrigin(vtkRenderer* ren)
-{
-  const double* eye = ren->GetActiveCamera()->GetPosition();
-  return { eye[0], eye[1], eye[2] };
-}
-
 /// The renderer's lights that are on, in the render frame (origin at frame).
 void ConvertLights(vtkRenderer* ren, const parc::Vec3& frame, std::vector<parc::Light>& lights)
 {
@@ -557,7 +548,8 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
   p.AverageRange[1] = this->AverageIPScalarRange[1];
   p.TerminationOpacity = this->TerminationOpacity;
 
-  const parc::Vec3 frame = FrameOrigin(ren);
+  // The core sees world coordinates minus the camera position, as the passes' views do.
+  const parc::Vec3 frame = vtkPARCRasterizer::FrameOrigin(ren);
   in.IndexToFrame = IndexToFrame(vtkImageData::SafeDownCast(this->GetInput()), vol, frame);
   const parc::Matrix4& indexToWorld = in.IndexToFrame;
   if (!parc::Invert(indexToWorld, p.WorldToIndex))
