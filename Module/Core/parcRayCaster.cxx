@@ -138,7 +138,8 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   {
     if (light.Positional)
     {
-      k.PositionalLights.push_back(&light);
+      k.PositionalLights.push_back({ &light, Normalized(light.FocalPoint - light.Position),
+        std::cos(light.ConeAngle * (M_PI / 180.0)) });
     }
     else
     {
@@ -401,8 +402,9 @@ void RayContext<View>::AddPositionalLights(
 {
   const Vec3 x = this->WorldRay.Origin + t * this->WorldRay.Direction;
   const Vec3 normal(n.X, n.Y, n.Z);
-  for (const Light* light : this->K.PositionalLights)
+  for (const RayCaster::PositionalLight& positional : this->K.PositionalLights)
   {
+    const Light* light = positional.Source;
     const Vec3 toLight = light->Position - x;
     const double dist = Length(toLight);
     const Vec3 l = Normalized(toLight);
@@ -411,11 +413,9 @@ void RayContext<View>::AddPositionalLights(
     double attenuation = denom > 0.0 ? 1.0 / denom : 1.0;
     if (light->ConeAngle < 90.0)
     {
-      const Vec3 spot = Normalized(light->FocalPoint - light->Position);
-      const double c = Dot(-l, spot);
-      attenuation *= (c < std::cos(light->ConeAngle * (M_PI / 180.0)))
-        ? 0.0
-        : std::pow(std::max(c, 0.0), light->Exponent);
+      const double c = Dot(-l, positional.SpotDirection);
+      attenuation *=
+        (c < positional.CosCone) ? 0.0 : std::pow(std::max(c, 0.0), light->Exponent);
     }
     const double ndl = Dot(normal, l);
     if (ndl > 0.0 && attenuation != 0.0)

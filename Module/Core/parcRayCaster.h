@@ -108,6 +108,13 @@ public:
     Vec3f Diffuse;  ///< diffuse coefficient times the light's colour
     Vec3f Specular; ///< specular coefficient times the light's colour
   };
+  /// A positional light with what does not change during a render.
+  struct PositionalLight
+  {
+    const Light* Source;
+    Vec3 SpotDirection;   ///< unit vector from the light to its focal point
+    double CosCone = -1.; ///< cosine of the spot cone (spots only)
+  };
   /// What Prepare derives from the parameters once per render for every ray.
   struct RenderConstants
   {
@@ -120,7 +127,7 @@ public:
     float GradientToWorld[9] = { 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f };
     int IntegerSpecularPower = -1; ///< SpecularPower when it is a small whole number
     std::vector<DirectionalLight> DirectionalLights;
-    std::vector<const Light*> PositionalLights;
+    std::vector<PositionalLight> PositionalLights;
     std::vector<double> SortedIsoValues;
     bool SkipEmptyCells = false; ///< the parameters' SkipEmptyCells, where it applies
     ContributionRule Rule;       ///< what SkipEmptyCells tests each cell against
