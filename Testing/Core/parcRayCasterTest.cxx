@@ -347,6 +347,16 @@ parc::ScalarField Blobs()
     return static_cast<float>(255.0 * std::max(a, b));
   });
 }
+
+/// Composite parameters for Blobs: the blobs' cores opaque-ish, their rims empty.
+CastParameters BlobParameters()
+{
+  CastParameters p;
+  p.Opacity.SetNodes({ 0.0, 60.0, 200.0 }, { 0.0, 0.0, 0.5 }, true);
+  p.Color.SetTable(0.0, 255.0, { 1.f, 0.5f, 0.f, 0.f, 0.5f, 1.f });
+  p.SampleDistance = 0.5;
+  return p;
+}
 }
 
 // The lattice does not depend on the segments: a source that leaves out only zero-opacity
@@ -429,10 +439,7 @@ TEST(RayCaster, SkippingEmptyCellsGivesBitIdenticalImages)
 TEST(RayCaster, ConstantGradientOpacityNeedsNoGradient)
 {
   const parc::ScalarField field = Blobs();
-  CastParameters p;
-  p.Opacity.SetNodes({ 0.0, 60.0, 200.0 }, { 0.0, 0.0, 0.5 }, true);
-  p.Color.SetTable(0.0, 255.0, { 1.f, 0.5f, 0.f, 0.f, 0.5f, 1.f });
-  p.SampleDistance = 0.5;
+  CastParameters p = BlobParameters();
   const parc::ViewGeometry view = ParallelView(32, 32, 0.3);
   auto cast = [&](std::vector<float>& image, parc::CastStatistics& stats) {
     parc::RayCaster caster;
@@ -466,10 +473,7 @@ TEST(RayCaster, ConstantGradientOpacityNeedsNoGradient)
 TEST(RayCaster, ImageIsTheSameForOneAndManyThreads)
 {
   const parc::ScalarField field = Blobs();
-  CastParameters p;
-  p.Opacity.SetNodes({ 0.0, 60.0, 200.0 }, { 0.0, 0.0, 0.5 }, true);
-  p.Color.SetTable(0.0, 255.0, { 1.f, 0.5f, 0.f, 0.f, 0.5f, 1.f });
-  p.SampleDistance = 0.5;
+  CastParameters p = BlobParameters();
   parc::RayCaster caster;
   ASSERT_TRUE(caster.Prepare(&field, &p));
   const parc::ViewGeometry view = ParallelView(64, 64, 0.3);
