@@ -9,6 +9,7 @@
 #include "parcScalarField.h"
 #include "parcTransferFunction.h"
 
+#include <algorithm>
 #include <cstddef>
 #include <vector>
 
@@ -70,6 +71,16 @@ struct CastParameters
   /// have opacity exactly 0, so the image is the same bit for bit. Off only to test that.
   bool SkipEmptyCells = true;
 };
+
+/// The iso values the isosurface ray function uses, for the caster and the classification
+/// alike: sorted, the smallest MaxIsoValues.
+inline std::vector<double> UsedIsoValues(const CastParameters& p)
+{
+  std::vector<double> values = p.IsoValues;
+  std::sort(values.begin(), values.end());
+  values.resize(std::min(values.size(), MaxIsoValues));
+  return values;
+}
 
 } // namespace parc
 

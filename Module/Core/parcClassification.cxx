@@ -92,10 +92,7 @@ void ContributionRule::Set(const CastParameters& p, const double range[2])
       break;
     case BlendMode::IsoSurface:
     {
-      std::vector<double> values = p.IsoValues;
-      std::sort(values.begin(), values.end());
-      values.resize(std::min(values.size(), MaxIsoValues));
-      for (double v : values)
+      for (double v : UsedIsoValues(p))
       {
         AppendInterval(this->Lo, this->Hi, v, v);
       }

@@ -153,12 +153,7 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   {
     k.Rule.Set(*parameters, field->GetRange());
   }
-  k.SortedIsoValues = parameters->IsoValues;
-  std::sort(k.SortedIsoValues.begin(), k.SortedIsoValues.end());
-  if (k.SortedIsoValues.size() > MaxIsoValues)
-  {
-    k.SortedIsoValues.resize(MaxIsoValues);
-  }
+  k.SortedIsoValues = UsedIsoValues(*parameters);
   return true;
 }
 
