@@ -1,6 +1,7 @@
 #include "parcRay.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -120,7 +121,10 @@ void CroppedIntervals(const Vec3& o, const Vec3& d, const Cropping& cropping, do
   }
   // The parameters where the line crosses a cropping plane split [t0, t1] into pieces,
   // each inside one region: its midpoint tells which.
-  std::vector<double> cuts{ t0, t1 };
+  // At most the two ends and one crossing per plane, kept in order as they are found: no
+  // allocation per ray.
+  std::array<double, 8> cuts{ t0, t1 };
+  std::size_t count = 2;
   for (int a = 0; a < 3; ++a)
   {
     for (int side = 0; side < 2 && d[a] != 0.0; ++side)
@@ -128,12 +132,16 @@ void CroppedIntervals(const Vec3& o, const Vec3& d, const Cropping& cropping, do
       const double t = (cropping.Planes[2 * a + side] - o[a]) / d[a];
       if (t > t0 && t < t1)
       {
-        cuts.push_back(t);
+        std::size_t at = count++;
+        for (; cuts[at - 1] > t; --at) // t0 is first and smallest: the walk stops there
+        {
+          cuts[at] = cuts[at - 1];
+        }
+        cuts[at] = t;
       }
     }
   }
-  std::sort(cuts.begin(), cuts.end());
-  for (std::size_t i = 0; i + 1 < cuts.size(); ++i)
+  for (std::size_t i = 0; i + 1 < count; ++i)
   {
     const double a = cuts[i], b = cuts[i + 1];
     const double m = a == b ? a : 0.5 * (a + b);
