@@ -7,6 +7,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 namespace parc
 {
@@ -196,6 +197,8 @@ struct RayContext
   double Dt;
   CastStatistics& Stats;
   double FirstHit = std::numeric_limits<double>::infinity();
+  /// Where the ray's events go (several volumes), or null.
+  std::vector<RayEvent>* Events = nullptr;
   /// The corners of the cell the last lattice sample was in.
   CellCorners Corners;
   /// The voxel differences of the cell the last gradient was taken in.
@@ -234,6 +237,14 @@ struct RayContext
     if (t < this->FirstHit)
     {
       this->FirstHit = t;
+    }
+  }
+  /// Records a sample's or crossing's colour and opacity as an event, when events are kept.
+  void Emit(double t, const float rgb[3], float a)
+  {
+    if (this->Events)
+    {
+      this->Events->push_back({ t, { rgb[0], rgb[1], rgb[2] }, a, false });
     }
   }
 
@@ -448,6 +459,7 @@ void Premultiply(const float rgb[3], float a, float rgba[4])
 template <class Context>
 struct CompositeFunction
 {
+  static constexpr bool WholeRay = false;
   Context& C;
   float Rgb[3] = { 0.f, 0.f, 0.f };
   float Alpha = 0.f;
@@ -468,6 +480,7 @@ struct CompositeFunction
     {
       this->C.Shade(rgb, t, haveGradient ? g : this->C.WorldGradient(t, true));
     }
+    this->C.Emit(t, rgb, a);
     const float w = (1.f - this->Alpha) * a;
     for (int c = 0; c < 3; ++c)
     {
@@ -490,17 +503,21 @@ struct CompositeFunction
 template <class Context, int Sign>
 struct ExtremeFunction
 {
+  static constexpr bool WholeRay = true;
   Context& C;
   float Extreme = 0.f;
   bool Found = false;
+  double Position = 0.0; ///< the first sample with the extreme value
 
   bool operator()(long k, bool)
   {
-    const float s = this->C.SampleAt(k * this->C.Dt);
+    const double t = k * this->C.Dt;
+    const float s = this->C.SampleAt(t);
     if (!this->Found || Sign * s > Sign * this->Extreme)
     {
       this->Extreme = s;
       this->Found = true;
+      this->Position = t;
     }
     return true;
   }
@@ -521,15 +538,22 @@ struct ExtremeFunction
 template <class Context>
 struct AverageFunction
 {
+  static constexpr bool WholeRay = true;
   Context& C;
   double Sum = 0.0;
   std::uint64_t Count = 0;
+  double Position = 0.0; ///< the first averaged sample
 
   bool operator()(long k, bool)
   {
-    const float s = this->C.SampleAt(k * this->C.Dt);
+    const double t = k * this->C.Dt;
+    const float s = this->C.SampleAt(t);
     if (s >= this->C.P.AverageRange[0] && s <= this->C.P.AverageRange[1])
     {
+      if (this->Count == 0)
+      {
+        this->Position = t;
+      }
       this->Sum += s;
       ++this->Count;
       ++this->C.Stats.ContributingSamples;
@@ -553,6 +577,7 @@ struct AverageFunction
 template <class Context>
 struct AdditiveFunction
 {
+  static constexpr bool WholeRay = true;
   Context& C;
   float Rgb[3] = { 0.f, 0.f, 0.f };
   float Alpha = 0.f;
@@ -583,11 +608,13 @@ struct AdditiveFunction
     }
     rgba[3] = std::min(this->Alpha, 1.f);
   }
+  double Position() const { return this->C.FirstHit; } ///< the first contributing sample
 };
 
 template <class Context>
 struct IsoSurfaceFunction
 {
+  static constexpr bool WholeRay = false;
   Context& C;
   const std::vector<double>& IsoValues; // sorted
   float Rgb[3] = { 0.f, 0.f, 0.f };
@@ -635,6 +662,7 @@ struct IsoSurfaceFunction
     {
       this->C.Shade(rgb, t, this->C.WorldGradient(t, false));
     }
+    this->C.Emit(t, rgb, a);
     const float w = (1.f - this->Alpha) * a;
     for (int c = 0; c < 3; ++c)
     {
@@ -716,13 +744,33 @@ long Walk(const std::vector<LatticeRange>& ranges, Function& fn)
   return previous;
 }
 
-/// Casts fn over ranges into rgba and counts the cells the visited stretches crossed.
+/// Where a whole-ray function's result lies along the ray.
+template <class Function>
+double ResultPosition(const Function& fn)
+{
+  return fn.Position;
+}
+template <class Context>
+double ResultPosition(const AdditiveFunction<Context>& fn)
+{
+  return fn.Position();
+}
+
+/// Casts fn over ranges into rgba (and a whole-ray result into the events, when kept) and
+/// counts the cells the visited stretches crossed.
 template <class Function>
 void Run(Function&& fn, const std::vector<LatticeRange>& ranges, float rgba[4])
 {
   const long last = Walk(ranges, fn);
   fn.Finish(rgba);
   const auto& c = fn.C;
+  if constexpr (std::decay_t<Function>::WholeRay)
+  {
+    if (c.Events && rgba[3] > 0.f)
+    {
+      c.Events->push_back({ ResultPosition(fn), { rgba[0], rgba[1], rgba[2] }, rgba[3], true });
+    }
+  }
   for (const LatticeRange& r : ranges)
   {
     if (r.First > last)
@@ -738,19 +786,23 @@ void Run(Function&& fn, const std::vector<LatticeRange>& ranges, float rgba[4])
 
 void RayCaster::CastRay(const Ray& ray, int px, int py, const SegmentSource& source,
   std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
-  CastStatistics& stats, double* firstHit) const
+  CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events) const
 {
   this->Field->Dispatch([&](const auto& field) {
-    this->CastRayIn(field, ray, px, py, source, segments, ranges, rgba, stats, firstHit);
+    this->CastRayIn(field, ray, px, py, source, segments, ranges, rgba, stats, firstHit, events);
   });
 }
 
 template <class View>
 void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
   const SegmentSource& source, std::vector<Segment>& segments, std::vector<LatticeRange>& ranges,
-  float rgba[4], CastStatistics& stats, double* firstHit) const
+  float rgba[4], CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events) const
 {
   rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0.f;
+  if (events)
+  {
+    events->clear();
+  }
   if (firstHit)
   {
     *firstHit = std::numeric_limits<double>::infinity();
@@ -781,6 +833,7 @@ void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
   }
   using Context = RayContext<View>;
   Context context(field, *this->Params, this->Constants, ray, indexOrigin, indexDirection, stats);
+  context.Events = events;
   switch (this->Params->Blend)
   {
     case BlendMode::Composite:
@@ -810,30 +863,32 @@ void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
 
 namespace
 {
+/// Scratch storage of one thread's rays.
+struct RayScratch
+{
+  std::vector<Segment> Segments;
+  std::vector<LatticeRange> Ranges;
+  std::vector<std::vector<RayEvent>> Events; ///< per volume (SceneCaster)
+  CastStatistics Stats;
+};
+
 /// Casts the tiles of one band of rows; vtkSMPTools functor.
-template <class Cast>
+template <class Cast, class MayHave>
 struct TileCaster
 {
-  const Cast& CastOne; ///< casts one ray: (ray, px, py, scratch, rgba)
+  const Cast& CastOne;       ///< casts one ray: (ray, px, py, scratch, rgba)
+  const MayHave& MayHaveRay; ///< (px, py): false when the pixel's ray surely gets nothing
   const ViewGeometry& View;
   const float* Depth;
-  const SegmentSource& Source;
   float* Image;
   int TilesX;
   int FirstTileRow;
-
-  struct Scratch
-  {
-    std::vector<Segment> Segments;
-    std::vector<LatticeRange> Ranges;
-    CastStatistics Stats;
-  };
-  vtkSMPThreadLocal<Scratch> Local;
+  vtkSMPThreadLocal<RayScratch> Local;
 
   void Initialize() {}
   void operator()(vtkIdType begin, vtkIdType end)
   {
-    Scratch& scratch = this->Local.Local();
+    RayScratch& scratch = this->Local.Local();
     for (vtkIdType tile = begin; tile < end; ++tile)
     {
       const int tx = static_cast<int>(tile % this->TilesX);
@@ -845,7 +900,7 @@ struct TileCaster
         for (int px = tx * TileSize; px < x1; ++px)
         {
           const std::size_t pixel = static_cast<std::size_t>(py) * this->View.Width + px;
-          if (!this->Source.MayHaveSegments(px, py))
+          if (!this->MayHaveRay(px, py))
           {
             std::fill_n(this->Image + 4 * pixel, 4, 0.f);
             continue;
@@ -863,31 +918,18 @@ struct TileCaster
   }
   void Reduce() {}
 };
-}
 
-bool RayCaster::CastImage(const ViewGeometry& view, const float* depth,
-  const SegmentSource& source, float* rgba, CastStatistics& stats,
-  const std::function<bool(double)>& progress) const
-{
-  return this->Field->Dispatch([&](const auto& field) {
-    return this->CastImageIn(field, view, depth, source, rgba, stats, progress);
-  });
-}
-
-template <class View>
-bool RayCaster::CastImageIn(const View& field, const ViewGeometry& view, const float* depth,
-  const SegmentSource& source, float* rgba, CastStatistics& stats,
-  const std::function<bool(double)>& progress) const
+/// Casts a whole image in bands of tile rows (see RayCaster::CastImage).
+template <class Cast, class MayHave>
+bool CastTiles(const ViewGeometry& view, const float* depth, const Cast& castOne,
+  const MayHave& mayHave, float* rgba, CastStatistics& stats,
+  const std::function<bool(double)>& progress)
 {
   // Every pixel of a cast band is written by its tile (zero when no ray is cast).
   const int tilesX = (view.Width + TileSize - 1) / TileSize;
   const int tilesY = (view.Height + TileSize - 1) / TileSize;
   bool completed = true;
-  auto castOne = [&](const Ray& ray, int px, int py, auto& scratch, float* pixel) {
-    this->CastRayIn(field, ray, px, py, source, scratch.Segments, scratch.Ranges, pixel,
-      scratch.Stats, nullptr);
-  };
-  TileCaster<decltype(castOne)> caster{ castOne, view, depth, source, rgba, tilesX, 0, {} };
+  TileCaster<Cast, MayHave> caster{ castOne, mayHave, view, depth, rgba, tilesX, 0, {} };
   for (int row = 0; row < tilesY; row += TileRowsPerBand)
   {
     const int rows = std::min(TileRowsPerBand, tilesY - row);
@@ -907,6 +949,98 @@ bool RayCaster::CastImageIn(const View& field, const ViewGeometry& view, const f
     stats += scratch.Stats;
   }
   return completed;
+}
+}
+
+bool RayCaster::CastImage(const ViewGeometry& view, const float* depth,
+  const SegmentSource& source, float* rgba, CastStatistics& stats,
+  const std::function<bool(double)>& progress) const
+{
+  return this->Field->Dispatch([&](const auto& field) {
+    return this->CastImageIn(field, view, depth, source, rgba, stats, progress);
+  });
+}
+
+template <class View>
+bool RayCaster::CastImageIn(const View& field, const ViewGeometry& view, const float* depth,
+  const SegmentSource& source, float* rgba, CastStatistics& stats,
+  const std::function<bool(double)>& progress) const
+{
+  auto castOne = [&](const Ray& ray, int px, int py, RayScratch& scratch, float* pixel) {
+    this->CastRayIn(field, ray, px, py, source, scratch.Segments, scratch.Ranges, pixel,
+      scratch.Stats, nullptr, nullptr);
+  };
+  auto mayHave = [&](int px, int py) { return source.MayHaveSegments(px, py); };
+  return CastTiles(view, depth, castOne, mayHave, rgba, stats, progress);
+}
+
+//------------------------------------------------------------------------------
+bool SceneCaster::SetMembers(std::vector<Member> members, double terminationOpacity)
+{
+  if (members.size() > MaxSceneVolumes)
+  {
+    return false;
+  }
+  this->Members = std::move(members);
+  this->TerminationOpacity = terminationOpacity;
+  return true;
+}
+
+void SceneCaster::CastRay(const Ray& ray, int px, int py, std::vector<Segment>& segments,
+  std::vector<LatticeRange>& ranges, std::vector<std::vector<RayEvent>>& events, float rgba[4],
+  CastStatistics& stats) const
+{
+  const std::size_t n = this->Members.size();
+  events.resize(n);
+  float own[4];
+  for (std::size_t v = 0; v < n; ++v)
+  {
+    const Member& m = this->Members[v];
+    events[v].clear();
+    if (m.Source->MayHaveSegments(px, py))
+    {
+      m.Caster->CastRay(ray, px, py, *m.Source, segments, ranges, own, stats, nullptr, &events[v]);
+    }
+  }
+  // Merge by (ray parameter, volume index): each volume's events are in ray order.
+  EventCompositor compositor;
+  std::size_t next[MaxSceneVolumes] = {};
+  for (;;)
+  {
+    std::size_t best = n;
+    for (std::size_t v = 0; v < n; ++v)
+    {
+      if (next[v] < events[v].size() &&
+        (best == n || events[v][next[v]].T < events[best][next[best]].T))
+      {
+        best = v;
+      }
+    }
+    if (best == n)
+    {
+      break;
+    }
+    compositor.Add(events[best][next[best]++]);
+    if (!(compositor.Alpha < this->TerminationOpacity))
+    {
+      break;
+    }
+  }
+  compositor.Finish(rgba);
+}
+
+bool SceneCaster::CastImage(const ViewGeometry& view, const float* depth, float* rgba,
+  CastStatistics& stats, const std::function<bool(double)>& progress) const
+{
+  auto castOne = [&](const Ray& ray, int px, int py, RayScratch& scratch, float* pixel) {
+    this->CastRay(
+      ray, px, py, scratch.Segments, scratch.Ranges, scratch.Events, pixel, scratch.Stats);
+  };
+  auto mayHave = [&](int px, int py) {
+    return std::any_of(this->Members.begin(), this->Members.end(),
+      [px, py](const Member& m) { return m.Source->MayHaveSegments(px, py); });
+  };
+  return CastTiles(view, depth, castOne, mayHave, rgba, stats, progress);
 }
 
 } // namespace parc

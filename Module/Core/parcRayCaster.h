@@ -18,6 +18,13 @@
 //   (s0 < v) != (s1 < v); the crossing is found by linear interpolation of s0, s1 followed
 //   by two regula-falsi steps on the interpolated field; each crossing is shaded with the
 //   colour and opacity of v and composited front to back.
+// Several volumes (SceneCaster): each volume's caster turns a ray into RayEvents, what the
+// volume contributes where along the ray, and one compositor merges the events of all
+// volumes front to back by (ray parameter, volume index). A composite or isosurface volume
+// gives one event per contributing sample or surface crossing; a maximum, minimum or
+// average intensity or additive volume gives its whole-ray result as one event, placed at
+// its first sample with the extreme value, its first averaged sample or its first
+// contributing sample. One volume alone gives the same bits as its own caster.
 // Thread safety: Cast* are const and may run concurrently once Prepare has been called.
 #ifndef parcRayCaster_h
 #define parcRayCaster_h
@@ -27,6 +34,7 @@
 #include "parcRay.h"
 #include "parcScalarField.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <vector>
@@ -45,6 +53,51 @@ struct CastStatistics
   std::uint64_t Cells = 0; ///< cells crossed by the cast lattice ranges (paper, Table 2)
 
   CastStatistics& operator+=(const CastStatistics& o);
+};
+
+/// The most volumes a SceneCaster casts together.
+constexpr std::size_t MaxSceneVolumes = 16;
+
+/// What one volume contributes at one point of a ray (see the file comment).
+struct RayEvent
+{
+  double T;     ///< ray parameter
+  float Rgb[3]; ///< colour; premultiplied by Alpha when Premultiplied
+  float Alpha;  ///< opacity (corrected for the sample distance)
+  bool Premultiplied; ///< a whole-ray result rather than one sample's colour and opacity
+};
+
+/// Front-to-back "over" of events, in the order they are added.
+struct EventCompositor
+{
+  float Rgb[3] = { 0.f, 0.f, 0.f };
+  float Alpha = 0.f;
+
+  /// Adds e behind what was added before.
+  void Add(const RayEvent& e)
+  {
+    if (e.Premultiplied)
+    {
+      const float transparency = 1.f - this->Alpha;
+      for (int c = 0; c < 3; ++c)
+      {
+        this->Rgb[c] += transparency * e.Rgb[c];
+      }
+      this->Alpha += transparency * e.Alpha;
+      return;
+    }
+    const float w = (1.f - this->Alpha) * e.Alpha;
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Rgb[c] += w * e.Rgb[c];
+    }
+    this->Alpha += w;
+  }
+  void Finish(float rgba[4]) const
+  {
+    std::copy_n(this->Rgb, 3, rgba);
+    rgba[3] = this->Alpha;
+  }
 };
 
 /// The camera as the ray image sees it: pixel (px, py) of a Width x Height image has its
@@ -78,9 +131,13 @@ public:
   /// One ray: the premultiplied RGBA result. Scratch vectors are reused by the caller.
   /// firstHit (optional) receives the ray parameter of the first contributing composite or
   /// additive sample or the first isosurface crossing (+inf if none or other blend modes).
+  /// events (optional) receives the ray's events in ray order (see the file comment); a
+  /// composite or isosurface ray still stops where its own opacity reaches the
+  /// termination opacity, which the merged opacity has reached by then.
   void CastRay(const Ray& ray, int px, int py, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
-    CastStatistics& stats, double* firstHit = nullptr) const;
+    CastStatistics& stats, double* firstHit = nullptr,
+    std::vector<RayEvent>* events = nullptr) const;
 
   /// A whole image into rgba (4 floats a pixel, rows bottom to top), in parallel over
   /// tiles with vtkSMPTools; depth (may be null) holds each pixel's window depth of the
@@ -137,7 +194,7 @@ private:
   template <class View>
   void CastRayIn(const View& field, const Ray& ray, int px, int py, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
-    CastStatistics& stats, double* firstHit) const;
+    CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events) const;
   template <class View>
   bool CastImageIn(const View& field, const ViewGeometry& view, const float* depth,
     const SegmentSource& source, float* rgba, CastStatistics& stats,
@@ -146,6 +203,34 @@ private:
   const ScalarField* Field = nullptr;
   const CastParameters* Params = nullptr;
   RenderConstants Constants;
+};
+
+/// Several volumes cast together into one image (see the file comment): every ray meets
+/// every volume, each through its own segment source.
+class SceneCaster
+{
+public:
+  struct Member
+  {
+    const RayCaster* Caster;     ///< prepared
+    const SegmentSource* Source; ///< where the volume's samples may contribute
+  };
+  /// The members (at most MaxSceneVolumes, else false), in the order that breaks ties
+  /// between events at one ray parameter. terminationOpacity: the merged opacity at which a
+  /// ray stops.
+  bool SetMembers(std::vector<Member> members, double terminationOpacity);
+
+  /// One ray's premultiplied RGBA; events holds one scratch vector per member.
+  void CastRay(const Ray& ray, int px, int py, std::vector<Segment>& segments,
+    std::vector<LatticeRange>& ranges, std::vector<std::vector<RayEvent>>& events,
+    float rgba[4], CastStatistics& stats) const;
+  /// A whole image, like RayCaster::CastImage.
+  bool CastImage(const ViewGeometry& view, const float* depth, float* rgba,
+    CastStatistics& stats, const std::function<bool(double)>& progress = nullptr) const;
+
+private:
+  std::vector<Member> Members;
+  double TerminationOpacity = 1.0;
 };
 
 } // namespace parc

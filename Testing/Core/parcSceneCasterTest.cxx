@@ -1,0 +1,285 @@
+// Several volumes cast together (SceneCaster): one volume alone is its own image, events
+// merge in depth order whatever the members' order, a surface inside a cloud is right
+// from both sides, and per-volume segment sources keep the image bit-identical.
+#include "parcSegmentOracle.h"
+#include "parcTestUtilities.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <random>
+
+using parc::BlendMode;
+using parc::CastParameters;
+using parc::Vec3;
+using parctest::MakeRay;
+
+namespace
+{
+constexpr int Width = 40, Height = 36;
+
+/// Parallel rays along (sin a, 0, -cos a) over a 44 x 44 window around (16, 16, 16).
+parc::ViewGeometry ParallelView(double angle)
+{
+  parc::ViewGeometry v;
+  v.Width = Width;
+  v.Height = Height;
+  v.Parallel = true;
+  const double c = std::cos(angle), s = std::sin(angle);
+  const Vec3 right{ c, 0, s }, up{ 0, 1, 0 }, forward{ s, 0, -c };
+  for (int r = 0; r < 3; ++r)
+  {
+    v.NDCToWorld(r, 0) = 22.0 * right[r];
+    v.NDCToWorld(r, 1) = 22.0 * up[r];
+    v.NDCToWorld(r, 2) = 60.0 * forward[r];
+    v.NDCToWorld(r, 3) = 16.0;
+  }
+  v.Eye = Vec3{ 16, 16, 16 } - 80.0 * forward;
+  return v;
+}
+
+/// The distance from centre c, sampled on an n^3 grid.
+parc::ScalarField DistanceField(int n, const Vec3& c)
+{
+  const int dims[3] = { n, n, n };
+  return parctest::MakeField(
+    dims, [&](int i, int j, int k) { return static_cast<float>(Length(Vec3(i, j, k) - c)); });
+}
+
+/// Two overlapping blobs, values 0 to 255.
+parc::ScalarField Blobs()
+{
+  const int n[3] = { 33, 30, 28 };
+  return parctest::MakeField(n, [](int i, int j, int k) {
+    const double a = std::exp(-0.02 * ((i - 10) * (i - 10) + (j - 12) * (j - 12) + (k - 9) * (k - 9)));
+    const double b = std::exp(-0.03 * ((i - 22) * (i - 22) + (j - 18) * (j - 18) + (k - 18) * (k - 18)));
+    return static_cast<float>(255.0 * std::max(a, b));
+  });
+}
+
+/// A translucent, shaded cloud over Blobs with a light.
+CastParameters CloudParameters()
+{
+  CastParameters p;
+  p.Opacity.SetNodes({ 0.0, 60.0, 200.0 }, { 0.0, 0.0, 0.4 }, true);
+  p.Color.SetTable(0.0, 255.0, { 1.f, 0.5f, 0.f, 0.f, 0.5f, 1.f });
+  p.SampleDistance = 0.5;
+  p.Shade = true;
+  parc::Light light;
+  light.Position = { 0.0, 50.0, 50.0 };
+  p.Lights = { light };
+  return p;
+}
+
+/// An opaque, shaded red isosurface of a distance field: a sphere of radius r.
+CastParameters SurfaceParameters(double r)
+{
+  CastParameters p = CloudParameters();
+  p.Blend = BlendMode::IsoSurface;
+  p.IsoValues = { r };
+  p.Opacity.SetNodes({ 0.0, 100.0 }, { 1.0, 1.0 }, true);
+  p.Color.SetTable(0.0, 100.0, { 1.f, 0.f, 0.f, 1.f, 0.f, 0.f });
+  return p;
+}
+
+/// World -> index of a volume translated by offset.
+parc::Matrix4 Shifted(const Vec3& offset)
+{
+  return parc::Translated(parc::Matrix4(), -offset);
+}
+
+struct Image
+{
+  std::vector<float> RGBA = std::vector<float>(4 * Width * Height);
+  parc::CastStatistics Stats;
+};
+
+Image CastScene(const std::vector<parc::SceneCaster::Member>& members, const parc::ViewGeometry& view)
+{
+  parc::SceneCaster scene;
+  EXPECT_TRUE(scene.SetMembers(members, 0.99));
+  Image image;
+  scene.CastImage(view, nullptr, image.RGBA.data(), image.Stats);
+  return image;
+}
+
+bool Identical(const Image& a, const Image& b)
+{
+  return std::memcmp(a.RGBA.data(), b.RGBA.data(), a.RGBA.size() * sizeof(float)) == 0;
+}
+}
+
+// A scene of one volume gives the bits of the volume's own caster, for every ray function.
+TEST(SceneCaster, OneVolumeIsItsOwnImage)
+{
+  const parc::ScalarField field = Blobs();
+  for (BlendMode mode : { BlendMode::Composite, BlendMode::IsoSurface,
+         BlendMode::MaximumIntensity, BlendMode::MinimumIntensity, BlendMode::AverageIntensity,
+         BlendMode::Additive })
+  {
+    CastParameters p = CloudParameters();
+    p.Blend = mode;
+    p.IsoValues = { 80.0, 150.0 };
+    p.AverageRange[0] = 30.0;
+    p.AverageRange[1] = 220.0;
+    p.Opacity.SetNodes({ 0.0, 60.0, 200.0 }, { 0.1, 0.1, 0.6 }, true);
+    parc::RayCaster caster;
+    ASSERT_TRUE(caster.Prepare(&field, &p));
+    const parc::ViewGeometry view = ParallelView(0.4);
+    Image own;
+    caster.CastImage(view, nullptr, parc::WholeRaySource(), own.RGBA.data(), own.Stats);
+    const parc::WholeRaySource whole;
+    const Image scene = CastScene({ { &caster, &whole } }, view);
+    EXPECT_TRUE(Identical(own, scene)) << "mode " << static_cast<int>(mode);
+    EXPECT_EQ(own.Stats.Samples, scene.Stats.Samples) << "mode " << static_cast<int>(mode);
+    EXPECT_GT(own.Stats.ContributingSamples, 0u);
+  }
+}
+
+// Two volumes one behind the other along the ray: the front one over the back one, and
+// the members' order does not matter.
+TEST(SceneCaster, DisjointVolumesMergeInDepthOrder)
+{
+  const int n[3] = { 6, 6, 11 };
+  const parc::ScalarField slab = parctest::MakeField(n, [](int, int, int) { return 100.f; });
+  CastParameters front, back;
+  front.Opacity.SetConstant(0.05);
+  front.Color.SetTable(0.0, 255.0, { 1.f, 0.f, 0.f, 1.f, 0.f, 0.f });
+  front.SampleDistance = 0.25;
+  back = front;
+  back.Opacity.SetConstant(0.3);
+  back.Color.SetTable(0.0, 255.0, { 0.f, 0.f, 1.f, 0.f, 0.f, 1.f });
+  front.WorldToIndex = Shifted({ 0, 0, 0 });  // z in [0, 10]
+  back.WorldToIndex = Shifted({ 0, 0, 20 }); // z in [20, 30]
+  parc::RayCaster frontCaster, backCaster;
+  ASSERT_TRUE(frontCaster.Prepare(&slab, &front));
+  ASSERT_TRUE(backCaster.Prepare(&slab, &back));
+  const parc::WholeRaySource whole;
+  for (const double zEye : { -10.0, 40.0 })
+  {
+    const parc::Ray ray = MakeRay({ 2.5, 2.5, zEye }, { 0, 0, zEye < 0 ? 1.0 : -1.0 });
+    std::vector<parc::Segment> segments;
+    std::vector<parc::LatticeRange> ranges;
+    std::vector<std::vector<parc::RayEvent>> events;
+    parc::CastStatistics stats;
+    float a[4], b[4], merged[4], swapped[4];
+    frontCaster.CastRay(ray, 0, 0, whole, segments, ranges, a, stats);
+    backCaster.CastRay(ray, 0, 0, whole, segments, ranges, b, stats);
+    if (zEye > 0)
+    {
+      std::swap(a, b); // the eye is on the back volume's side
+    }
+    parc::SceneCaster scene;
+    ASSERT_TRUE(scene.SetMembers({ { &frontCaster, &whole }, { &backCaster, &whole } }, 0.99));
+    scene.CastRay(ray, 0, 0, segments, ranges, events, merged, stats);
+    ASSERT_TRUE(scene.SetMembers({ { &backCaster, &whole }, { &frontCaster, &whole } }, 0.99));
+    scene.CastRay(ray, 0, 0, segments, ranges, events, swapped, stats);
+    EXPECT_EQ(0, std::memcmp(merged, swapped, sizeof(merged)));
+    for (int c = 0; c < 4; ++c)
+    {
+      EXPECT_NEAR(merged[c], a[c] + (1.f - a[3]) * b[c], 1e-6) << "eye " << zEye << " c " << c;
+    }
+    EXPECT_GT(a[3], 0.2f);
+    EXPECT_GT(b[3], 0.2f);
+  }
+}
+
+// An opaque sphere inside a translucent cloud, seen from both sides: the part of the cloud
+// in front of the surface, over the surface's colour.
+TEST(SceneCaster, SurfaceInsideACloudFromBothSides)
+{
+  const parc::ScalarField sphere = DistanceField(33, { 16, 16, 16 });
+  const parc::ScalarField cloud = Blobs();
+  CastParameters surfaceParams = SurfaceParameters(6.0);
+  surfaceParams.Shade = false;
+  CastParameters cloudParams = CloudParameters();
+  cloudParams.Shade = false;
+  cloudParams.Opacity.SetNodes({ 0.0, 20.0, 255.0 }, { 0.0, 0.05, 0.2 }, true);
+  parc::RayCaster surface, cloudCaster;
+  ASSERT_TRUE(surface.Prepare(&sphere, &surfaceParams));
+  ASSERT_TRUE(cloudCaster.Prepare(&cloud, &cloudParams));
+  const parc::WholeRaySource whole;
+  parc::SceneCaster scene;
+  ASSERT_TRUE(scene.SetMembers({ { &surface, &whole }, { &cloudCaster, &whole } }, 1.0));
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int hits = 0;
+  for (int trial = 0; trial < 100; ++trial)
+  {
+    // From either side of the sphere, through a point near its centre.
+    const Vec3 target = Vec3{ 16, 16, 16 } + 3.0 * Vec3(u(rng), u(rng), u(rng));
+    const Vec3 from = target + 50.0 * parc::Normalized({ u(rng), u(rng), u(rng) });
+    parc::Ray ray = MakeRay(from, target - from);
+    std::vector<parc::Segment> segments;
+    std::vector<parc::LatticeRange> ranges;
+    std::vector<std::vector<parc::RayEvent>> events;
+    parc::CastStatistics stats;
+    float merged[4], hitColor[4], front[4];
+    double hit;
+    scene.CastRay(ray, 0, 0, segments, ranges, events, merged, stats);
+    surface.CastRay(ray, 0, 0, whole, segments, ranges, hitColor, stats, &hit);
+    ASSERT_TRUE(std::isfinite(hit)) << "trial " << trial;
+    ray.TMax = hit; // the cloud in front of the surface
+    cloudCaster.CastRay(ray, 0, 0, whole, segments, ranges, front, stats);
+    for (int c = 0; c < 4; ++c)
+    {
+      EXPECT_NEAR(merged[c], front[c] + (1.f - front[3]) * hitColor[c], 2e-6)
+        << "trial " << trial << " c " << c;
+    }
+    hits += front[3] > 0.01f ? 1 : 0;
+  }
+  EXPECT_GT(hits, 50); // the cloud is in front of the surface on most rays
+}
+
+// Each volume through its own exact segment source (the oracle of its own supercells, at
+// its own transform), in overlapping scenes: bit-identical to unaccelerated casting.
+TEST(SceneCaster, PerVolumeSourcesGiveBitIdenticalImages)
+{
+  const parc::ScalarField sphere = DistanceField(25, { 12, 12, 12 });
+  const parc::ScalarField cloud = Blobs();
+  struct Volume
+  {
+    const parc::ScalarField* Field;
+    CastParameters Params;
+    parc::RangePyramid Pyramid;
+    parc::SupercellGrid Grid;
+    parc::RayCaster Caster;
+  };
+  for (const Vec3& offset : { Vec3{ 4, 3, 2 }, Vec3{ 30, 0, 0 }, Vec3{ -2, -1, 0 } })
+  {
+    Volume volumes[2];
+    volumes[0].Field = &cloud;
+    volumes[0].Params = CloudParameters();
+    volumes[1].Field = &sphere;
+    volumes[1].Params = SurfaceParameters(7.0);
+    volumes[1].Params.WorldToIndex = Shifted(offset); // partial, no or full overlap
+    for (Volume& v : volumes)
+    {
+      v.Pyramid.Build(*v.Field);
+      parc::ContributionRule rule;
+      rule.Set(v.Params, v.Field->GetRange());
+      const double size[3] = { 2.0, 2.0, 2.0 };
+      ASSERT_TRUE(v.Grid.Configure(v.Pyramid.GetCellDimensions(), size));
+      v.Grid.Classify(v.Pyramid, rule, v.Params.Interp);
+      ASSERT_TRUE(v.Caster.Prepare(v.Field, &v.Params));
+    }
+    const parc::WholeRaySource whole;
+    const parc::SegmentOracle oracle0(volumes[0].Grid, volumes[0].Params.WorldToIndex);
+    const parc::SegmentOracle oracle1(volumes[1].Grid, volumes[1].Params.WorldToIndex);
+    for (const double angle : { 0.0, 0.7, 2.5 })
+    {
+      const parc::ViewGeometry view = ParallelView(angle);
+      const Image reference =
+        CastScene({ { &volumes[0].Caster, &whole }, { &volumes[1].Caster, &whole } }, view);
+      const Image accelerated =
+        CastScene({ { &volumes[0].Caster, &oracle0 }, { &volumes[1].Caster, &oracle1 } }, view);
+      const Image mixed =
+        CastScene({ { &volumes[0].Caster, &whole }, { &volumes[1].Caster, &oracle1 } }, view);
+      EXPECT_TRUE(Identical(reference, accelerated)) << "angle " << angle;
+      EXPECT_TRUE(Identical(reference, mixed)) << "angle " << angle;
+      EXPECT_LT(accelerated.Stats.Samples, reference.Stats.Samples);
+      EXPECT_GT(reference.Stats.ContributingSamples, 0u);
+    }
+  }
+}
