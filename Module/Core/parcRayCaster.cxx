@@ -870,6 +870,7 @@ struct RayScratch
   std::vector<LatticeRange> Ranges;
   std::vector<std::vector<RayEvent>> Events; ///< per volume (SceneCaster)
   CastStatistics Stats;
+  std::vector<CastStatistics> MemberStats; ///< per volume (SceneCaster)
 };
 
 /// Casts the tiles of one band of rows; vtkSMPTools functor.
@@ -919,10 +920,11 @@ struct TileCaster
   void Reduce() {}
 };
 
-/// Casts a whole image in bands of tile rows (see RayCaster::CastImage).
-template <class Cast, class MayHave>
+/// Casts a whole image in bands of tile rows (see RayCaster::CastImage); reduce(scratch)
+/// gathers each thread's statistics.
+template <class Cast, class MayHave, class Reduce>
 bool CastTiles(const ViewGeometry& view, const float* depth, const Cast& castOne,
-  const MayHave& mayHave, float* rgba, CastStatistics& stats,
+  const MayHave& mayHave, float* rgba, const Reduce& reduce,
   const std::function<bool(double)>& progress)
 {
   // Every pixel of a cast band is written by its tile (zero when no ray is cast).
@@ -946,7 +948,7 @@ bool CastTiles(const ViewGeometry& view, const float* depth, const Cast& castOne
   }
   for (auto& scratch : caster.Local)
   {
-    stats += scratch.Stats;
+    reduce(scratch);
   }
   return completed;
 }
@@ -971,7 +973,8 @@ bool RayCaster::CastImageIn(const View& field, const ViewGeometry& view, const f
       scratch.Stats, nullptr, nullptr);
   };
   auto mayHave = [&](int px, int py) { return source.MayHaveSegments(px, py); };
-  return CastTiles(view, depth, castOne, mayHave, rgba, stats, progress);
+  auto reduce = [&stats](const RayScratch& scratch) { stats += scratch.Stats; };
+  return CastTiles(view, depth, castOne, mayHave, rgba, reduce, progress);
 }
 
 //------------------------------------------------------------------------------
@@ -988,7 +991,7 @@ bool SceneCaster::SetMembers(std::vector<Member> members, double terminationOpac
 
 void SceneCaster::CastRay(const Ray& ray, int px, int py, std::vector<Segment>& segments,
   std::vector<LatticeRange>& ranges, std::vector<std::vector<RayEvent>>& events, float rgba[4],
-  CastStatistics& stats) const
+  CastStatistics* stats) const
 {
   const std::size_t n = this->Members.size();
   events.resize(n);
@@ -999,7 +1002,8 @@ void SceneCaster::CastRay(const Ray& ray, int px, int py, std::vector<Segment>& 
     events[v].clear();
     if (m.Source->MayHaveSegments(px, py))
     {
-      m.Caster->CastRay(ray, px, py, *m.Source, segments, ranges, own, stats, nullptr, &events[v]);
+      m.Caster->CastRay(
+        ray, px, py, *m.Source, segments, ranges, own, stats[v], nullptr, &events[v]);
     }
   }
   // Merge by (ray parameter, volume index): each volume's events are in ray order.
@@ -1030,17 +1034,26 @@ void SceneCaster::CastRay(const Ray& ray, int px, int py, std::vector<Segment>& 
 }
 
 bool SceneCaster::CastImage(const ViewGeometry& view, const float* depth, float* rgba,
-  CastStatistics& stats, const std::function<bool(double)>& progress) const
+  std::vector<CastStatistics>& stats, const std::function<bool(double)>& progress) const
 {
+  const std::size_t n = this->Members.size();
   auto castOne = [&](const Ray& ray, int px, int py, RayScratch& scratch, float* pixel) {
-    this->CastRay(
-      ray, px, py, scratch.Segments, scratch.Ranges, scratch.Events, pixel, scratch.Stats);
+    scratch.MemberStats.resize(n);
+    this->CastRay(ray, px, py, scratch.Segments, scratch.Ranges, scratch.Events, pixel,
+      scratch.MemberStats.data());
   };
   auto mayHave = [&](int px, int py) {
     return std::any_of(this->Members.begin(), this->Members.end(),
       [px, py](const Member& m) { return m.Source->MayHaveSegments(px, py); });
   };
-  return CastTiles(view, depth, castOne, mayHave, rgba, stats, progress);
+  stats.assign(n, CastStatistics());
+  auto reduce = [&stats](const RayScratch& scratch) {
+    for (std::size_t v = 0; v < scratch.MemberStats.size(); ++v)
+    {
+      stats[v] += scratch.MemberStats[v];
+    }
+  };
+  return CastTiles(view, depth, castOne, mayHave, rgba, reduce, progress);
 }
 
 } // namespace parc

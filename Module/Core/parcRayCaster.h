@@ -220,13 +220,15 @@ public:
   /// ray stops.
   bool SetMembers(std::vector<Member> members, double terminationOpacity);
 
-  /// One ray's premultiplied RGBA; events holds one scratch vector per member.
+  /// One ray's premultiplied RGBA; events holds one scratch vector per member, stats one
+  /// entry per member.
   void CastRay(const Ray& ray, int px, int py, std::vector<Segment>& segments,
     std::vector<LatticeRange>& ranges, std::vector<std::vector<RayEvent>>& events,
-    float rgba[4], CastStatistics& stats) const;
-  /// A whole image, like RayCaster::CastImage.
+    float rgba[4], CastStatistics* stats) const;
+  /// A whole image, like RayCaster::CastImage; stats receives one entry per member.
   bool CastImage(const ViewGeometry& view, const float* depth, float* rgba,
-    CastStatistics& stats, const std::function<bool(double)>& progress = nullptr) const;
+    std::vector<CastStatistics>& stats,
+    const std::function<bool(double)>& progress = nullptr) const;
 
 private:
   std::vector<Member> Members;

@@ -4,6 +4,7 @@
 #include "parcPolygonModel.h"
 #include "parcRayCaster.h"
 #include "parcVTKConversion.h"
+#include "vtkPARCMultiVolume.h"
 #include "vtkPARCRasterizer.h"
 
 #include "vtkCamera.h"
@@ -11,8 +12,10 @@
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
+#include "vtkInformation.h"
 #include "vtkLight.h"
 #include "vtkLightCollection.h"
+#include "vtkMultiVolume.h"
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRayCastImageDisplayHelper.h"
@@ -151,6 +154,33 @@ int MajorAxis(const parc::Matrix4& indexToWorld, const vtkPARCRasterizer::View& 
   return best;
 }
 
+/// The input ports to render with the vtkVolume that gives each its property and transform:
+/// port 0 with vol itself, or for a multi-volume every connected port that holds a volume.
+std::vector<std::pair<int, vtkVolume*>> CollectInputs(vtkPARCVolumeMapper* mapper, vtkVolume* vol)
+{
+  std::vector<std::pair<int, vtkVolume*>> inputs;
+  auto* multi = vtkMultiVolume::SafeDownCast(vol);
+  if (!multi)
+  {
+    inputs.emplace_back(0, vol);
+    return inputs;
+  }
+  auto* parcMulti = vtkPARCMultiVolume::SafeDownCast(vol);
+  for (int port = 0; port < vtkPARCVolumeMapper::MaxInputPorts; ++port)
+  {
+    if (mapper->GetNumberOfInputConnections(port) < 1)
+    {
+      continue;
+    }
+    vtkVolume* volume = parcMulti ? parcMulti->FindVolumeOfPort(port) : multi->GetVolume(port);
+    if (volume)
+    {
+      inputs.emplace_back(port, volume);
+    }
+  }
+  return inputs;
+}
+
 /// True when the renderer draws any visible prop besides volumes.
 bool HasOtherGeometry(vtkRenderer* ren)
 {
@@ -169,10 +199,140 @@ bool HasOtherGeometry(vtkRenderer* ren)
 
 }
 
+namespace
+{
+/// Auto: each candidate (the passes, and none at all) is tried on one frame when the ray
+/// image size is new; then every frame takes the candidate with the least predicted time.
+/// A candidate's estimate is its fastest representative frame (projection + casting) for
+/// the current classification and view, or, from an earlier classification, that frame
+/// with its projection scaled by the number of PC supercells (the models grow with it).
+/// So an edit of a transfer function brings no trial frames: a candidate runs again only
+/// when it is predicted to be the fastest, and its estimate is then measured afresh. After
+/// the view turns or moves markedly, the next frame of a candidate replaces its estimate
+/// (a view can make any pass dearer or cheaper).
+struct AutoTrials
+{
+  static constexpr int Count = 4;
+  static constexpr int Candidates[Count] = { vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER,
+    vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER, vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_NONE };
+  /// A view change that makes the estimates stale: the view direction turns by more than
+  /// this angle (cosine), or the volume's distance from the eye changes by this fraction.
+  static constexpr double SameDirection = 0.985; // about 10 degrees
+  static constexpr double SameDistance = 0.2;
+  struct Estimate
+  {
+    bool Measured = false;
+    std::uint64_t ModelVersion = 0; ///< of the measured frame
+    std::uint64_t ViewVersion = 0;  ///< of the measured frame
+    std::size_t Contributing = 0;   ///< PC supercells of that frame's classification
+    double Projection = 0.0, Casting = 0.0;
+  };
+  int Size[2] = { 0, 0 };
+  Estimate Estimates[Count];
+  int Chosen = -1; ///< the candidate of the current frame, or -1
+  std::uint64_t ViewVersion = 0;
+  parc::Vec3 Direction;  ///< view direction at the last view change
+  double Distance = 0.0; ///< the volume's distance from the eye then
+
+  /// Notes the view: direction, and the volume's distance from the eye.
+  void SetView(const parc::Vec3& direction, double distance)
+  {
+    if (parc::Dot(direction, this->Direction) < SameDirection ||
+      std::fabs(distance - this->Distance) > SameDistance * this->Distance)
+    {
+      ++this->ViewVersion;
+      this->Direction = direction;
+      this->Distance = distance;
+    }
+  }
+  /// The mode for this frame.
+  int Mode(std::uint64_t modelVersion, std::size_t contributing, int width, int height)
+  {
+    if (width != this->Size[0] || height != this->Size[1])
+    {
+      std::fill_n(this->Estimates, Count, Estimate());
+      this->Size[0] = width;
+      this->Size[1] = height;
+    }
+    this->Chosen = 0;
+    for (int i = 0; i < Count; ++i)
+    {
+      if (!this->Estimates[i].Measured)
+      {
+        this->Chosen = i;
+        return Candidates[i];
+      }
+      if (Predict(this->Estimates[i], modelVersion, contributing) <
+        Predict(this->Estimates[this->Chosen], modelVersion, contributing))
+      {
+        this->Chosen = i;
+      }
+    }
+    return Candidates[this->Chosen];
+  }
+  static double Predict(const Estimate& e, std::uint64_t modelVersion, std::size_t contributing)
+  {
+    const double scale = (e.ModelVersion == modelVersion || e.Contributing == 0)
+      ? 1.0
+      : static_cast<double>(contributing) / static_cast<double>(e.Contributing);
+    return scale * e.Projection + e.Casting;
+  }
+  /// The times of the frame Mode chose. A frame that was aborted or also did set-up work
+  /// (building or uploading a model) does not count.
+  void Record(std::uint64_t modelVersion, std::size_t contributing, double projection,
+    double casting, bool representative)
+  {
+    if (this->Chosen >= 0 && representative)
+    {
+      Estimate& e = this->Estimates[this->Chosen];
+      if (!e.Measured || e.ModelVersion != modelVersion || e.ViewVersion != this->ViewVersion ||
+        projection + casting < e.Projection + e.Casting)
+      {
+        e = { true, modelVersion, this->ViewVersion, contributing, projection, casting };
+      }
+    }
+    this->Chosen = -1;
+  }
+  int Remaining() const
+  {
+    return static_cast<int>(std::count_if(this->Estimates, this->Estimates + Count,
+      [](const Estimate& e) { return !e.Measured; }));
+  }
+};
+
+/// The model of a pass. Its vertices are built when the GPU lacks the model and released
+/// once uploaded: the passes draw the GPU copy.
+struct PassModel
+{
+  parc::PolygonModel Model;
+  std::size_t Quads = 0;
+  bool Current = false; ///< built for the current classification
+};
+
+/// What a classification was made from: it is made again when any of it changes.
+struct ClassificationKey
+{
+  std::uint64_t FieldVersion = 0;
+  const void* Property = nullptr; ///< compared, never dereferenced
+  vtkMTimeType PropertyTime = 0;
+  int Blend = -1;
+  double Average[2] = { 0, 0 }, Size[3] = { 0, 0, 0 };
+  bool operator==(const ClassificationKey& o) const
+  {
+    return FieldVersion == o.FieldVersion && Property == o.Property &&
+      PropertyTime == o.PropertyTime && Blend == o.Blend &&
+      std::equal(Average, Average + 2, o.Average) && std::equal(Size, Size + 3, o.Size);
+  }
+};
+}
+
 //------------------------------------------------------------------------------
-class vtkPARCVolumeMapper::vtkInternals
+/// One input volume (one input port): its field, ray function, caster and PARC
+/// acceleration, with the classification and models cached until their inputs change.
+class vtkPARCVolumeMapper::vtkVolumeState
 {
 public:
+  int Port = 0;
   parc::ScalarField Field;
   vtkMTimeType FieldTime = 0;
   /// Counts the fields wrapped: what the pyramid and the classification were made from (an
@@ -185,46 +345,17 @@ public:
   /// PrepareParameters; every world quantity the core sees is in that frame.
   parc::Matrix4 IndexToFrame;
   parc::RayCaster Caster;
-  std::vector<float> Image;
-  int ImageSize[2] = { 0, 0 };
-  std::vector<float> Depth;
-  std::vector<unsigned char> Display;
-  parc::CastStatistics Stats;
-  double CastingTime = 0.0;
-  double ProjectionTime = 0.0;
-  double RenderTime = 0.0;
+  parc::CastStatistics Stats; ///< of the last render
   int LastMode = ACCELERATION_NONE;
-  vtkNew<vtkOpenGLRayCastImageDisplayHelper> DisplayHelper;
 
   // PARC: cached classification and models, rebuilt only when their inputs change.
   parc::RangePyramid Pyramid;
   std::uint64_t PyramidFieldVersion = 0;
   parc::SupercellGrid Grid;
-  /// The model of a pass. Its vertices are built when the GPU lacks the model and
-  /// released once uploaded: the passes draw the GPU copy.
-  struct PassModel
-  {
-    parc::PolygonModel Model;
-    std::size_t Quads = 0;
-    bool Current = false; ///< built for the current classification
-  };
   PassModel DepthModel;
   PassModel ColorModels[3]; ///< per major axis
   std::uint64_t ModelVersion = 0;
-  struct ClassificationKey
-  {
-    std::uint64_t FieldVersion = 0;
-    const void* Property = nullptr; ///< compared, never dereferenced
-    vtkMTimeType PropertyTime = 0;
-    int Blend = -1;
-    double Average[2] = { 0, 0 }, Size[3] = { 0, 0, 0 };
-    bool operator==(const ClassificationKey& o) const
-    {
-      return FieldVersion == o.FieldVersion && Property == o.Property &&
-        PropertyTime == o.PropertyTime && Blend == o.Blend &&
-        std::equal(Average, Average + 2, o.Average) && std::equal(Size, Size + 3, o.Size);
-    }
-  } Classified;
+  ClassificationKey Classified;
   vtkNew<vtkPARCRasterizer> Rasterizer;
   parc::DepthBufferSource DepthSource;
   parc::PlaneBufferSource PlaneSource;
@@ -235,107 +366,10 @@ public:
   vtkIdType PolygonCount = 0;
   int PlaneCount = 0;
   int PassCount = 0;
+  double ProjectionTime = 0.0; ///< of the last render
   vtkIdType PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
   double ClassificationTime = 0.0;
-
-  /// Auto: each candidate (the passes, and none at all) is tried on one frame when the ray
-  /// image size is new; then every frame takes the candidate with the least predicted time.
-  /// A candidate's estimate is its fastest representative frame (projection + casting) for
-  /// the current classification and view, or, from an earlier classification, that frame
-  /// with its projection scaled by the number of PC supercells (the models grow with it).
-  /// So an edit of a transfer function brings no trial frames: a candidate runs again only
-  /// when it is predicted to be the fastest, and its estimate is then measured afresh. After
-  /// the view turns or moves markedly, the next frame of a candidate replaces its estimate
-  /// (a view can make any pass dearer or cheaper).
-  struct AutoTrials
-  {
-    static constexpr int Count = 4;
-    static constexpr int Candidates[Count] = { ACCELERATION_DEPTH_BUFFER,
-      ACCELERATION_COLOR_BUFFER, ACCELERATION_BOTH, ACCELERATION_NONE };
-    /// A view change that makes the estimates stale: the view direction turns by more than
-    /// this angle (cosine), or the volume's distance from the eye changes by this fraction.
-    static constexpr double SameDirection = 0.985; // about 10 degrees
-    static constexpr double SameDistance = 0.2;
-    struct Estimate
-    {
-      bool Measured = false;
-      std::uint64_t ModelVersion = 0; ///< of the measured frame
-      std::uint64_t ViewVersion = 0;  ///< of the measured frame
-      std::size_t Contributing = 0;   ///< PC supercells of that frame's classification
-      double Projection = 0.0, Casting = 0.0;
-    };
-    int Size[2] = { 0, 0 };
-    Estimate Estimates[Count];
-    int Chosen = -1; ///< the candidate of the current frame, or -1
-    std::uint64_t ViewVersion = 0;
-    parc::Vec3 Direction;  ///< view direction at the last view change
-    double Distance = 0.0; ///< the volume's distance from the eye then
-
-    /// Notes the view: direction, and the volume's distance from the eye.
-    void SetView(const parc::Vec3& direction, double distance)
-    {
-      if (parc::Dot(direction, this->Direction) < SameDirection ||
-        std::fabs(distance - this->Distance) > SameDistance * this->Distance)
-      {
-        ++this->ViewVersion;
-        this->Direction = direction;
-        this->Distance = distance;
-      }
-    }
-    /// The mode for this frame.
-    int Mode(std::uint64_t modelVersion, std::size_t contributing, int width, int height)
-    {
-      if (width != this->Size[0] || height != this->Size[1])
-      {
-        std::fill_n(this->Estimates, Count, Estimate());
-        this->Size[0] = width;
-        this->Size[1] = height;
-      }
-      this->Chosen = 0;
-      for (int i = 0; i < Count; ++i)
-      {
-        if (!this->Estimates[i].Measured)
-        {
-          this->Chosen = i;
-          return Candidates[i];
-        }
-        if (Predict(this->Estimates[i], modelVersion, contributing) <
-          Predict(this->Estimates[this->Chosen], modelVersion, contributing))
-        {
-          this->Chosen = i;
-        }
-      }
-      return Candidates[this->Chosen];
-    }
-    static double Predict(const Estimate& e, std::uint64_t modelVersion, std::size_t contributing)
-    {
-      const double scale = (e.ModelVersion == modelVersion || e.Contributing == 0)
-        ? 1.0
-        : static_cast<double>(contributing) / static_cast<double>(e.Contributing);
-      return scale * e.Projection + e.Casting;
-    }
-    /// The times of the frame Mode chose. A frame that was aborted or also did set-up work
-    /// (building or uploading a model) does not count.
-    void Record(std::uint64_t modelVersion, std::size_t contributing, double projection,
-      double casting, bool representative)
-    {
-      if (this->Chosen >= 0 && representative)
-      {
-        Estimate& e = this->Estimates[this->Chosen];
-        if (!e.Measured || e.ModelVersion != modelVersion || e.ViewVersion != this->ViewVersion ||
-          projection + casting < e.Projection + e.Casting)
-        {
-          e = { true, modelVersion, this->ViewVersion, contributing, projection, casting };
-        }
-      }
-      this->Chosen = -1;
-    }
-    int Remaining() const
-    {
-      return static_cast<int>(std::count_if(this->Estimates, this->Estimates + Count,
-        [](const Estimate& e) { return !e.Measured; }));
-    }
-  } Trials;
+  AutoTrials Trials;
 
   /// Makes pass hold its model's vertices unless the GPU has the model (built by build).
   template <class Build>
@@ -389,12 +423,64 @@ public:
     vtkVolume* vol, const parc::ViewGeometry& view, const vtkPARCRasterizer::View& passView);
 };
 
+//------------------------------------------------------------------------------
+class vtkPARCVolumeMapper::vtkInternals
+{
+public:
+  /// Per input port, made when the port is first rendered.
+  std::vector<std::unique_ptr<vtkVolumeState>> Volumes;
+  /// The volumes of the current render with their props, in port order.
+  std::vector<std::pair<vtkVolumeState*, vtkVolume*>> Rendered;
+  parc::SceneCaster Scene;
+  std::vector<parc::CastStatistics> MemberStats;
+  std::vector<float> Image;
+  int ImageSize[2] = { 0, 0 };
+  std::vector<float> Depth;
+  std::vector<unsigned char> Display;
+  parc::CastStatistics Stats; ///< summed over the rendered volumes
+  double CastingTime = 0.0;
+  double ProjectionTime = 0.0;
+  double RenderTime = 0.0;
+  vtkNew<vtkOpenGLRayCastImageDisplayHelper> DisplayHelper;
+
+  /// Bytes held per structure (see GetMemorySize).
+  std::vector<std::pair<const char*, std::size_t>> Memory() const;
+
+  vtkVolumeState& At(int port)
+  {
+    if (static_cast<std::size_t>(port) >= this->Volumes.size())
+    {
+      this->Volumes.resize(port + 1);
+    }
+    if (!this->Volumes[port])
+    {
+      this->Volumes[port].reset(new vtkVolumeState);
+      this->Volumes[port]->Port = port;
+    }
+    return *this->Volumes[port];
+  }
+  /// The volume of port 0 (statistics of a single-volume render).
+  vtkVolumeState& First() { return this->At(0); }
+  /// Sums f(volume) over the volumes of the last render.
+  template <class T, class F>
+  T Sum(F&& f) const
+  {
+    T total = 0;
+    for (const auto& entry : this->Rendered)
+    {
+      total += f(*entry.first);
+    }
+    return total;
+  }
+};
+
 vtkStandardNewMacro(vtkPARCVolumeMapper);
 
 //------------------------------------------------------------------------------
 vtkPARCVolumeMapper::vtkPARCVolumeMapper()
   : Internals(new vtkInternals)
 {
+  this->SetNumberOfInputPorts(MaxInputPorts);
   this->Internals->DisplayHelper->PreMultipliedColorsOn();
 }
 
@@ -429,17 +515,33 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->SetAbortExecute(0); // like an algorithm's execution, each render starts un-aborted
   in.Stats = parc::CastStatistics();
   in.CastingTime = in.ProjectionTime = 0.0;
-  in.PolygonCount = 0;
-  in.PlaneCount = in.PassCount = 0;
   in.ImageSize[0] = in.ImageSize[1] = 0; // no image until a cast fills one
-
-  if (!this->PrepareField() || !this->PrepareParameters(ren, vol))
+  in.Rendered.clear();
+  for (const auto& input : CollectInputs(this, vol))
   {
+    vtkVolumeState& volume = in.At(input.first);
+    volume.Stats = parc::CastStatistics();
+    volume.ProjectionTime = 0.0;
+    volume.PolygonCount = 0;
+    volume.PlaneCount = volume.PassCount = 0;
+    volume.LastMode = ACCELERATION_NONE;
+    if (!this->PrepareField(volume) || !this->PrepareParameters(volume, ren, input.second))
+    {
+      in.Rendered.clear();
+      in.RenderTime = vtkTimerLog::GetUniversalTime() - renderStart;
+      return;
+    }
+    in.Rendered.emplace_back(&volume, input.second);
+  }
+  if (in.Rendered.empty())
+  {
+    vtkErrorMacro("The multi-volume holds no vtkVolume for a connected input port; nothing "
+                  "is drawn.");
     in.RenderTime = vtkTimerLog::GetUniversalTime() - renderStart;
     return;
   }
   this->InvokeEvent(vtkCommand::VolumeMapperRenderStartEvent, nullptr);
-  this->CastImage(ren, vol);
+  this->CastImage(ren);
   this->InvokeEvent(vtkCommand::VolumeMapperRenderEndEvent, nullptr);
   this->DisplayImage(ren, vol);
   in.RenderTime = vtkTimerLog::GetUniversalTime() - renderStart;
@@ -447,20 +549,21 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 }
 
 //------------------------------------------------------------------------------
-bool vtkPARCVolumeMapper::PrepareField()
+bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in)
 {
-  vtkInternals& in = *this->Internals;
-  vtkAlgorithm* producer = this->GetInputAlgorithm();
+  const int port = in.Port;
+  vtkAlgorithm* producer =
+    this->GetNumberOfInputConnections(port) > 0 ? this->GetInputAlgorithm(port, 0) : nullptr;
   if (!producer)
   {
-    vtkErrorMacro("No input: connect a vtkImageData to the mapper.");
+    vtkErrorMacro("No input on port " << port << ": connect a vtkImageData to the mapper.");
     return false;
   }
   producer->Update();
-  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInput());
+  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(port, 0));
   if (!image)
   {
-    vtkErrorMacro("The input is not a vtkImageData.");
+    vtkErrorMacro("The input on port " << port << " is not a vtkImageData.");
     return false;
   }
   std::string error;
@@ -514,16 +617,21 @@ bool vtkPARCVolumeMapper::PrepareField()
 }
 
 //------------------------------------------------------------------------------
-bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
+bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren, vtkVolume* vol)
 {
-  vtkInternals& in = *this->Internals;
   parc::CastParameters& p = in.Parameters;
-  if (!parc::vtk::ConvertBlendMode(this->BlendMode, p.Blend))
+  const int blend = this->GetInputBlendMode(in.Port);
+  if (!parc::vtk::ConvertBlendMode(blend, p.Blend))
   {
-    vtkErrorMacro("Blend mode " << this->BlendMode << " is not supported; nothing is drawn.");
+    vtkErrorMacro("Blend mode " << blend << " is not supported; nothing is drawn.");
     return false;
   }
   vtkVolumeProperty* property = vol->GetProperty();
+  if (!property)
+  {
+    vtkErrorMacro("The volume of port " << in.Port << " has no property; nothing is drawn.");
+    return false;
+  }
   const std::string fixes = parc::vtk::ConvertProperty(property, in.Field.GetRange(), p);
   if (!fixes.empty() && property->GetMTime() != in.FixesWarnedTime)
   {
@@ -550,7 +658,8 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
 
   // The core sees world coordinates minus the camera position, as the passes' views do.
   const parc::Vec3 frame = vtkPARCRasterizer::FrameOrigin(ren);
-  in.IndexToFrame = IndexToFrame(vtkImageData::SafeDownCast(this->GetInput()), vol, frame);
+  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(in.Port, 0));
+  in.IndexToFrame = IndexToFrame(image, vol, frame);
   const parc::Matrix4& indexToWorld = in.IndexToFrame;
   if (!parc::Invert(indexToWorld, p.WorldToIndex))
   {
@@ -576,12 +685,15 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
                                        "drawn.");
     return false;
   }
-  this->LastSampleDistance = p.SampleDistance;
+  if (in.Port == 0)
+  {
+    this->LastSampleDistance = p.SampleDistance;
+  }
   ConvertClippingPlanes(this->ClippingPlanes, frame, p.ClipPlanes);
   p.Crop.Enabled = this->Cropping != 0;
   if (p.Crop.Enabled)
   {
-    ConvertCropping(vtkImageData::SafeDownCast(this->GetInput()), this->CroppingRegionPlanes,
+    ConvertCropping(image, this->CroppingRegionPlanes,
       this->CroppingRegionFlags, p.Crop);
   }
   if (p.Shade)
@@ -604,7 +716,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkRenderer* ren, vtkVolume* vol)
 }
 
 //------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
+void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
 {
   vtkInternals& in = *this->Internals;
   int width, height, x0, y0;
@@ -642,12 +754,25 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
     depth = in.Depth.data();
   }
 
-  const vtkIdType buildsBefore = in.ModelBuilds;
-  const std::uint64_t uploadsBefore = in.Rasterizer->GetUploadCount();
-  in.Trials.Chosen = -1;
-  const double projectionStart = vtkTimerLog::GetUniversalTime();
-  const parc::SegmentSource& source = in.RunPasses(this, ren, vol, view, passView);
-  in.ProjectionTime = vtkTimerLog::GetUniversalTime() - projectionStart;
+  // The passes of each volume, then one cast of all of them.
+  struct SetUp
+  {
+    vtkIdType Builds;
+    std::uint64_t Uploads;
+  };
+  std::vector<SetUp> before;
+  std::vector<parc::SceneCaster::Member> members;
+  for (const auto& entry : in.Rendered)
+  {
+    vtkVolumeState& volume = *entry.first;
+    before.push_back({ volume.ModelBuilds, volume.Rasterizer->GetUploadCount() });
+    volume.Trials.Chosen = -1;
+    const double projectionStart = vtkTimerLog::GetUniversalTime();
+    const parc::SegmentSource& source = volume.RunPasses(this, ren, entry.second, view, passView);
+    volume.ProjectionTime = vtkTimerLog::GetUniversalTime() - projectionStart;
+    in.ProjectionTime += volume.ProjectionTime;
+    members.push_back({ &volume.Caster, &source });
+  }
   in.Image.resize(4 * pixels);
   in.ImageSize[0] = view.Width;
   in.ImageSize[1] = view.Height;
@@ -657,20 +782,48 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren, vtkVolume* vol)
     return !this->GetAbortExecute() && !window->CheckAbortStatus();
   };
   const double castStart = vtkTimerLog::GetUniversalTime();
-  const bool completed =
-    in.Caster.CastImage(view, depth, source, in.Image.data(), in.Stats, progress);
+  bool completed;
+  if (members.size() == 1)
+  {
+    vtkVolumeState& volume = *in.Rendered[0].first;
+    completed = volume.Caster.CastImage(
+      view, depth, *members[0].Source, in.Image.data(), volume.Stats, progress);
+  }
+  else
+  {
+    in.Scene.SetMembers(members, this->TerminationOpacity);
+    completed = in.Scene.CastImage(view, depth, in.Image.data(), in.MemberStats, progress);
+    for (std::size_t v = 0; v < members.size(); ++v)
+    {
+      in.Rendered[v].first->Stats = in.MemberStats[v];
+    }
+  }
   in.CastingTime = vtkTimerLog::GetUniversalTime() - castStart;
-  const bool setUp = in.ModelBuilds != buildsBefore ||
-    in.Rasterizer->GetUploadCount() != uploadsBefore;
-  in.Trials.Record(in.ModelVersion, in.Grid.GetNumberOfContributing(), in.ProjectionTime,
-    in.CastingTime, completed && !setUp);
+  // Each volume's Auto estimate takes its own projection and its share of the casting, in
+  // proportion to its samples.
+  for (std::size_t v = 0; v < in.Rendered.size(); ++v)
+  {
+    vtkVolumeState& volume = *in.Rendered[v].first;
+    in.Stats += volume.Stats;
+  }
+  for (std::size_t v = 0; v < in.Rendered.size(); ++v)
+  {
+    vtkVolumeState& volume = *in.Rendered[v].first;
+    const double share = in.Stats.Samples > 0
+      ? static_cast<double>(volume.Stats.Samples) / static_cast<double>(in.Stats.Samples)
+      : 1.0 / static_cast<double>(in.Rendered.size());
+    const bool setUp = volume.ModelBuilds != before[v].Builds ||
+      volume.Rasterizer->GetUploadCount() != before[v].Uploads;
+    volume.Trials.Record(volume.ModelVersion, volume.Grid.GetNumberOfContributing(),
+      volume.ProjectionTime, share * in.CastingTime, completed && !setUp);
+  }
 }
 
 //------------------------------------------------------------------------------
-int vtkPARCVolumeMapper::vtkInternals::ChooseMode(
+int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   int requested, const vtkPARCRasterizer::View& passView)
 {
-  vtkInternals& in = *this;
+  vtkVolumeState& in = *this;
   if (requested != ACCELERATION_AUTO)
   {
     return requested;
@@ -690,15 +843,15 @@ int vtkPARCVolumeMapper::vtkInternals::ChooseMode(
 }
 
 //------------------------------------------------------------------------------
-const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(vtkPARCVolumeMapper* self,
-  vtkRenderer* ren, vtkVolume* vol, const parc::ViewGeometry& view,
+const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
+  vtkPARCVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol, const parc::ViewGeometry& view,
   const vtkPARCRasterizer::View& passView)
 {
-  vtkInternals& in = *this;
+  vtkVolumeState& in = *this;
   const int requested = self->AccelerationMode;
   vtkRenderWindow* window = ren->GetRenderWindow();
   in.LastMode = ACCELERATION_NONE;
-  if (requested == ACCELERATION_NONE || !self->PrepareModels(vol))
+  if (requested == ACCELERATION_NONE || !self->PrepareModels(in, vol))
   {
     in.ReleaseUnusedPasses(window, false, false);
     return in.WholeRays;
@@ -773,20 +926,19 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkInternals::RunPasses(vtkPARCV
 }
 
 //------------------------------------------------------------------------------
-bool vtkPARCVolumeMapper::PrepareModels(vtkVolume* vol)
+bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
 {
-  vtkInternals& in = *this->Internals;
   if (in.PyramidFieldVersion != in.FieldVersion)
   {
     in.Pyramid.Build(in.Field);
     in.PyramidFieldVersion = in.FieldVersion;
     ++in.PyramidBuilds;
   }
-  vtkInternals::ClassificationKey key;
+  ClassificationKey key;
   key.FieldVersion = in.FieldVersion;
   key.Property = vol->GetProperty();
   key.PropertyTime = vol->GetProperty()->GetMTime();
-  key.Blend = this->BlendMode;
+  key.Blend = this->GetInputBlendMode(in.Port);
   std::copy_n(this->AverageIPScalarRange, 2, key.Average);
   std::copy_n(this->SupercellSize, 3, key.Size);
   if (key == in.Classified)
@@ -816,7 +968,7 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolume* vol)
   in.Grid.Classify(in.Pyramid, rule, in.Parameters.Interp);
   in.ClassificationTime = vtkTimerLog::GetUniversalTime() - start;
   in.DepthModel.Current = false;
-  for (vtkInternals::PassModel& pass : in.ColorModels)
+  for (PassModel& pass : in.ColorModels)
   {
     pass.Current = false;
   }
@@ -854,7 +1006,13 @@ void vtkPARCVolumeMapper::DisplayImage(vtkRenderer* ren, vtkVolume* vol)
 void vtkPARCVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->DisplayHelper->ReleaseGraphicsResources(window);
-  this->Internals->Rasterizer->ReleaseGraphicsResources(window);
+  for (const auto& volume : this->Internals->Volumes)
+  {
+    if (volume)
+    {
+      volume->Rasterizer->ReleaseGraphicsResources(window);
+    }
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -894,7 +1052,7 @@ vtkIdType vtkPARCVolumeMapper::GetLastGradientCount()
 }
 int vtkPARCVolumeMapper::GetAutoTrialsRemaining()
 {
-  return this->Internals->Trials.Remaining();
+  return this->Internals->Sum<int>([](const vtkVolumeState& v) { return v.Trials.Remaining(); });
 }
 
 //------------------------------------------------------------------------------
@@ -912,11 +1070,20 @@ double vtkPARCVolumeMapper::GetLastRenderTime()
 }
 int vtkPARCVolumeMapper::GetLastAccelerationMode()
 {
-  return this->Internals->LastMode;
+  return this->GetLastInputAccelerationMode(0);
+}
+int vtkPARCVolumeMapper::GetLastInputAccelerationMode(int port)
+{
+  if (port < 0 || port >= MaxInputPorts)
+  {
+    vtkErrorMacro("Port " << port << " is not in [0, " << MaxInputPorts << ").");
+    return ACCELERATION_NONE;
+  }
+  return this->Internals->At(port).LastMode;
 }
 vtkIdType vtkPARCVolumeMapper::GetLastPolygonCount()
 {
-  return this->Internals->PolygonCount;
+  return this->Internals->Sum<vtkIdType>([](const vtkVolumeState& v) { return v.PolygonCount; });
 }
 vtkIdType vtkPARCVolumeMapper::GetLastCellCount()
 {
@@ -924,65 +1091,126 @@ vtkIdType vtkPARCVolumeMapper::GetLastCellCount()
 }
 vtkIdType vtkPARCVolumeMapper::GetLastSupercellCount()
 {
-  return static_cast<vtkIdType>(this->Internals->Grid.GetNumberOfSupercells());
+  return this->Internals->Sum<vtkIdType>(
+    [](const vtkVolumeState& v) { return v.Grid.GetNumberOfSupercells(); });
 }
 vtkIdType vtkPARCVolumeMapper::GetLastContributingSupercellCount()
 {
-  return static_cast<vtkIdType>(this->Internals->Grid.GetNumberOfContributing());
+  return this->Internals->Sum<vtkIdType>(
+    [](const vtkVolumeState& v) { return v.Grid.GetNumberOfContributing(); });
 }
 int vtkPARCVolumeMapper::GetLastPlaneCount()
 {
-  return this->Internals->PlaneCount;
+  return this->Internals->Sum<int>([](const vtkVolumeState& v) { return v.PlaneCount; });
 }
 int vtkPARCVolumeMapper::GetLastPassCount()
 {
-  return this->Internals->PassCount;
+  return this->Internals->Sum<int>([](const vtkVolumeState& v) { return v.PassCount; });
 }
 double vtkPARCVolumeMapper::GetLastClassificationTime()
 {
-  return this->Internals->ClassificationTime;
+  return this->Internals->Sum<double>(
+    [](const vtkVolumeState& v) { return v.ClassificationTime; });
 }
 vtkIdType vtkPARCVolumeMapper::GetPyramidBuildCount()
 {
-  return this->Internals->PyramidBuilds;
+  return this->Internals->Sum<vtkIdType>([](const vtkVolumeState& v) { return v.PyramidBuilds; });
 }
 vtkIdType vtkPARCVolumeMapper::GetClassificationCount()
 {
-  return this->Internals->Classifications;
+  return this->Internals->Sum<vtkIdType>(
+    [](const vtkVolumeState& v) { return v.Classifications; });
 }
 vtkIdType vtkPARCVolumeMapper::GetModelBuildCount()
 {
-  return this->Internals->ModelBuilds;
+  return this->Internals->Sum<vtkIdType>([](const vtkVolumeState& v) { return v.ModelBuilds; });
 }
 vtkIdType vtkPARCVolumeMapper::GetModelUploadCount()
 {
-  return static_cast<vtkIdType>(this->Internals->Rasterizer->GetUploadCount());
+  return this->Internals->Sum<vtkIdType>([](const vtkVolumeState& v) {
+    return static_cast<vtkIdType>(v.Rasterizer->GetUploadCount());
+  });
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCVolumeMapper::SetInputBlendMode(int port, int blendMode)
+{
+  if (port < 0 || port >= MaxInputPorts)
+  {
+    vtkErrorMacro("Port " << port << " is not in [0, " << MaxInputPorts << ").");
+    return;
+  }
+  if (port == 0)
+  {
+    this->SetBlendMode(blendMode);
+    return;
+  }
+  if (this->InputBlendModes[port] != blendMode)
+  {
+    this->InputBlendModes[port] = blendMode;
+    this->Modified();
+  }
+}
+
+int vtkPARCVolumeMapper::GetInputBlendMode(int port)
+{
+  if (port < 0 || port >= MaxInputPorts)
+  {
+    vtkErrorMacro("Port " << port << " is not in [0, " << MaxInputPorts << ").");
+    return COMPOSITE_BLEND;
+  }
+  return port == 0 ? this->BlendMode : this->InputBlendModes[port];
+}
+
+//------------------------------------------------------------------------------
+int vtkPARCVolumeMapper::FillInputPortInformation(int port, vtkInformation* info)
+{
+  if (!this->Superclass::FillInputPortInformation(port, info))
+  {
+    return 0;
+  }
+  if (port > 0)
+  {
+    info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);
+  }
+  return 1;
 }
 
 //------------------------------------------------------------------------------
 void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
 {
-  const vtkInternals& in = *this->Internals;
-  os << "Ray image: " << in.ImageSize[0] << " x " << in.ImageSize[1] << "\n"
-     << "Acceleration: " << GetAccelerationModeAsString(in.LastMode) << "\n"
-     << "Auto trials remaining: " << in.Trials.Remaining() << "\n"
-     << "Rays: " << in.Stats.Rays << "\n"
+  vtkInternals& in = *this->Internals;
+  os << "Ray image: " << in.ImageSize[0] << " x " << in.ImageSize[1] << "\n";
+  for (const auto& entry : in.Rendered)
+  {
+    const vtkVolumeState& v = *entry.first;
+    const char* indent = in.Rendered.size() > 1 ? "  " : "";
+    if (in.Rendered.size() > 1)
+    {
+      os << "Port " << v.Port << ":\n";
+    }
+    os << indent << "Acceleration: " << GetAccelerationModeAsString(v.LastMode) << "\n"
+       << indent << "Auto trials remaining: " << v.Trials.Remaining() << "\n"
+       << indent << "Supercells: " << v.Grid.GetNumberOfSupercells() << " ("
+       << v.Grid.GetNumberOfContributing() << " possibly contributing)\n"
+       << indent << "Polygons: " << v.PolygonCount << "\n"
+       << indent << "Planes: " << v.PlaneCount << " in " << v.PassCount << " passes\n"
+       << indent << "Samples: " << v.Stats.Samples << "\n";
+  }
+  os << "Rays: " << in.Stats.Rays << "\n"
      << "Segments: " << in.Stats.Segments << "\n"
      << "Samples: " << in.Stats.Samples << "\n"
      << "Contributing samples: " << in.Stats.ContributingSamples << "\n"
      << "Gradients: " << in.Stats.GradientEvaluations << "\n"
      << "Cells considered: " << in.Stats.Cells << "\n"
-     << "Supercells: " << in.Grid.GetNumberOfSupercells() << " ("
-     << in.Grid.GetNumberOfContributing() << " possibly contributing)\n"
-     << "Polygons: " << in.PolygonCount << "\n"
-     << "Planes: " << in.PlaneCount << " in " << in.PassCount << " passes\n"
      << "Casting time (s): " << in.CastingTime << "\n"
      << "Projection time (s): " << in.ProjectionTime << "\n"
      << "Render time (s): " << in.RenderTime << "\n";
 }
 
 //------------------------------------------------------------------------------
-std::vector<std::pair<const char*, std::size_t>> vtkPARCVolumeMapper::vtkInternals::Memory() const
+std::vector<std::pair<const char*, std::size_t>>
+vtkPARCVolumeMapper::vtkVolumeState::Memory() const
 {
   std::size_t colorModels = 0;
   for (const PassModel& pass : this->ColorModels)
@@ -996,10 +1224,35 @@ std::vector<std::pair<const char*, std::size_t>> vtkPARCVolumeMapper::vtkInterna
     { "colour models", colorModels },
     { "depth buffer", this->DepthSource.GetMemorySize() },
     { "bit-plane buffer", this->PlaneSource.GetMemorySize() },
-    { "OpenGL models and targets", this->Rasterizer->GetMemorySize() },
-    { "ray-cast image", this->Image.capacity() * sizeof(float) },
-    { "opaque depth", this->Depth.capacity() * sizeof(float) },
-    { "display image", this->Display.capacity() } };
+    { "OpenGL models and targets", this->Rasterizer->GetMemorySize() } };
+}
+
+std::vector<std::pair<const char*, std::size_t>> vtkPARCVolumeMapper::vtkInternals::Memory() const
+{
+  // The volumes' structures summed over the volumes, then the image's.
+  std::vector<std::pair<const char*, std::size_t>> memory;
+  for (const auto& volume : this->Volumes)
+  {
+    if (!volume)
+    {
+      continue;
+    }
+    const auto own = volume->Memory();
+    if (memory.empty())
+    {
+      memory = own;
+      continue;
+    }
+    for (std::size_t i = 0; i < own.size(); ++i)
+    {
+      memory[i].second += own[i].second;
+    }
+  }
+  memory.insert(memory.end(),
+    { { "ray-cast image", this->Image.capacity() * sizeof(float) },
+      { "opaque depth", this->Depth.capacity() * sizeof(float) },
+      { "display image", this->Display.capacity() } });
+  return memory;
 }
 
 vtkIdType vtkPARCVolumeMapper::GetMemorySize()

@@ -46,6 +46,19 @@
  *   uniformly, with a warning.
  * - Positional lights use their attenuation and spot cone; shading is Blinn-Phong, two-sided.
  *
+ * Several volumes: with a vtkPARCMultiVolume prop, the mapper renders one volume per
+ * input port (SetInputConnection(port, ...), ports 0 to MaxInputPorts - 1), each with the
+ * property and transform of the vtkVolume the prop holds for that port
+ * (vtkMultiVolume::SetVolume(volume, port)) and its own ray function (SetInputBlendMode),
+ * scalar type, classification, PARC passes and Auto choice. Every ray meets every volume:
+ * composite samples and isosurface crossings of all volumes are composited front to back
+ * in depth order (at equal depth, the lower port first); a maximum, minimum or average
+ * intensity or additive volume contributes its whole-ray result (its colour and opacity
+ * as it would show alone) at one depth, that of its first sample with the extreme value,
+ * its first averaged sample or its first contributing sample. Each volume samples its
+ * own lattice (the common SampleDistance, or half its own smallest voxel edge). With a
+ * plain vtkVolume, only port 0 is rendered.
+ *
  * Thread safety: like every VTK mapper, use it from the rendering thread; it parallelizes
  * internally and the image is the same for any number of threads.
  *
@@ -220,6 +233,22 @@ public:
   void PrintMemory(ostream& os);
   ///@}
 
+  ///@{
+  /**
+   * The ray function of the volume on an input port, a vtkVolumeMapper blend mode
+   * (COMPOSITE_BLEND, MAXIMUM_INTENSITY_BLEND, ...). Port 0 follows SetBlendMode; the other
+   * ports default to COMPOSITE_BLEND. Ports outside [0, MaxInputPorts) are an error.
+   */
+  void SetInputBlendMode(int port, int blendMode);
+  int GetInputBlendMode(int port);
+  ///@}
+
+  /** The most volumes (input ports) one mapper renders together. */
+  static constexpr int MaxInputPorts = 10;
+
+  /** The acceleration mode the last render used for the volume on port. */
+  int GetLastInputAccelerationMode(int port);
+
   void Render(vtkRenderer* ren, vtkVolume* vol) override;
   void ReleaseGraphicsResources(vtkWindow* window) override;
 
@@ -227,14 +256,23 @@ protected:
   vtkPARCVolumeMapper();
   ~vtkPARCVolumeMapper() override;
 
-  /** Updates the input and converts its scalars when they changed; false on bad input. */
-  bool PrepareField();
-  /** Converts the property, transform and lights into the caster's parameters. */
-  bool PrepareParameters(vtkRenderer* ren, vtkVolume* vol);
+  int FillInputPortInformation(int port, vtkInformation* info) override;
+
+  class vtkVolumeState;
+  /**
+   * Updates the input of the volume's port and converts its scalars when they changed;
+   * false on bad input.
+   */
+  bool PrepareField(vtkVolumeState& volume);
+  /**
+   * Converts the property and transform of prop (the vtkVolume of the volume's port) and
+   * the renderer's lights into the caster's parameters.
+   */
+  bool PrepareParameters(vtkVolumeState& volume, vtkRenderer* ren, vtkVolume* prop);
   /** Casts the ray image for the renderer's camera (statistics and times included). */
-  void CastImage(vtkRenderer* ren, vtkVolume* vol);
-  /** Classifies and builds the polygon models when their inputs changed. */
-  bool PrepareModels(vtkVolume* vol);
+  void CastImage(vtkRenderer* ren);
+  /** Classifies and builds the volume's polygon models when their inputs changed. */
+  bool PrepareModels(vtkVolumeState& volume, vtkVolume* prop);
 
   /** Composites the ray image over the renderer's viewport. */
   void DisplayImage(vtkRenderer* ren, vtkVolume* vol);
@@ -246,6 +284,7 @@ protected:
   double TerminationOpacity = 0.99;
   vtkTypeBool IntermixIntersectingGeometry = 1;
   double LastSampleDistance = 0.0;
+  int InputBlendModes[MaxInputPorts] = {}; ///< ports 1 and up (port 0: BlendMode)
 
 private:
   vtkPARCVolumeMapper(const vtkPARCVolumeMapper&) = delete;

@@ -92,7 +92,7 @@ parc::Matrix4 Shifted(const Vec3& offset)
 struct Image
 {
   std::vector<float> RGBA = std::vector<float>(4 * Width * Height);
-  parc::CastStatistics Stats;
+  parc::CastStatistics Stats; ///< summed over the members
 };
 
 Image CastScene(const std::vector<parc::SceneCaster::Member>& members, const parc::ViewGeometry& view)
@@ -100,7 +100,13 @@ Image CastScene(const std::vector<parc::SceneCaster::Member>& members, const par
   parc::SceneCaster scene;
   EXPECT_TRUE(scene.SetMembers(members, 0.99));
   Image image;
-  scene.CastImage(view, nullptr, image.RGBA.data(), image.Stats);
+  std::vector<parc::CastStatistics> stats;
+  scene.CastImage(view, nullptr, image.RGBA.data(), stats);
+  EXPECT_EQ(stats.size(), members.size());
+  for (const parc::CastStatistics& s : stats)
+  {
+    image.Stats += s;
+  }
   return image;
 }
 
@@ -162,7 +168,7 @@ TEST(SceneCaster, DisjointVolumesMergeInDepthOrder)
     std::vector<parc::Segment> segments;
     std::vector<parc::LatticeRange> ranges;
     std::vector<std::vector<parc::RayEvent>> events;
-    parc::CastStatistics stats;
+    parc::CastStatistics stats, sceneStats[2];
     float a[4], b[4], merged[4], swapped[4];
     frontCaster.CastRay(ray, 0, 0, whole, segments, ranges, a, stats);
     backCaster.CastRay(ray, 0, 0, whole, segments, ranges, b, stats);
@@ -172,9 +178,9 @@ TEST(SceneCaster, DisjointVolumesMergeInDepthOrder)
     }
     parc::SceneCaster scene;
     ASSERT_TRUE(scene.SetMembers({ { &frontCaster, &whole }, { &backCaster, &whole } }, 0.99));
-    scene.CastRay(ray, 0, 0, segments, ranges, events, merged, stats);
+    scene.CastRay(ray, 0, 0, segments, ranges, events, merged, sceneStats);
     ASSERT_TRUE(scene.SetMembers({ { &backCaster, &whole }, { &frontCaster, &whole } }, 0.99));
-    scene.CastRay(ray, 0, 0, segments, ranges, events, swapped, stats);
+    scene.CastRay(ray, 0, 0, segments, ranges, events, swapped, sceneStats);
     EXPECT_EQ(0, std::memcmp(merged, swapped, sizeof(merged)));
     for (int c = 0; c < 4; ++c)
     {
@@ -214,10 +220,10 @@ TEST(SceneCaster, SurfaceInsideACloudFromBothSides)
     std::vector<parc::Segment> segments;
     std::vector<parc::LatticeRange> ranges;
     std::vector<std::vector<parc::RayEvent>> events;
-    parc::CastStatistics stats;
+    parc::CastStatistics stats, sceneStats[2];
     float merged[4], hitColor[4], front[4];
     double hit;
-    scene.CastRay(ray, 0, 0, segments, ranges, events, merged, stats);
+    scene.CastRay(ray, 0, 0, segments, ranges, events, merged, sceneStats);
     surface.CastRay(ray, 0, 0, whole, segments, ranges, hitColor, stats, &hit);
     ASSERT_TRUE(std::isfinite(hit)) << "trial " << trial;
     ray.TMax = hit; // the cloud in front of the surface
