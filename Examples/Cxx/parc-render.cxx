@@ -2,6 +2,7 @@
 // the statistics of the render (optionally as JSON, optionally side by side with
 // vtkFixedPointVolumeRayCastMapper at the same sample distance).
 #include "parcVolumeIO.h"
+#include "vtkPARCMultiVolume.h"
 #include "vtkPARCVolumeMapper.h"
 
 #include <vtkCamera.h>
@@ -73,6 +74,10 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
                         mode: median frame times and their ratio (table)
   --threads N           threads for vtkSMPTools (default: all cores)
   --memory              print the bytes the mapper holds, per structure
+  --second VOLUME       a second volume in the same image (vtkPARCMultiVolume, input
+                        port 1), its centre on the first's; with --second-blend MODE
+                        (default composite), --second-tf NAME|FILE and --second-iso VALUE
+                        like --blend, --tf and --iso (not with the FixedPoint options)
   --json                print statistics as JSON
   --help
 )";
@@ -80,6 +85,9 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
 struct Options
 {
   std::string Volume, Output = "parc.png", Blend = "composite", TF, Acceleration = "auto";
+  std::string Second, SecondBlend = "composite", SecondTF;
+  double SecondIso = 0.0;
+  bool HasSecondIso = false;
   double Iso = 0.0, Azimuth = 30.0, Elevation = 20.0, Zoom = 1.0, SampleDistance = 0.0;
   bool HasIso = false, Shade = false, Parallel = false, Compare = false, Json = false;
   bool HasPosition = false, HasFocal = false, CompareAcceleration = false, Memory = false;
@@ -172,6 +180,10 @@ Options Parse(int argc, char* argv[])
       }
     }
     else if (a == "--json") { o.Json = true; }
+    else if (a == "--second") { o.Second = value(); }
+    else if (a == "--second-blend") { o.SecondBlend = value(); }
+    else if (a == "--second-tf") { o.SecondTF = value(); }
+    else if (a == "--second-iso") { o.SecondIso = ToNumber(a, value()); o.HasSecondIso = true; }
     else if (a == "--size")
     {
       const std::string v = value();
@@ -609,6 +621,42 @@ void SweepSupercells(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper,
 }
 }
 
+/// Reads a volume file; fails with the reader's message.
+void Read(const std::string& path, vtkImageData* image)
+{
+  std::string error;
+  if (!parcio::ReadVolume(path, image, error))
+  {
+    Fail(error);
+  }
+}
+
+/// The property of a volume rendered with blend: the transfer function tf (a default for
+/// the blend mode when empty), the iso value (the middle of the range unless given), shaded
+/// when asked and always for isosurfaces.
+void SetUpProperty(vtkImageData* image, int blend, const std::string& tf, bool hasIso,
+  double isoValue, bool shade, vtkVolumeProperty* property)
+{
+  double range[2];
+  image->GetScalarRange(range);
+  const bool extreme = blend == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
+    blend == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
+  std::string error;
+  if (!parcio::LoadTransferFunction(tf.empty() ? (extreme ? "mip" : "ramp") : tf, range,
+        property, error))
+  {
+    Fail(error);
+  }
+  property->SetInterpolationTypeToLinear();
+  const double iso = hasIso ? isoValue : 0.5 * (range[0] + range[1]);
+  if (blend == vtkVolumeMapper::ISOSURFACE_BLEND)
+  {
+    property->GetIsoSurfaceValues()->SetValue(0, iso);
+    property->GetScalarOpacity()->AddPoint(iso, 1.0);
+  }
+  property->SetShade(shade || blend == vtkVolumeMapper::ISOSURFACE_BLEND);
+}
+
 int main(int argc, char* argv[])
 {
   const Options o = Parse(argc, argv);
@@ -618,31 +666,16 @@ int main(int argc, char* argv[])
   }
   const int blend = BlendMode(o.Blend);
   const int acceleration = AccelerationMode(o.Acceleration);
+  if (!o.Second.empty() && (o.Compare || o.Versus > 0 || o.SampleCost > 0 || o.Accuracy > 0 ||
+                             o.EditCost > 0))
+  {
+    Fail("--second does not go with --compare-fixed-point, --versus-fixed-point, "
+         "--sample-cost, --accuracy-curve or --edit-cost");
+  }
   vtkNew<vtkImageData> image;
-  std::string error;
-  if (!parcio::ReadVolume(o.Volume, image, error))
-  {
-    Fail(error);
-  }
-  double range[2];
-  image->GetScalarRange(range);
-  const bool extreme = blend == vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND ||
-    blend == vtkVolumeMapper::MINIMUM_INTENSITY_BLEND;
-
+  Read(o.Volume, image);
   vtkNew<vtkVolumeProperty> property;
-  if (!parcio::LoadTransferFunction(o.TF.empty() ? (extreme ? "mip" : "ramp") : o.TF, range,
-        property, error))
-  {
-    Fail(error);
-  }
-  property->SetInterpolationTypeToLinear();
-  const double iso = o.HasIso ? o.Iso : 0.5 * (range[0] + range[1]);
-  if (blend == vtkVolumeMapper::ISOSURFACE_BLEND)
-  {
-    property->GetIsoSurfaceValues()->SetValue(0, iso);
-    property->GetScalarOpacity()->AddPoint(iso, 1.0);
-  }
-  property->SetShade(o.Shade || blend == vtkVolumeMapper::ISOSURFACE_BLEND);
+  SetUpProperty(image, blend, o.TF, o.HasIso, o.Iso, o.Shade, property);
 
   vtkNew<vtkPARCVolumeMapper> mapper;
   mapper->SetInputData(image);
@@ -655,7 +688,32 @@ int main(int argc, char* argv[])
   volume->SetProperty(property);
 
   vtkNew<vtkRenderer> renderer;
-  renderer->AddVolume(volume);
+  // A second volume: both through one vtkPARCMultiVolume, the second's centre on the first's.
+  vtkNew<vtkImageData> secondImage;
+  vtkNew<vtkVolumeProperty> secondProperty;
+  vtkNew<vtkVolume> secondVolume;
+  vtkNew<vtkPARCMultiVolume> multiVolume;
+  if (!o.Second.empty())
+  {
+    Read(o.Second, secondImage);
+    const int secondBlend = BlendMode(o.SecondBlend);
+    SetUpProperty(secondImage, secondBlend, o.SecondTF, o.HasSecondIso, o.SecondIso, o.Shade,
+      secondProperty);
+    mapper->SetInputDataObject(1, secondImage);
+    mapper->SetInputBlendMode(1, secondBlend);
+    secondVolume->SetProperty(secondProperty);
+    const double* a = image->GetCenter();
+    const double* b = secondImage->GetCenter();
+    secondVolume->SetPosition(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+    multiVolume->SetMapper(mapper);
+    multiVolume->SetVolume(volume, 0);
+    multiVolume->SetVolume(secondVolume, 1);
+    renderer->AddVolume(multiVolume);
+  }
+  else
+  {
+    renderer->AddVolume(volume);
+  }
   renderer->SetBackground(0.0, 0.0, 0.0);
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
