@@ -6,10 +6,13 @@
 #include <cmath>
 
 /// Marks the small per-sample functions the caster's loops must inline.
+/// Marks rare work kept out of those loops, so that they stay small.
 #if defined(__GNUC__)
 #define PARC_HOT_INLINE inline __attribute__((always_inline))
+#define PARC_NOINLINE __attribute__((noinline))
 #else
 #define PARC_HOT_INLINE inline
+#define PARC_NOINLINE
 #endif
 
 namespace parc

@@ -184,6 +184,13 @@ float IntegerPower(float x, int n)
   return result;
 }
 
+/// Appends an event, out of the sample loops (only several volumes keep events).
+PARC_NOINLINE void AppendEvent(
+  std::vector<RayEvent>& events, double t, const float rgb[3], float a, bool premultiplied)
+{
+  events.push_back({ t, { rgb[0], rgb[1], rgb[2] }, a, premultiplied });
+}
+
 /// Per-ray state shared by the ray functions, over the per-render constants.
 template <class View>
 struct RayContext
@@ -244,7 +251,7 @@ struct RayContext
   {
     if (this->Events)
     {
-      this->Events->push_back({ t, { rgb[0], rgb[1], rgb[2] }, a, false });
+      AppendEvent(*this->Events, t, rgb, a, false);
     }
   }
 
@@ -768,7 +775,7 @@ void Run(Function&& fn, const std::vector<LatticeRange>& ranges, float rgba[4])
   {
     if (c.Events && rgba[3] > 0.f)
     {
-      c.Events->push_back({ ResultPosition(fn), { rgba[0], rgba[1], rgba[2] }, rgba[3], true });
+      AppendEvent(*c.Events, ResultPosition(fn), rgba, rgba[3], true);
     }
   }
   for (const LatticeRange& r : ranges)
