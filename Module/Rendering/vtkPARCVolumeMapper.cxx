@@ -1079,7 +1079,10 @@ int vtkPARCVolumeMapper::GetLastInputAccelerationMode(int port)
     vtkErrorMacro("Port " << port << " is not in [0, " << MaxInputPorts << ").");
     return ACCELERATION_NONE;
   }
-  return this->Internals->At(port).LastMode;
+  const auto& volumes = this->Internals->Volumes;
+  return static_cast<std::size_t>(port) < volumes.size() && volumes[port]
+    ? volumes[port]->LastMode
+    : ACCELERATION_NONE;
 }
 vtkIdType vtkPARCVolumeMapper::GetLastPolygonCount()
 {
