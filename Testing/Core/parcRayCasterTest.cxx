@@ -15,6 +15,7 @@ using parc::BlendMode;
 using parc::CastParameters;
 using parc::Vec3;
 using parctest::CastOne;
+using parctest::Blobs;
 using parctest::MakeRay;
 
 namespace
@@ -336,16 +337,6 @@ parc::ViewGeometry ParallelView(int w, int h, double angle)
   }
   v.Eye = Vec3{ 16, 16, 16 } - 80.0 * forward;
   return v;
-}
-
-parc::ScalarField Blobs()
-{
-  const int n[3] = { 33, 30, 28 };
-  return parctest::MakeField(n, [](int i, int j, int k) {
-    const double a = std::exp(-0.02 * ((i - 10) * (i - 10) + (j - 12) * (j - 12) + (k - 9) * (k - 9)));
-    const double b = std::exp(-0.03 * ((i - 22) * (i - 22) + (j - 18) * (j - 18) + (k - 18) * (k - 18)));
-    return static_cast<float>(255.0 * std::max(a, b));
-  });
 }
 
 /// Composite parameters for Blobs: the blobs' cores opaque-ish, their rims empty.

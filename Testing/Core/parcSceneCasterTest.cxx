@@ -13,6 +13,7 @@
 using parc::BlendMode;
 using parc::CastParameters;
 using parc::Vec3;
+using parctest::Blobs;
 using parctest::MakeRay;
 
 namespace
@@ -45,17 +46,6 @@ parc::ScalarField DistanceField(int n, const Vec3& c)
   const int dims[3] = { n, n, n };
   return parctest::MakeField(
     dims, [&](int i, int j, int k) { return static_cast<float>(Length(Vec3(i, j, k) - c)); });
-}
-
-/// Two overlapping blobs, values 0 to 255.
-parc::ScalarField Blobs()
-{
-  const int n[3] = { 33, 30, 28 };
-  return parctest::MakeField(n, [](int i, int j, int k) {
-    const double a = std::exp(-0.02 * ((i - 10) * (i - 10) + (j - 12) * (j - 12) + (k - 9) * (k - 9)));
-    const double b = std::exp(-0.03 * ((i - 22) * (i - 22) + (j - 18) * (j - 18) + (k - 18) * (k - 18)));
-    return static_cast<float>(255.0 * std::max(a, b));
-  });
 }
 
 /// A translucent, shaded cloud over Blobs with a light.

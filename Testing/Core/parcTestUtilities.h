@@ -4,6 +4,8 @@
 
 #include "parcRayCaster.h"
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <vector>
 
@@ -27,6 +29,17 @@ inline parc::ScalarField MakeField(const int n[3], const std::function<float(int
   parc::ScalarField field;
   field.Assign(v.data(), n);
   return field;
+}
+
+/// Two overlapping Gaussian blobs in a 33 x 30 x 28 field, values 0 to 255.
+inline parc::ScalarField Blobs()
+{
+  const int n[3] = { 33, 30, 28 };
+  return MakeField(n, [](int i, int j, int k) {
+    const double a = std::exp(-0.02 * ((i - 10) * (i - 10) + (j - 12) * (j - 12) + (k - 9) * (k - 9)));
+    const double b = std::exp(-0.03 * ((i - 22) * (i - 22) + (j - 18) * (j - 18) + (k - 18) * (k - 18)));
+    return static_cast<float>(255.0 * std::max(a, b));
+  });
 }
 
 /// A white colour table and an opacity function from (x, y) nodes.
