@@ -17,6 +17,7 @@ using parc::Vec3;
 using parctest::CastOne;
 using parctest::Blobs;
 using parctest::MakeRay;
+using parctest::ParallelView;
 
 namespace
 {
@@ -316,28 +317,6 @@ private:
   const parc::RayCaster& Caster;
   unsigned Seed;
 };
-
-parc::ViewGeometry ParallelView(int w, int h, double angle)
-{
-  // Parallel rays along (sin a, 0, -cos a) over a 40 x 40 window around (16, 16, 16).
-  parc::ViewGeometry v;
-  v.Width = w;
-  v.Height = h;
-  v.Parallel = true;
-  const double c = std::cos(angle), s = std::sin(angle);
-  // NDC (x, y, z) -> centre + 20 x right + 20 y up + 60 z forward, forward = (s, 0, -c).
-  const Vec3 right{ c, 0, s }, up{ 0, 1, 0 }, forward{ s, 0, -c };
-  parc::Matrix4& m = v.NDCToWorld;
-  for (int r = 0; r < 3; ++r)
-  {
-    m(r, 0) = 20.0 * right[r];
-    m(r, 1) = 20.0 * up[r];
-    m(r, 2) = 60.0 * forward[r];
-    m(r, 3) = 16.0 + 0.0;
-  }
-  v.Eye = Vec3{ 16, 16, 16 } - 80.0 * forward;
-  return v;
-}
 
 /// Composite parameters for Blobs: the blobs' cores opaque-ish, their rims empty.
 CastParameters BlobParameters()

@@ -20,24 +20,10 @@ namespace
 {
 constexpr int Width = 40, Height = 36;
 
-/// Parallel rays along (sin a, 0, -cos a) over a 44 x 44 window around (16, 16, 16).
+/// Parallel rays over a 44 x 44 window around (16, 16, 16) (see parctest::ParallelView).
 parc::ViewGeometry ParallelView(double angle)
 {
-  parc::ViewGeometry v;
-  v.Width = Width;
-  v.Height = Height;
-  v.Parallel = true;
-  const double c = std::cos(angle), s = std::sin(angle);
-  const Vec3 right{ c, 0, s }, up{ 0, 1, 0 }, forward{ s, 0, -c };
-  for (int r = 0; r < 3; ++r)
-  {
-    v.NDCToWorld(r, 0) = 22.0 * right[r];
-    v.NDCToWorld(r, 1) = 22.0 * up[r];
-    v.NDCToWorld(r, 2) = 60.0 * forward[r];
-    v.NDCToWorld(r, 3) = 16.0;
-  }
-  v.Eye = Vec3{ 16, 16, 16 } - 80.0 * forward;
-  return v;
+  return parctest::ParallelView(Width, Height, angle, 22.0);
 }
 
 /// The distance from centre c, sampled on an n^3 grid.

@@ -50,6 +50,27 @@ inline void SetOpacity(parc::CastParameters& p, std::vector<double> x, std::vect
   p.Color.SetTable(0.0, 1.0, { 1.f, 1.f, 1.f, 1.f, 1.f, 1.f });
 }
 
+/// Parallel rays along (sin a, 0, -cos a) over a window of 2 halfWidth x 2 halfWidth
+/// around (16, 16, 16): NDC (x, y, z) -> centre + halfWidth (x right + y up) + 60 z forward.
+inline parc::ViewGeometry ParallelView(int w, int h, double angle, double halfWidth = 20.0)
+{
+  parc::ViewGeometry v;
+  v.Width = w;
+  v.Height = h;
+  v.Parallel = true;
+  const double c = std::cos(angle), s = std::sin(angle);
+  const parc::Vec3 right{ c, 0, s }, up{ 0, 1, 0 }, forward{ s, 0, -c };
+  for (int r = 0; r < 3; ++r)
+  {
+    v.NDCToWorld(r, 0) = halfWidth * right[r];
+    v.NDCToWorld(r, 1) = halfWidth * up[r];
+    v.NDCToWorld(r, 2) = 60.0 * forward[r];
+    v.NDCToWorld(r, 3) = 16.0;
+  }
+  v.Eye = parc::Vec3{ 16, 16, 16 } - 80.0 * forward;
+  return v;
+}
+
 /// A ray from origin along direction (normalized) with a long parameter range.
 inline parc::Ray MakeRay(const parc::Vec3& origin, const parc::Vec3& direction)
 {
