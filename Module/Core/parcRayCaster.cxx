@@ -514,7 +514,7 @@ struct ExtremeFunction
   Context& C;
   float Extreme = 0.f;
   bool Found = false;
-  double Position = 0.0; ///< the first sample with the extreme value
+  double ExtremeAt = 0.0; ///< the first sample with the extreme value
 
   bool operator()(long k, bool)
   {
@@ -524,10 +524,11 @@ struct ExtremeFunction
     {
       this->Extreme = s;
       this->Found = true;
-      this->Position = t;
+      this->ExtremeAt = t;
     }
     return true;
   }
+  double Position() const { return this->ExtremeAt; } ///< where the result lies on the ray
   void Finish(float rgba[4]) const
   {
     float rgb[3] = { 0.f, 0.f, 0.f };
@@ -549,7 +550,7 @@ struct AverageFunction
   Context& C;
   double Sum = 0.0;
   std::uint64_t Count = 0;
-  double Position = 0.0; ///< the first averaged sample
+  double FirstAt = 0.0; ///< the first averaged sample
 
   bool operator()(long k, bool)
   {
@@ -559,7 +560,7 @@ struct AverageFunction
     {
       if (this->Count == 0)
       {
-        this->Position = t;
+        this->FirstAt = t;
       }
       this->Sum += s;
       ++this->Count;
@@ -567,6 +568,7 @@ struct AverageFunction
     }
     return true;
   }
+  double Position() const { return this->FirstAt; } ///< where the result lies on the ray
   void Finish(float rgba[4]) const
   {
     float rgb[3] = { 0.f, 0.f, 0.f };
@@ -615,7 +617,8 @@ struct AdditiveFunction
     }
     rgba[3] = std::min(this->Alpha, 1.f);
   }
-  double Position() const { return this->C.FirstHit; } ///< the first contributing sample
+  /// Where the result lies on the ray: the first contributing sample.
+  double Position() const { return this->C.FirstHit; }
 };
 
 template <class Context>
@@ -751,18 +754,6 @@ long Walk(const std::vector<LatticeRange>& ranges, Function& fn)
   return previous;
 }
 
-/// Where a whole-ray function's result lies along the ray.
-template <class Function>
-double ResultPosition(const Function& fn)
-{
-  return fn.Position;
-}
-template <class Context>
-double ResultPosition(const AdditiveFunction<Context>& fn)
-{
-  return fn.Position();
-}
-
 /// Casts fn over ranges into rgba (and a whole-ray result into the events, when kept) and
 /// counts the cells the visited stretches crossed.
 template <class Function>
@@ -775,7 +766,7 @@ void Run(Function&& fn, const std::vector<LatticeRange>& ranges, float rgba[4])
   {
     if (c.Events && rgba[3] > 0.f)
     {
-      AppendEvent(*c.Events, ResultPosition(fn), rgba, rgba[3], true);
+      AppendEvent(*c.Events, fn.Position(), rgba, rgba[3], true);
     }
   }
   for (const LatticeRange& r : ranges)
