@@ -15,7 +15,6 @@
 #include <vtkTransform.h>
 
 #include <cstring>
-#include <functional>
 #include <iostream>
 #include <string>
 
@@ -29,33 +28,6 @@ struct MultiVolumeScene
   vtkSmartPointer<vtkPiecewiseFunction> CloudOpacity;
   vtkSmartPointer<vtkColorTransferFunction> CloudColor;
 };
-
-/// An n^3 uint8 volume over [-31.5, 31.5]^3 with values 255 * f(x, y, z) (f clamped to [0, 1]).
-inline vtkSmartPointer<vtkImageData> MakeVolume(
-  int n, const std::function<double(double, double, double)>& f)
-{
-  auto image = vtkSmartPointer<vtkImageData>::New();
-  image->SetDimensions(n, n, n);
-  const double h = 63.0 / (n - 1);
-  image->SetSpacing(h, h, h);
-  image->SetOrigin(-31.5, -31.5, -31.5);
-  vtkNew<vtkUnsignedCharArray> scalars;
-  scalars->SetNumberOfTuples(static_cast<vtkIdType>(n) * n * n);
-  vtkIdType id = 0;
-  for (int k = 0; k < n; ++k)
-  {
-    for (int j = 0; j < n; ++j)
-    {
-      for (int i = 0; i < n; ++i)
-      {
-        const double v = f(i * h - 31.5, j * h - 31.5, k * h - 31.5);
-        scalars->SetValue(id++, static_cast<unsigned char>(255.0 * std::min(std::max(v, 0.0), 1.0)));
-      }
-    }
-  }
-  image->GetPointData()->SetScalars(scalars);
-  return image;
-}
 
 /// The analytic stand-in for the iron protein: two lobes (the isosurface) inside a
 /// lumpy shell of density (the cloud).

@@ -7,6 +7,7 @@
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkContourValues.h>
+#include <vtkDataArray.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
@@ -19,14 +20,16 @@
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <vector>
 
 namespace parctest
 {
-/// Two Gaussian blobs and a thin shell, as unsigned char, n^3 voxels over [-31.5, 31.5]^3
-/// (inverted: 255 minus that, for minimum intensity projections).
-inline vtkSmartPointer<vtkImageData> MakeBlobs(int n = 48, bool inverted = false)
+/// An n^3 uint8 volume over [-31.5, 31.5]^3 with values 255 * f(x, y, z) (f clamped to [0, 1]).
+inline vtkSmartPointer<vtkImageData> MakeVolume(
+  int n, const std::function<double(double, double, double)>& f)
 {
   auto image = vtkSmartPointer<vtkImageData>::New();
   image->SetDimensions(n, n, n);
@@ -34,7 +37,6 @@ inline vtkSmartPointer<vtkImageData> MakeBlobs(int n = 48, bool inverted = false
   image->SetSpacing(h, h, h);
   image->SetOrigin(-31.5, -31.5, -31.5);
   vtkNew<vtkUnsignedCharArray> scalars;
-  scalars->SetName("density");
   scalars->SetNumberOfTuples(static_cast<vtkIdType>(n) * n * n);
   vtkIdType id = 0;
   for (int k = 0; k < n; ++k)
@@ -43,18 +45,28 @@ inline vtkSmartPointer<vtkImageData> MakeBlobs(int n = 48, bool inverted = false
     {
       for (int i = 0; i < n; ++i)
       {
-        const double x = i * h - 31.5, y = j * h - 31.5, z = k * h - 31.5;
-        const double a = std::exp(-((x + 9) * (x + 9) + y * y + (z - 4) * (z - 4)) / 90.0);
-        const double b = std::exp(-((x - 11) * (x - 11) + (y - 6) * (y - 6) + (z + 5) * (z + 5)) / 50.0);
-        const double r = std::sqrt(x * x + y * y + z * z);
-        const double shell = std::exp(-(r - 26) * (r - 26) / 3.0);
-        const double v = std::max(std::max(a, 0.9 * b), 0.45 * shell);
-        const double value = 255.0 * (inverted ? 1.0 - v : v);
-        scalars->SetValue(id++, static_cast<unsigned char>(value));
+        const double v = f(i * h - 31.5, j * h - 31.5, k * h - 31.5);
+        scalars->SetValue(id++, static_cast<unsigned char>(255.0 * std::min(std::max(v, 0.0), 1.0)));
       }
     }
   }
   image->GetPointData()->SetScalars(scalars);
+  return image;
+}
+
+/// Two Gaussian blobs and a thin shell, as unsigned char, n^3 voxels over [-31.5, 31.5]^3
+/// (inverted: 255 minus that, for minimum intensity projections).
+inline vtkSmartPointer<vtkImageData> MakeBlobs(int n = 48, bool inverted = false)
+{
+  auto image = MakeVolume(n, [inverted](double x, double y, double z) {
+    const double a = std::exp(-((x + 9) * (x + 9) + y * y + (z - 4) * (z - 4)) / 90.0);
+    const double b = std::exp(-((x - 11) * (x - 11) + (y - 6) * (y - 6) + (z + 5) * (z + 5)) / 50.0);
+    const double r = std::sqrt(x * x + y * y + z * z);
+    const double shell = std::exp(-(r - 26) * (r - 26) / 3.0);
+    const double v = std::max(std::max(a, 0.9 * b), 0.45 * shell);
+    return inverted ? 1.0 - v : v;
+  });
+  image->GetPointData()->GetScalars()->SetName("density");
   return image;
 }
 
