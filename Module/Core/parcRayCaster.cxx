@@ -246,13 +246,16 @@ struct RayContext
       this->FirstHit = t;
     }
   }
-  /// Records a sample's or crossing's colour and opacity as an event, when events are kept.
-  void Emit(double t, const float rgb[3], float a)
+  /// Composites a sample's or crossing's colour rgb and opacity a at t behind out (and
+  /// records it as an event, when events are kept); false once the ray may stop.
+  bool Over(EventCompositor& out, double t, const float rgb[3], float a)
   {
     if (this->Events)
     {
       AppendEvent(*this->Events, t, rgb, a, false);
     }
+    out.AddSample(rgb, a);
+    return out.Alpha < this->P.TerminationOpacity;
   }
 
   Vec3 IndexPosition(double t) const { return this->IndexOrigin + t * this->IndexDirection; }
@@ -468,8 +471,7 @@ struct CompositeFunction
 {
   static constexpr bool WholeRay = false;
   Context& C;
-  float Rgb[3] = { 0.f, 0.f, 0.f };
-  float Alpha = 0.f;
+  EventCompositor Out;
 
   bool operator()(long k, bool)
   {
@@ -487,23 +489,9 @@ struct CompositeFunction
     {
       this->C.Shade(rgb, t, haveGradient ? g : this->C.WorldGradient(t, true));
     }
-    this->C.Emit(t, rgb, a);
-    const float w = (1.f - this->Alpha) * a;
-    for (int c = 0; c < 3; ++c)
-    {
-      this->Rgb[c] += w * rgb[c];
-    }
-    this->Alpha += w;
-    return this->Alpha < this->C.P.TerminationOpacity;
+    return this->C.Over(this->Out, t, rgb, a);
   }
-  void Finish(float rgba[4]) const
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      rgba[c] = this->Rgb[c];
-    }
-    rgba[3] = this->Alpha;
-  }
+  void Finish(float rgba[4]) const { this->Out.Finish(rgba); }
 };
 
 /// Maximum (Sign = 1) or minimum (Sign = -1) intensity.
@@ -627,8 +615,7 @@ struct IsoSurfaceFunction
   static constexpr bool WholeRay = false;
   Context& C;
   const std::vector<double>& IsoValues; // sorted
-  float Rgb[3] = { 0.f, 0.f, 0.f };
-  float Alpha = 0.f;
+  EventCompositor Out;
   float Previous = 0.f;
 
   /// The ray parameter in [t0, t1] where the field crosses v, given s0 = f(t0), s1 = f(t1).
@@ -672,14 +659,7 @@ struct IsoSurfaceFunction
     {
       this->C.Shade(rgb, t, this->C.WorldGradient(t, false));
     }
-    this->C.Emit(t, rgb, a);
-    const float w = (1.f - this->Alpha) * a;
-    for (int c = 0; c < 3; ++c)
-    {
-      this->Rgb[c] += w * rgb[c];
-    }
-    this->Alpha += w;
-    return this->Alpha < this->C.P.TerminationOpacity;
+    return this->C.Over(this->Out, t, rgb, a);
   }
 
   bool operator()(long k, bool previousSampled)
@@ -713,14 +693,7 @@ struct IsoSurfaceFunction
     }
     return true;
   }
-  void Finish(float rgba[4]) const
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      rgba[c] = this->Rgb[c];
-    }
-    rgba[3] = this->Alpha;
-  }
+  void Finish(float rgba[4]) const { this->Out.Finish(rgba); }
 };
 
 /// The number of unit cells the segment from a to b (voxel-index coordinates) passes.

@@ -73,25 +73,30 @@ struct EventCompositor
   float Rgb[3] = { 0.f, 0.f, 0.f };
   float Alpha = 0.f;
 
+  /// Adds a sample of colour rgb and opacity a behind what was added before.
+  void AddSample(const float rgb[3], float a)
+  {
+    const float w = (1.f - this->Alpha) * a;
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Rgb[c] += w * rgb[c];
+    }
+    this->Alpha += w;
+  }
   /// Adds e behind what was added before.
   void Add(const RayEvent& e)
   {
-    if (e.Premultiplied)
+    if (!e.Premultiplied)
     {
-      const float transparency = 1.f - this->Alpha;
-      for (int c = 0; c < 3; ++c)
-      {
-        this->Rgb[c] += transparency * e.Rgb[c];
-      }
-      this->Alpha += transparency * e.Alpha;
+      this->AddSample(e.Rgb, e.Alpha);
       return;
     }
-    const float w = (1.f - this->Alpha) * e.Alpha;
+    const float transparency = 1.f - this->Alpha;
     for (int c = 0; c < 3; ++c)
     {
-      this->Rgb[c] += w * e.Rgb[c];
+      this->Rgb[c] += transparency * e.Rgb[c];
     }
-    this->Alpha += w;
+    this->Alpha += transparency * e.Alpha;
   }
   void Finish(float rgba[4]) const
   {
