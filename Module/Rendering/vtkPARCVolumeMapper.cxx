@@ -459,8 +459,6 @@ public:
     }
     return *this->Volumes[port];
   }
-  /// The volume of port 0 (statistics of a single-volume render).
-  vtkVolumeState& First() { return this->At(0); }
   /// Sums f(volume) over the volumes of the last render.
   template <class T, class F>
   T Sum(F&& f) const
