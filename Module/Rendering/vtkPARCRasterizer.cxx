@@ -1,5 +1,6 @@
 #include "vtkPARCRasterizer.h"
 
+#include "parcBufferSources.h"
 #include "parcVTKConversion.h"
 
 #include "vtkCamera.h"
@@ -652,7 +653,7 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
   // The view's frame has the eye at its origin (see MakeViews): the shaders' coordinates
   // stay small, and float never holds a large coordinate.
   SetMatrix(program, "IndexToRelative", indexToWorld);
-  SetMatrix(program, "RelativeToClip", view.WorldToClip);
+  SetMatrix(program, "RelativeToClip", view.Camera.WorldToNDC);
   // A bound of the magnitudes in the float transform of any vertex.
   double linear = 0.0;
   for (int r = 0; r < 3; ++r)
@@ -665,23 +666,23 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
   const double frameScale =
     parc::Length(parc::Vec3{ indexToWorld(0, 3), indexToWorld(1, 3), indexToWorld(2, 3) }) +
     std::sqrt(linear) * gpu.LargestCorner;
-  SetVector(program, "ViewDirection", view.Pass.Direction);
+  SetVector(program, "ViewDirection", view.Camera.Direction);
   glUniform1f(glGetUniformLocation(program, "Empty"), parc::DepthBufferSource::Empty);
   glUniform1f(glGetUniformLocation(program, "FrameScale"), static_cast<float>(frameScale));
   SetVectors(program, "RayBase", view.RayBase);
   SetVectors(program, "RayDirection", view.RayDirection);
-  glUniform2f(glGetUniformLocation(program, "PixelToNDC"), 2.0f / view.Pass.Width,
-    2.0f / view.Pass.Height);
+  glUniform2f(glGetUniformLocation(program, "PixelToNDC"), 2.0f / view.Camera.Width,
+    2.0f / view.Camera.Height);
   // Without affine rays an infinite margin keeps every face's whole depth range.
   glUniform1f(glGetUniformLocation(program, "MarginScale"),
     view.AffineRays ? static_cast<float>(FaceDepthMargin * view.MaxRayDirectionLength)
                     : std::numeric_limits<float>::infinity());
   const float minDepth =
-    view.Pass.Parallel ? -3.0e38f : static_cast<float>(NearClipFraction * view.NearDistance);
+    view.Camera.Parallel ? -3.0e38f : static_cast<float>(NearClipFraction * view.Camera.NearDistance);
   glUniform1f(glGetUniformLocation(program, "MinDepth"), minDepth);
   glUniform2f(glGetUniformLocation(program, "Dilation"),
-    static_cast<float>(2.0 * DilationPixels / view.Pass.Width),
-    static_cast<float>(2.0 * DilationPixels / view.Pass.Height));
+    static_cast<float>(2.0 * DilationPixels / view.Camera.Width),
+    static_cast<float>(2.0 * DilationPixels / view.Camera.Height));
   glBindVertexArray(gpu.VertexArray);
   glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, gpu.Count);
 }
@@ -785,38 +786,38 @@ parc::Vec3 vtkPARCRasterizer::FrameOrigin(vtkRenderer* ren)
 }
 
 //------------------------------------------------------------------------------
-bool vtkPARCRasterizer::MakeViews(
-  vtkRenderer* ren, int width, int height, parc::ViewGeometry& rays, View& pass)
+bool vtkPARCRasterizer::MakeView(vtkRenderer* ren, int width, int height, View& view)
 {
   vtkCamera* camera = ren->GetActiveCamera();
   // The view transform of the camera's frame: the translation by the camera position, large
   // far from the origin, cancels in double here (leaving at most a constant offset that the
   // rays and the passes share) and never enters float.
-  pass.FrameOrigin = FrameOrigin(ren);
+  view.FrameOrigin = FrameOrigin(ren);
   const parc::Matrix4 worldToView = parc::vtk::ToMatrix4(camera->GetViewTransformMatrix());
   const parc::Matrix4 frameToView =
-    parc::Translated(worldToView, worldToView.TransformVector(pass.FrameOrigin));
-  pass.WorldToClip = parc::Multiply(
-    parc::vtk::ToMatrix4(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1)),
-    frameToView);
-  rays.Width = pass.Pass.Width = width;
-  rays.Height = pass.Pass.Height = height;
-  rays.Parallel = pass.Pass.Parallel = camera->GetParallelProjection() != 0;
-  rays.Eye = parc::Vec3();
+    parc::Translated(worldToView, worldToView.TransformVector(view.FrameOrigin));
+  parc::Camera& c = view.Camera;
+  c.Width = width;
+  c.Height = height;
+  c.Parallel = camera->GetParallelProjection() != 0;
+  c.Eye = parc::Vec3();
   const double* direction = camera->GetDirectionOfProjection();
-  pass.Pass.Direction = parc::Normalized({ direction[0], direction[1], direction[2] });
-  pass.NearDistance = camera->GetClippingRange()[0];
-  if (!parc::Invert(pass.WorldToClip, rays.NDCToWorld))
+  c.Direction = parc::Normalized({ direction[0], direction[1], direction[2] });
+  c.NearDistance = camera->GetClippingRange()[0];
+  if (!c.SetProjection(parc::Multiply(
+        parc::vtk::ToMatrix4(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1)),
+        frameToView)))
   {
     return false;
   }
-  SetRayCoefficients(rays, pass);
+  SetRayCoefficients(view);
   return true;
 }
 
 //------------------------------------------------------------------------------
-void vtkPARCRasterizer::SetRayCoefficients(const parc::ViewGeometry& rays, View& pass)
+void vtkPARCRasterizer::SetRayCoefficients(View& pass)
 {
+  const parc::Camera& rays = pass.Camera;
   // With the camera's projections the homogeneous w of a point of NDC depth z does not
   // depend on NDC x, y, so ray start and (unnormalized) direction are affine in x, y.
   const parc::Matrix4& m = rays.NDCToWorld;
@@ -858,7 +859,7 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
   vtkInternals& in = *this->Internals;
   return in.Run(window, "depth", this->LastError, [&](vtkOpenGLState* state) {
     const GPUModel& gpu = in.Use(0, model, modelVersion, this->UploadCount);
-    const int w = view.Pass.Width, h = view.Pass.Height;
+    const int w = view.Camera.Width, h = view.Camera.Height;
     if (!in.Targets[0].Bind(GL_RG32F, 1, w, h, this->LastError))
     {
       return false;
@@ -892,7 +893,7 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
   vtkInternals& in = *this->Internals;
   return in.Run(window, "plane", this->LastError, [&](vtkOpenGLState* state) {
     const GPUModel& gpu = in.Use(1, model, modelVersion, this->UploadCount);
-    const int w = view.Pass.Width, h = view.Pass.Height;
+    const int w = view.Camera.Width, h = view.Camera.Height;
     const std::size_t pixels = static_cast<std::size_t>(w) * h;
     passes = std::max(1, (model.PlaneCount + PlanesPerPass - 1) / PlanesPerPass);
     // Words per pixel: whole attachments (4 words each) up to the planes needed.

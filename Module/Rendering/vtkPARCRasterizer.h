@@ -43,9 +43,8 @@
 #include "PARCRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
-#include "parcBufferSources.h" // For PassView
+#include "parcCamera.h"       // For Camera
 #include "parcPolygonModel.h"  // For PolygonModel
-#include "parcRayCaster.h"     // For ViewGeometry
 
 #include <cstdint> // For std::uint32_t
 #include <memory>  // For std::unique_ptr
@@ -63,16 +62,14 @@ public:
   vtkTypeMacro(vtkPARCRasterizer, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// The camera of a pass: the caster's view plus what the shaders need, in the camera's
+  /// The camera of a pass and of the rays, plus what the shaders need, in the camera's
   /// frame: world coordinates minus the camera position (FrameOrigin), so that a volume far
   /// from the world's origin loses no precision. The eye is the frame's origin; the models'
   /// index-to-world matrices given to the passes must be in the same frame.
   struct View
   {
-    parc::PassView Pass;
-    parc::Matrix4 WorldToClip; ///< the camera's composite projection (NDC z in [-1, 1])
-    parc::Vec3 FrameOrigin;    ///< world position of the coordinates' origin
-    double NearDistance = 0.0; ///< near clipping distance along the view direction
+    parc::Camera Camera;    ///< the eye is at 0
+    parc::Vec3 FrameOrigin; ///< world position of the coordinates' origin
     /// The ray through NDC (x, y) in eye-relative world coordinates: it starts at
     /// RayBase[0] + x RayBase[1] + y RayBase[2] (0 in perspective) and runs along
     /// RayDirection[0] + x RayDirection[1] + y RayDirection[2] (not normalized).
@@ -84,14 +81,12 @@ public:
 
   /// The world position of the frame's origin for the renderer's active camera: its position.
   static parc::Vec3 FrameOrigin(vtkRenderer* ren);
-  /// The rays of a width x height ray image of the renderer's active camera, and the
-  /// matching pass camera, in the camera's frame (see View; the eye is at 0). False when
-  /// the projection is singular.
-  static bool MakeViews(vtkRenderer* ren, int width, int height, parc::ViewGeometry& rays,
-    View& pass);
+  /// The view of a width x height ray image of the renderer's active camera, in the
+  /// camera's frame (see View; the eye is at 0). False when the projection is singular.
+  static bool MakeView(vtkRenderer* ren, int width, int height, View& view);
 
-  /// Fills the ray coefficients of pass from the rays' inverse projection.
-  static void SetRayCoefficients(const parc::ViewGeometry& rays, View& pass);
+  /// Fills the ray coefficients of view from its camera.
+  static void SetRayCoefficients(View& view);
 
   /// Near/far view depths of the depth model (2 floats per pixel, see class comment).
   bool RenderDepth(vtkRenderWindow* window, const parc::PolygonModel& model,

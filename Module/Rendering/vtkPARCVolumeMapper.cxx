@@ -144,7 +144,7 @@ int MajorAxis(const parc::Matrix4& indexToWorld, const vtkPARCRasterizer::View& 
   {
     const parc::Vec3 axis =
       parc::Normalized({ indexToWorld(0, a), indexToWorld(1, a), indexToWorld(2, a) });
-    const double c = std::fabs(parc::Dot(axis, view.Pass.Direction));
+    const double c = std::fabs(parc::Dot(axis, view.Camera.Direction));
     if (c > bestCosine)
     {
       bestCosine = c;
@@ -417,10 +417,10 @@ public:
   std::vector<std::pair<const char*, std::size_t>> Memory() const;
 
   /// The mode Auto resolves to for the current classification, ray function and view.
-  int ChooseMode(int requested, const vtkPARCRasterizer::View& passView);
+  int ChooseMode(int requested, const parc::Camera& camera);
   /// Runs the PARC passes of the requested mode; the segment source the caster uses.
   const parc::SegmentSource& RunPasses(vtkPARCVolumeMapper* self, vtkRenderer* ren,
-    vtkVolume* vol, const parc::ViewGeometry& view, const vtkPARCRasterizer::View& passView);
+    vtkVolume* vol, const vtkPARCRasterizer::View& view);
 };
 
 //------------------------------------------------------------------------------
@@ -723,11 +723,11 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
   {
     return;
   }
-  parc::ViewGeometry view;
   vtkPARCRasterizer::View passView;
-  if (!vtkPARCRasterizer::MakeViews(ren,
+  const parc::Camera& view = passView.Camera;
+  if (!vtkPARCRasterizer::MakeView(ren,
         std::max(1, static_cast<int>(width / this->ImageSampleDistance)),
-        std::max(1, static_cast<int>(height / this->ImageSampleDistance)), view, passView))
+        std::max(1, static_cast<int>(height / this->ImageSampleDistance)), passView))
   {
     vtkErrorMacro("The camera's projection is singular.");
     return;
@@ -766,7 +766,7 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
     before.push_back({ volume.ModelBuilds, volume.Rasterizer->GetUploadCount() });
     volume.Trials.Chosen = -1;
     const double projectionStart = vtkTimerLog::GetUniversalTime();
-    const parc::SegmentSource& source = volume.RunPasses(this, ren, entry.second, view, passView);
+    const parc::SegmentSource& source = volume.RunPasses(this, ren, entry.second, passView);
     volume.ProjectionTime = vtkTimerLog::GetUniversalTime() - projectionStart;
     in.ProjectionTime += volume.ProjectionTime;
     members.push_back({ &volume.Caster, &source });
@@ -819,7 +819,7 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
 
 //------------------------------------------------------------------------------
 int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
-  int requested, const vtkPARCRasterizer::View& passView)
+  int requested, const parc::Camera& camera)
 {
   vtkVolumeState& in = *this;
   if (requested != ACCELERATION_AUTO)
@@ -836,13 +836,13 @@ int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   const int* dims = in.Field.GetDimensions();
   const parc::Vec3 centre = in.IndexToFrame.TransformPoint( // the eye is the frame's origin
     { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
-  in.Trials.SetView(passView.Pass.Direction, parc::Length(centre));
-  return in.Trials.Mode(in.ModelVersion, pc, passView.Pass.Width, passView.Pass.Height);
+  in.Trials.SetView(camera.Direction, parc::Length(centre));
+  return in.Trials.Mode(in.ModelVersion, pc, camera.Width, camera.Height);
 }
 
 //------------------------------------------------------------------------------
 const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
-  vtkPARCVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol, const parc::ViewGeometry& view,
+  vtkPARCVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
   const vtkPARCRasterizer::View& passView)
 {
   vtkVolumeState& in = *this;
@@ -860,7 +860,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     in.ReleaseUnusedPasses(window, false, false);
     return in.NoRays; // nothing can show: no pass, no sample
   }
-  const int mode = in.ChooseMode(requested, passView);
+  const int mode = in.ChooseMode(requested, passView.Camera);
   if (mode == ACCELERATION_NONE)
   {
     in.ReleaseUnusedPasses(window, false, false);
@@ -879,7 +879,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     ok = in.Rasterizer->RenderDepth(
       window, pass.Model, in.ModelVersion, indexToWorld, passView, nearFar);
     ReleaseUploaded(pass, in.Rasterizer->HasModel(window, false, in.ModelVersion));
-    in.DepthSource.Set(passView.Pass, std::move(nearFar), &in.Grid, in.Parameters.WorldToIndex);
+    in.DepthSource.Set(passView.Camera, std::move(nearFar), &in.Grid, in.Parameters.WorldToIndex);
     in.PolygonCount += static_cast<vtkIdType>(pass.Quads);
   }
   if (ok && color)
@@ -892,12 +892,12 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     std::vector<std::uint32_t> bits = in.PlaneSource.ReleaseBuffer();
     int words = 0;
     std::vector<parc::Vec3> starts, directions;
-    view.RayBounds(in.Parameters.WorldToIndex, starts, directions);
+    passView.Camera.RayBounds(in.Parameters.WorldToIndex, starts, directions);
     const parc::PolygonModel& model = pass.Model;
     ok = in.Rasterizer->RenderPlanes(window, model, version, indexToWorld, passView,
       parc::RayAxisSign(model, starts, directions), bits, words, in.PassCount);
     ReleaseUploaded(pass, in.Rasterizer->HasModel(window, true, version));
-    in.PlaneSource.Set(passView.Pass, std::move(bits), words, &in.Grid, axis, model.FirstPlane,
+    in.PlaneSource.Set(passView.Camera, std::move(bits), words, &in.Grid, axis, model.FirstPlane,
       in.Parameters.WorldToIndex);
     in.PlaneCount = model.PlaneCount;
     in.PolygonCount += static_cast<vtkIdType>(pass.Quads);

@@ -350,7 +350,7 @@ TEST(RayCaster, SparseSegmentsGiveBitIdenticalImages)
       p.Lights = { light };
       parc::RayCaster caster;
       ASSERT_TRUE(caster.Prepare(&field, &p));
-      const parc::ViewGeometry view = ParallelView(48, 40, 0.4);
+      const parc::Camera view = ParallelView(48, 40, 0.4);
       std::vector<float> whole(4 * 48 * 40), sparse(4 * 48 * 40);
       parc::CastStatistics s1, s2;
       caster.CastImage(view, nullptr, parc::WholeRaySource(), whole.data(), s1);
@@ -386,7 +386,7 @@ TEST(RayCaster, SkippingEmptyCellsGivesBitIdenticalImages)
         parc::Light light;
         light.Position = { 0.0, 50.0, 50.0 };
         p.Lights = { light };
-        const parc::ViewGeometry view = ParallelView(48, 40, 0.4);
+        const parc::Camera view = ParallelView(48, 40, 0.4);
         std::vector<float> skipped(4 * 48 * 40), full(4 * 48 * 40);
         parc::CastStatistics s1, s2;
         parc::RayCaster caster;
@@ -410,7 +410,7 @@ TEST(RayCaster, ConstantGradientOpacityNeedsNoGradient)
 {
   const parc::ScalarField field = Blobs();
   CastParameters p = BlobParameters();
-  const parc::ViewGeometry view = ParallelView(32, 32, 0.3);
+  const parc::Camera view = ParallelView(32, 32, 0.3);
   auto cast = [&](std::vector<float>& image, parc::CastStatistics& stats) {
     parc::RayCaster caster;
     ASSERT_TRUE(caster.Prepare(&field, &p));
@@ -446,7 +446,7 @@ TEST(RayCaster, ImageIsTheSameForOneAndManyThreads)
   CastParameters p = BlobParameters();
   parc::RayCaster caster;
   ASSERT_TRUE(caster.Prepare(&field, &p));
-  const parc::ViewGeometry view = ParallelView(64, 64, 0.3);
+  const parc::Camera view = ParallelView(64, 64, 0.3);
   std::vector<float> one(4 * 64 * 64), many(4 * 64 * 64);
   parc::CastStatistics s1, s2;
   vtkSMPTools::Initialize(1);
@@ -464,7 +464,7 @@ TEST(RayCaster, ProgressCanAbortTheImage)
   p.Opacity.SetNodes({ 0.0, 255.0 }, { 0.1, 0.1 }, true);
   parc::RayCaster caster;
   ASSERT_TRUE(caster.Prepare(&field, &p));
-  const parc::ViewGeometry view = ParallelView(64, 256, 0.0);
+  const parc::Camera view = ParallelView(64, 256, 0.0);
   std::vector<float> image(4 * 64 * 256);
   parc::CastStatistics s;
   std::vector<double> reported;
@@ -495,9 +495,9 @@ TEST(RayCaster, RejectsUnusableParameters)
   EXPECT_FALSE(caster.Prepare(&slice, &p)) << "one slice has no cells";
 }
 
-TEST(ViewGeometry, PerspectiveRaysStartAtTheEyeAndParallelRaysOnTheCameraPlane)
+TEST(Camera, PerspectiveRaysStartAtTheEyeAndParallelRaysOnTheCameraPlane)
 {
-  const parc::ViewGeometry v = ParallelView(10, 10, 0.0);
+  const parc::Camera v = ParallelView(10, 10, 0.0);
   const parc::Ray a = v.MakeRay(0, 0), b = v.MakeRay(9, 9);
   EXPECT_NEAR(a.Direction.Z, -1.0, 1e-12);
   EXPECT_NEAR(a.Origin.Z, b.Origin.Z, 1e-12) << "one camera plane";

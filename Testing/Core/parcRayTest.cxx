@@ -1,6 +1,7 @@
 // Ray-box clipping, clipping planes, cropping and the conversion of segments to lattice
 // ranges.
 #include "parcRay.h"
+#include "parcSegmentSource.h"
 
 #include <gtest/gtest.h>
 

@@ -21,7 +21,7 @@ namespace
 constexpr int Width = 40, Height = 36;
 
 /// Parallel rays over a 44 x 44 window around (16, 16, 16) (see parctest::ParallelView).
-parc::ViewGeometry ParallelView(double angle)
+parc::Camera ParallelView(double angle)
 {
   return parctest::ParallelView(Width, Height, angle, 22.0);
 }
@@ -71,7 +71,7 @@ struct Image
   parc::CastStatistics Stats; ///< summed over the members
 };
 
-Image CastScene(const std::vector<parc::SceneCaster::Member>& members, const parc::ViewGeometry& view)
+Image CastScene(const std::vector<parc::SceneCaster::Member>& members, const parc::Camera& view)
 {
   parc::SceneCaster scene;
   EXPECT_TRUE(scene.SetMembers(members, 0.99));
@@ -108,7 +108,7 @@ TEST(SceneCaster, OneVolumeIsItsOwnImage)
     p.Opacity.SetNodes({ 0.0, 60.0, 200.0 }, { 0.1, 0.1, 0.6 }, true);
     parc::RayCaster caster;
     ASSERT_TRUE(caster.Prepare(&field, &p));
-    const parc::ViewGeometry view = ParallelView(0.4);
+    const parc::Camera view = ParallelView(0.4);
     Image own;
     caster.CastImage(view, nullptr, parc::WholeRaySource(), own.RGBA.data(), own.Stats);
     const parc::WholeRaySource whole;
@@ -251,7 +251,7 @@ TEST(SceneCaster, PerVolumeSourcesGiveBitIdenticalImages)
     const parc::SegmentOracle oracle1(volumes[1].Grid, volumes[1].Params.WorldToIndex);
     for (const double angle : { 0.0, 0.7, 2.5 })
     {
-      const parc::ViewGeometry view = ParallelView(angle);
+      const parc::Camera view = ParallelView(angle);
       const Image reference =
         CastScene({ { &volumes[0].Caster, &whole }, { &volumes[1].Caster, &whole } }, view);
       const Image accelerated =

@@ -52,22 +52,26 @@ inline void SetOpacity(parc::CastParameters& p, std::vector<double> x, std::vect
 
 /// Parallel rays along (sin a, 0, -cos a) over a window of 2 halfWidth x 2 halfWidth
 /// around (16, 16, 16): NDC (x, y, z) -> centre + halfWidth (x right + y up) + 60 z forward.
-inline parc::ViewGeometry ParallelView(int w, int h, double angle, double halfWidth = 20.0)
+inline parc::Camera ParallelView(int w, int h, double angle, double halfWidth = 20.0)
 {
-  parc::ViewGeometry v;
+  parc::Camera v;
   v.Width = w;
   v.Height = h;
   v.Parallel = true;
   const double c = std::cos(angle), s = std::sin(angle);
   const parc::Vec3 right{ c, 0, s }, up{ 0, 1, 0 }, forward{ s, 0, -c };
+  parc::Matrix4 ndcToWorld, worldToNDC;
   for (int r = 0; r < 3; ++r)
   {
-    v.NDCToWorld(r, 0) = halfWidth * right[r];
-    v.NDCToWorld(r, 1) = halfWidth * up[r];
-    v.NDCToWorld(r, 2) = 60.0 * forward[r];
-    v.NDCToWorld(r, 3) = 16.0;
+    ndcToWorld(r, 0) = halfWidth * right[r];
+    ndcToWorld(r, 1) = halfWidth * up[r];
+    ndcToWorld(r, 2) = 60.0 * forward[r];
+    ndcToWorld(r, 3) = 16.0;
   }
+  parc::Invert(ndcToWorld, worldToNDC);
+  v.SetProjection(worldToNDC);
   v.Eye = parc::Vec3{ 16, 16, 16 } - 80.0 * forward;
+  v.Direction = forward;
   return v;
 }
 

@@ -1,6 +1,7 @@
 // The GL passes against the CPU segment oracle, on random and adversarial cameras: near is
 // never after the ideal near, far never before the ideal far, and every plane a ray truly
 // crosses in a PC supercell has its bit set. Reports how loose the buffers are.
+#include "parcBufferSources.h"
 #include "parcSegmentOracle.h"
 #include "parcTestScene.h"
 #include "vtkPARCRasterizer.h"
@@ -31,9 +32,8 @@ bool CheckCamera(vtkRenderWindow* window, vtkRenderer* ren, vtkPARCRasterizer* r
   ++version; // force uploads: the test switches models freely
   int size[2];
   ren->GetTiledSize(&size[0], &size[1]);
-  parc::ViewGeometry rays;
   vtkPARCRasterizer::View view;
-  if (!vtkPARCRasterizer::MakeViews(ren, size[0], size[1], rays, view))
+  if (!vtkPARCRasterizer::MakeView(ren, size[0], size[1], view))
   {
     std::cerr << name << ": singular camera\n";
     return false;
@@ -49,15 +49,16 @@ bool CheckCamera(vtkRenderWindow* window, vtkRenderer* ren, vtkPARCRasterizer* r
     return false;
   }
   parc::DepthBufferSource depth;
-  depth.Set(view.Pass, nearFar, &grid, worldToIndex);
+  depth.Set(view.Camera, nearFar, &grid, worldToIndex);
   // The colour model along the axis closest to the view direction.
-  const parc::Vec3 d = worldToIndex.TransformVector(view.Pass.Direction);
+  const parc::Vec3 d = worldToIndex.TransformVector(view.Camera.Direction);
   const int axis = std::fabs(d.X) >= std::max(std::fabs(d.Y), std::fabs(d.Z))
     ? 0
     : (std::fabs(d.Y) >= std::fabs(d.Z) ? 1 : 2);
   const parc::PolygonModel& colorModel = colorModels[axis];
   std::vector<std::uint32_t> bits;
   int words = 0, passes = 0;
+  const parc::Camera& rays = view.Camera;
   std::vector<parc::Vec3> starts, directions;
   rays.RayBounds(worldToIndex, starts, directions);
   const int raySign = parc::RayAxisSign(colorModel, starts, directions);
@@ -69,7 +70,7 @@ bool CheckCamera(vtkRenderWindow* window, vtkRenderer* ren, vtkPARCRasterizer* r
     return false;
   }
   parc::PlaneBufferSource planes;
-  planes.Set(view.Pass, bits, words, &grid, axis, colorModel.FirstPlane, worldToIndex);
+  planes.Set(view.Camera, bits, words, &grid, axis, colorModel.FirstPlane, worldToIndex);
   const parc::SegmentOracle oracle(grid, worldToIndex);
   const int* cells = grid.GetCellDimensions();
   std::vector<parc::Segment> ideal;

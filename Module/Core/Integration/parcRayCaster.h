@@ -29,10 +29,14 @@
 #ifndef parcRayCaster_h
 #define parcRayCaster_h
 
+#include "parcCamera.h"
 #include "parcCastParameters.h"
 #include "parcClassification.h"
+#include "parcCompositor.h"
 #include "parcRay.h"
 #include "parcScalarField.h"
+#include "parcSegmentSource.h"
+#include "parcStatistics.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -42,88 +46,8 @@
 namespace parc
 {
 
-/// Counters of one render; summed over threads (order-independent integers).
-struct CastStatistics
-{
-  std::uint64_t Rays = 0;                ///< rays that met the volume's box
-  std::uint64_t Segments = 0;            ///< segments handed to the caster
-  std::uint64_t Samples = 0;             ///< scalar samples taken on the lattice
-  std::uint64_t ContributingSamples = 0; ///< non-zero opacity, or isosurface crossings
-  std::uint64_t GradientEvaluations = 0;
-  std::uint64_t Cells = 0; ///< cells crossed by the cast lattice ranges (paper, Table 2)
-
-  CastStatistics& operator+=(const CastStatistics& o);
-};
-
 /// The most volumes a SceneCaster casts together.
 constexpr std::size_t MaxSceneVolumes = 16;
-
-/// What one volume contributes at one point of a ray (see the file comment).
-struct RayEvent
-{
-  double T;     ///< ray parameter
-  float Rgb[3]; ///< colour; premultiplied by Alpha when Premultiplied
-  float Alpha;  ///< opacity (corrected for the sample distance)
-  bool Premultiplied; ///< a whole-ray result rather than one sample's colour and opacity
-};
-
-/// Front-to-back "over" of events, in the order they are added.
-struct EventCompositor
-{
-  float Rgb[3] = { 0.f, 0.f, 0.f };
-  float Alpha = 0.f;
-
-  /// Adds a sample of colour rgb and opacity a behind what was added before.
-  void AddSample(const float rgb[3], float a)
-  {
-    const float w = (1.f - this->Alpha) * a;
-    for (int c = 0; c < 3; ++c)
-    {
-      this->Rgb[c] += w * rgb[c];
-    }
-    this->Alpha += w;
-  }
-  /// Adds e behind what was added before.
-  void Add(const RayEvent& e)
-  {
-    if (!e.Premultiplied)
-    {
-      this->AddSample(e.Rgb, e.Alpha);
-      return;
-    }
-    const float transparency = 1.f - this->Alpha;
-    for (int c = 0; c < 3; ++c)
-    {
-      this->Rgb[c] += transparency * e.Rgb[c];
-    }
-    this->Alpha += transparency * e.Alpha;
-  }
-  void Finish(float rgba[4]) const
-  {
-    std::copy_n(this->Rgb, 3, rgba);
-    rgba[3] = this->Alpha;
-  }
-};
-
-/// The camera as the ray image sees it: pixel (px, py) of a Width x Height image has its
-/// centre at NDC ((2 px + 1) / Width - 1, (2 py + 1) / Height - 1).
-struct ViewGeometry
-{
-  int Width = 0, Height = 0;
-  Matrix4 NDCToWorld; ///< inverse of the camera's composite projection (z in [-1, 1])
-  bool Parallel = false;
-  Vec3 Eye; ///< camera position
-
-  /// The ray through the centre of pixel (px, py), from the near to the far plane.
-  Ray MakeRay(int px, int py) const;
-  /// The ray parameter of the point at window depth z (in [0, 1]) on that ray.
-  double DepthToParameter(const Ray& ray, int px, int py, double z) const;
-  /// Bounds of all rays in the coordinates of transform (affine): the corners of the convex
-  /// set of their start points (the near plane's corners, and the eye in perspective) and
-  /// the directions whose positive combinations hold every ray's (at the image corners).
-  void RayBounds(const Matrix4& transform, std::vector<Vec3>& starts,
-    std::vector<Vec3>& directions) const;
-};
 
 /// Casts rays through one scalar field.
 class RayCaster
@@ -149,7 +73,7 @@ public:
   /// opaque geometry. progress(fraction) is called between bands of rows from the calling
   /// thread; when it returns false the cast stops, the rest of the image stays zero and
   /// CastImage returns false.
-  bool CastImage(const ViewGeometry& view, const float* depth, const SegmentSource& source,
+  bool CastImage(const Camera& view, const float* depth, const SegmentSource& source,
     float* rgba, CastStatistics& stats,
     const std::function<bool(double)>& progress = nullptr) const;
 
@@ -201,7 +125,7 @@ private:
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
     CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events) const;
   template <class View>
-  bool CastImageIn(const View& field, const ViewGeometry& view, const float* depth,
+  bool CastImageIn(const View& field, const Camera& view, const float* depth,
     const SegmentSource& source, float* rgba, CastStatistics& stats,
     const std::function<bool(double)>& progress) const;
 
@@ -231,7 +155,7 @@ public:
     std::vector<LatticeRange>& ranges, std::vector<std::vector<RayEvent>>& events,
     float rgba[4], CastStatistics* stats) const;
   /// A whole image, like RayCaster::CastImage; stats receives one entry per member.
-  bool CastImage(const ViewGeometry& view, const float* depth, float* rgba,
+  bool CastImage(const Camera& view, const float* depth, float* rgba,
     std::vector<CastStatistics>& stats,
     const std::function<bool(double)>& progress = nullptr) const;
 

@@ -191,10 +191,4 @@ void IntersectLatticeRanges(
   ranges.swap(kept);
 }
 
-void WholeRaySource::GetSegments(int, int, const Ray&, std::vector<Segment>& out) const
-{
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  out.push_back({ -inf, inf });
-}
-
 } // namespace parc

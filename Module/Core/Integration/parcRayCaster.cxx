@@ -36,68 +36,6 @@ bool ClipToField(const ScalarField& field, const CastParameters& p, const Vec3& 
 }
 }
 
-CastStatistics& CastStatistics::operator+=(const CastStatistics& o)
-{
-  this->Rays += o.Rays;
-  this->Segments += o.Segments;
-  this->Samples += o.Samples;
-  this->ContributingSamples += o.ContributingSamples;
-  this->GradientEvaluations += o.GradientEvaluations;
-  this->Cells += o.Cells;
-  return *this;
-}
-
-Ray ViewGeometry::MakeRay(int px, int py) const
-{
-  const double x = (2.0 * px + 1.0) / this->Width - 1.0;
-  const double y = (2.0 * py + 1.0) / this->Height - 1.0;
-  const Vec3 nearPoint = this->NDCToWorld.TransformHomogeneous({ x, y, -1.0 });
-  const Vec3 farPoint = this->NDCToWorld.TransformHomogeneous({ x, y, 1.0 });
-  Ray ray;
-  ray.Direction = Normalized(farPoint - nearPoint);
-  if (this->Parallel)
-  {
-    // The lattice starts on the plane through the camera position normal to the rays.
-    ray.Origin = nearPoint - Dot(nearPoint - this->Eye, ray.Direction) * ray.Direction;
-  }
-  else
-  {
-    ray.Origin = this->Eye;
-  }
-  ray.TMin = Dot(nearPoint - ray.Origin, ray.Direction);
-  ray.TMax = Dot(farPoint - ray.Origin, ray.Direction);
-  return ray;
-}
-
-double ViewGeometry::DepthToParameter(const Ray& ray, int px, int py, double z) const
-{
-  const double x = (2.0 * px + 1.0) / this->Width - 1.0;
-  const double y = (2.0 * py + 1.0) / this->Height - 1.0;
-  const Vec3 p = this->NDCToWorld.TransformHomogeneous({ x, y, 2.0 * z - 1.0 });
-  return Dot(p - ray.Origin, ray.Direction);
-}
-
-void ViewGeometry::RayBounds(
-  const Matrix4& transform, std::vector<Vec3>& starts, std::vector<Vec3>& directions) const
-{
-  starts.clear();
-  directions.clear();
-  if (!this->Parallel)
-  {
-    starts.push_back(transform.TransformPoint(this->Eye));
-  }
-  for (const double x : { -1.0, 1.0 })
-  {
-    for (const double y : { -1.0, 1.0 })
-    {
-      const Vec3 nearPoint = this->NDCToWorld.TransformHomogeneous({ x, y, -1.0 });
-      const Vec3 farPoint = this->NDCToWorld.TransformHomogeneous({ x, y, 1.0 });
-      starts.push_back(transform.TransformPoint(nearPoint));
-      directions.push_back(transform.TransformVector(farPoint - nearPoint));
-    }
-  }
-}
-
 bool RayCaster::Prepare(const ScalarField* field, const CastParameters* parameters)
 {
   this->Field = field;
@@ -808,7 +746,7 @@ void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
   switch (this->Params->Blend)
   {
     case BlendMode::Composite:
-      Run(CompositeFunction<Context>{ context }, ranges, rgba);
+      Run(CompositeFunction<Context>{ context, {} }, ranges, rgba);
       break;
     case BlendMode::MaximumIntensity:
       Run(ExtremeFunction<Context, 1>{ context }, ranges, rgba);
@@ -823,7 +761,7 @@ void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
       Run(AdditiveFunction<Context>{ context }, ranges, rgba);
       break;
     case BlendMode::IsoSurface:
-      Run(IsoSurfaceFunction<Context>{ context, this->Constants.SortedIsoValues }, ranges, rgba);
+      Run(IsoSurfaceFunction<Context>{ context, this->Constants.SortedIsoValues, {} }, ranges, rgba);
       break;
   }
   if (firstHit)
@@ -850,7 +788,7 @@ struct TileCaster
 {
   const Cast& CastOne;       ///< casts one ray: (ray, px, py, scratch, rgba)
   const MayHave& MayHaveRay; ///< (px, py): false when the pixel's ray surely gets nothing
-  const ViewGeometry& View;
+  const Camera& View;
   const float* Depth;
   float* Image;
   int TilesX;
@@ -894,7 +832,7 @@ struct TileCaster
 /// Casts a whole image in bands of tile rows (see RayCaster::CastImage); reduce(scratch)
 /// gathers each thread's statistics.
 template <class Cast, class MayHave, class Reduce>
-bool CastTiles(const ViewGeometry& view, const float* depth, const Cast& castOne,
+bool CastTiles(const Camera& view, const float* depth, const Cast& castOne,
   const MayHave& mayHave, float* rgba, const Reduce& reduce,
   const std::function<bool(double)>& progress)
 {
@@ -925,7 +863,7 @@ bool CastTiles(const ViewGeometry& view, const float* depth, const Cast& castOne
 }
 }
 
-bool RayCaster::CastImage(const ViewGeometry& view, const float* depth,
+bool RayCaster::CastImage(const Camera& view, const float* depth,
   const SegmentSource& source, float* rgba, CastStatistics& stats,
   const std::function<bool(double)>& progress) const
 {
@@ -935,7 +873,7 @@ bool RayCaster::CastImage(const ViewGeometry& view, const float* depth,
 }
 
 template <class View>
-bool RayCaster::CastImageIn(const View& field, const ViewGeometry& view, const float* depth,
+bool RayCaster::CastImageIn(const View& field, const Camera& view, const float* depth,
   const SegmentSource& source, float* rgba, CastStatistics& stats,
   const std::function<bool(double)>& progress) const
 {
@@ -1004,7 +942,7 @@ void SceneCaster::CastRay(const Ray& ray, int px, int py, std::vector<Segment>& 
   compositor.Finish(rgba);
 }
 
-bool SceneCaster::CastImage(const ViewGeometry& view, const float* depth, float* rgba,
+bool SceneCaster::CastImage(const Camera& view, const float* depth, float* rgba,
   std::vector<CastStatistics>& stats, const std::function<bool(double)>& progress) const
 {
   const std::size_t n = this->Members.size();

@@ -15,7 +15,7 @@ constexpr double DepthTolerance = 64.0 * 1.1920929e-7;
 /// Tolerance (voxel-index units, relative to the volume size) of "the ray starts inside".
 constexpr double StartTolerance = 1e-6;
 
-std::size_t PixelIndex(const PassView& v, int px, int py)
+std::size_t PixelIndex(const Camera& v, int px, int py)
 {
   return static_cast<std::size_t>(py) * static_cast<std::size_t>(v.Width) + px;
 }
@@ -27,7 +27,7 @@ double VolumeScale(const SupercellGrid& grid)
 }
 }
 
-void DepthBufferSource::Set(const PassView& view, std::vector<float> nearFar,
+void DepthBufferSource::Set(const Camera& view, std::vector<float> nearFar,
   const SupercellGrid* grid, const Matrix4& worldToIndex)
 {
   this->View = view;
@@ -80,7 +80,7 @@ void DepthBufferSource::GetSegments(int px, int py, const Ray& ray, std::vector<
   }
 }
 
-void PlaneBufferSource::Set(const PassView& view, std::vector<std::uint32_t> bits,
+void PlaneBufferSource::Set(const Camera& view, std::vector<std::uint32_t> bits,
   int wordsPerPixel, const SupercellGrid* grid, int axis, int firstPlane,
   const Matrix4& worldToIndex)
 {

@@ -10,7 +10,7 @@
 #ifndef parcSegmentOracle_h
 #define parcSegmentOracle_h
 
-#include "parcRay.h"
+#include "parcSegmentSource.h"
 #include "parcSupercellGrid.h"
 
 #include <vector>

@@ -10,7 +10,8 @@
 #ifndef parcBufferSources_h
 #define parcBufferSources_h
 
-#include "parcRay.h"
+#include "parcCamera.h"
+#include "parcSegmentSource.h"
 #include "parcSupercellGrid.h"
 
 #include <cstdint>
@@ -18,14 +19,6 @@
 
 namespace parc
 {
-
-/// What a source needs to know about the camera of the pass.
-struct PassView
-{
-  int Width = 0, Height = 0;
-  Vec3 Direction; ///< unit view direction (world)
-  bool Parallel = false;
-};
 
 class DepthBufferSource : public SegmentSource
 {
@@ -35,7 +28,7 @@ public:
 
   /// nearFar holds (near, -far) per pixel, rows bottom to top, as the GL pass writes them.
   /// grid and worldToIndex locate rays that start inside the model.
-  void Set(const PassView& view, std::vector<float> nearFar, const SupercellGrid* grid,
+  void Set(const Camera& view, std::vector<float> nearFar, const SupercellGrid* grid,
     const Matrix4& worldToIndex);
   /// Gives the buffer back (to be filled again without reallocating); the source is empty.
   std::vector<float> ReleaseBuffer() { return std::move(this->NearFar); }
@@ -49,7 +42,7 @@ public:
   bool PixelSegment(int px, int py, const Ray& ray, Segment& segment) const;
 
 private:
-  PassView View;
+  Camera View; ///< of the pass
   std::vector<float> NearFar;
   const SupercellGrid* Grid = nullptr;
   Matrix4 WorldToIndex;
@@ -61,7 +54,7 @@ class PlaneBufferSource : public SegmentSource
 public:
   /// bits holds wordsPerPixel 32-bit words per pixel; bit p of the pixel's set is plane p
   /// (supercell index firstPlane + p along axis).
-  void Set(const PassView& view, std::vector<std::uint32_t> bits, int wordsPerPixel,
+  void Set(const Camera& view, std::vector<std::uint32_t> bits, int wordsPerPixel,
     const SupercellGrid* grid, int axis, int firstPlane, const Matrix4& worldToIndex);
   /// Gives the buffer back (to be filled again without reallocating); the source is empty.
   std::vector<std::uint32_t> ReleaseBuffer() { return std::move(this->Bits); }
@@ -75,7 +68,7 @@ public:
   void PixelPlanes(int px, int py, std::vector<int>& planes) const;
 
 private:
-  PassView View;
+  Camera View; ///< of the pass
   std::vector<std::uint32_t> Bits;
   int WordsPerPixel = 0;
   const SupercellGrid* Grid = nullptr;

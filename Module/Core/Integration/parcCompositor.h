@@ -1,0 +1,61 @@
+// PARC for VTK: the one front-to-back compositor of the caster. A ray's contributions
+// (samples, isosurface crossings, whole-ray results of other volumes) are RayEvents; the
+// compositor adds them with the "over" rule in the order they come, which is ray order.
+#ifndef parcCompositor_h
+#define parcCompositor_h
+
+#include <algorithm>
+
+namespace parc
+{
+
+/// What one volume contributes at one point of a ray (see the file comment).
+struct RayEvent
+{
+  double T;     ///< ray parameter
+  float Rgb[3]; ///< colour; premultiplied by Alpha when Premultiplied
+  float Alpha;  ///< opacity (corrected for the sample distance)
+  bool Premultiplied; ///< a whole-ray result rather than one sample's colour and opacity
+};
+
+/// Front-to-back "over" of events, in the order they are added.
+struct EventCompositor
+{
+  float Rgb[3] = { 0.f, 0.f, 0.f };
+  float Alpha = 0.f;
+
+  /// Adds a sample of colour rgb and opacity a behind what was added before.
+  void AddSample(const float rgb[3], float a)
+  {
+    const float w = (1.f - this->Alpha) * a;
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Rgb[c] += w * rgb[c];
+    }
+    this->Alpha += w;
+  }
+  /// Adds e behind what was added before.
+  void Add(const RayEvent& e)
+  {
+    if (!e.Premultiplied)
+    {
+      this->AddSample(e.Rgb, e.Alpha);
+      return;
+    }
+    const float transparency = 1.f - this->Alpha;
+    for (int c = 0; c < 3; ++c)
+    {
+      this->Rgb[c] += transparency * e.Rgb[c];
+    }
+    this->Alpha += transparency * e.Alpha;
+  }
+  void Finish(float rgba[4]) const
+  {
+    std::copy_n(this->Rgb, 3, rgba);
+    rgba[3] = this->Alpha;
+  }
+};
+
+} // namespace parc
+
+#endif
