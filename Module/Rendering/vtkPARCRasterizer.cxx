@@ -650,7 +650,7 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
 {
   glUseProgram(program);
   SetVector(program, "SkipNormal", skipNormal);
-  // The view's frame has the eye at its origin (see MakeViews): the shaders' coordinates
+  // The view's frame has the eye at its origin (see MakeView): the shaders' coordinates
   // stay small, and float never holds a large coordinate.
   SetMatrix(program, "IndexToRelative", indexToWorld);
   SetMatrix(program, "RelativeToClip", view.Camera.WorldToNDC);
@@ -804,6 +804,7 @@ bool vtkPARCRasterizer::MakeView(vtkRenderer* ren, int width, int height, View& 
   const double* direction = camera->GetDirectionOfProjection();
   c.Direction = parc::Normalized({ direction[0], direction[1], direction[2] });
   c.NearDistance = camera->GetClippingRange()[0];
+  c.FarDistance = camera->GetClippingRange()[1];
   if (!c.SetProjection(parc::Multiply(
         parc::vtk::ToMatrix4(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1)),
         frameToView)))

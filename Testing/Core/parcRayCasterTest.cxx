@@ -286,8 +286,10 @@ public:
     , Seed(seed)
   {
   }
-  void GetSegments(int px, int py, const parc::Ray& ray, std::vector<parc::Segment>& out) const override
+  void Segments(const parc::RayQuery& query, std::vector<parc::Segment>& out) const override
   {
+    const parc::Ray& ray = query.Path;
+    const int px = query.Pixel[0], py = query.Pixel[1];
     double t0, t1;
     if (!this->Caster.ClipRay(ray, t0, t1))
     {

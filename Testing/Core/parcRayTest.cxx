@@ -92,7 +92,7 @@ TEST(LatticeRanges, AdjacentRangesMergeAndEmptySegmentsVanish)
 TEST(WholeRaySource, GivesOneUnboundedSegment)
 {
   std::vector<Segment> s;
-  parc::WholeRaySource().GetSegments(3, 4, parc::Ray(), s);
+  parc::WholeRaySource().Segments(parc::RayQuery::AtPixel(parc::Ray(), 3, 4), s);
   ASSERT_EQ(s.size(), 1u);
   EXPECT_TRUE(std::isinf(s[0].TNear) && s[0].TNear < 0);
   EXPECT_TRUE(std::isinf(s[0].TFar) && s[0].TFar > 0);

@@ -146,17 +146,17 @@ TEST(SceneCaster, DisjointVolumesMergeInDepthOrder)
     std::vector<std::vector<parc::RayEvent>> events;
     parc::CastStatistics stats, sceneStats[2];
     float a[4], b[4], merged[4], swapped[4];
-    frontCaster.CastRay(ray, 0, 0, whole, segments, ranges, a, stats);
-    backCaster.CastRay(ray, 0, 0, whole, segments, ranges, b, stats);
+    frontCaster.CastRay(parc::RayQuery::Anywhere(ray), whole, segments, ranges, a, stats);
+    backCaster.CastRay(parc::RayQuery::Anywhere(ray), whole, segments, ranges, b, stats);
     if (zEye > 0)
     {
       std::swap(a, b); // the eye is on the back volume's side
     }
     parc::SceneCaster scene;
     ASSERT_TRUE(scene.SetMembers({ { &frontCaster, &whole }, { &backCaster, &whole } }, 0.99));
-    scene.CastRay(ray, 0, 0, segments, ranges, events, merged, sceneStats);
+    scene.CastRay(parc::RayQuery::Anywhere(ray), segments, ranges, events, merged, sceneStats);
     ASSERT_TRUE(scene.SetMembers({ { &backCaster, &whole }, { &frontCaster, &whole } }, 0.99));
-    scene.CastRay(ray, 0, 0, segments, ranges, events, swapped, sceneStats);
+    scene.CastRay(parc::RayQuery::Anywhere(ray), segments, ranges, events, swapped, sceneStats);
     EXPECT_EQ(0, std::memcmp(merged, swapped, sizeof(merged)));
     for (int c = 0; c < 4; ++c)
     {
@@ -199,11 +199,11 @@ TEST(SceneCaster, SurfaceInsideACloudFromBothSides)
     parc::CastStatistics stats, sceneStats[2];
     float merged[4], hitColor[4], front[4];
     double hit;
-    scene.CastRay(ray, 0, 0, segments, ranges, events, merged, sceneStats);
-    surface.CastRay(ray, 0, 0, whole, segments, ranges, hitColor, stats, &hit);
+    scene.CastRay(parc::RayQuery::Anywhere(ray), segments, ranges, events, merged, sceneStats);
+    surface.CastRay(parc::RayQuery::Anywhere(ray), whole, segments, ranges, hitColor, stats, &hit);
     ASSERT_TRUE(std::isfinite(hit)) << "trial " << trial;
     ray.TMax = hit; // the cloud in front of the surface
-    cloudCaster.CastRay(ray, 0, 0, whole, segments, ranges, front, stats);
+    cloudCaster.CastRay(parc::RayQuery::Anywhere(ray), whole, segments, ranges, front, stats);
     for (int c = 0; c < 4; ++c)
     {
       EXPECT_NEAR(merged[c], front[c] + (1.f - front[3]) * hitColor[c], 2e-6)

@@ -102,7 +102,7 @@ inline CastResult CastOne(const parc::ScalarField& field, const parc::CastParame
   std::vector<parc::Segment> segments;
   std::vector<parc::LatticeRange> ranges;
   CastResult r;
-  caster.CastRay(ray, 0, 0, source ? *source : whole, segments, ranges, r.RGBA, r.Stats,
+  caster.CastRay(parc::RayQuery::Anywhere(ray), source ? *source : whole, segments, ranges, r.RGBA, r.Stats,
     &r.FirstHit);
   return r;
 }

@@ -1,6 +1,9 @@
 // The GL passes against the CPU segment oracle, on random and adversarial cameras: near is
 // never after the ideal near, far never before the ideal far, and every plane a ray truly
-// crosses in a PC supercell has its bit set. Reports how loose the buffers are.
+// crosses in a PC supercell has its bit set. Reports how loose the buffers are. The same
+// buffers answer rays without a pixel (shadow rays): each pixel's ray, and the same line
+// reversed from behind the volume towards the eye, must get segments that hold every PC
+// interval the oracle finds on it.
 #include "parcBufferSources.h"
 #include "parcSegmentOracle.h"
 #include "parcTestScene.h"
@@ -20,7 +23,60 @@ struct Tally
   std::size_t Rays = 0, Misses = 0, ExtraPlanes = 0, Planes = 0;
   int FrontOnly = 0; ///< cameras whose plane pass left out the faces facing along the rays
   double IdealLength = 0.0, ExtraLength = 0.0;
+  std::size_t Lines = 0;      ///< pixel-less queries checked
+  std::size_t TightLines = 0; ///< pixel-less depth answers that left part of the line out
 };
+
+/// Whether the union of segments holds every interval of ideal.
+bool Covers(std::vector<parc::Segment> segments, const std::vector<parc::Segment>& ideal)
+{
+  std::sort(segments.begin(), segments.end(),
+    [](const parc::Segment& a, const parc::Segment& b) { return a.TNear < b.TNear; });
+  std::vector<parc::Segment> merged;
+  for (const parc::Segment& s : segments)
+  {
+    if (!merged.empty() && s.TNear <= merged.back().TFar)
+    {
+      merged.back().TFar = std::max(merged.back().TFar, s.TFar);
+    }
+    else
+    {
+      merged.push_back(s);
+    }
+  }
+  return std::all_of(ideal.begin(), ideal.end(), [&](const parc::Segment& i) {
+    return std::any_of(merged.begin(), merged.end(),
+      [&](const parc::Segment& m) { return m.TNear <= i.TNear && i.TFar <= m.TFar; });
+  });
+}
+
+/// The pixel-less queries of ray (clipped to the volume's box, [t0, t1]) against the oracle.
+bool CheckLine(const parc::Ray& ray, double t0, double t1, const parc::SegmentOracle& oracle,
+  const std::vector<const parc::SegmentSource*>& sources, Tally& tally)
+{
+  std::vector<parc::Segment> ideal, got;
+  oracle.Intervals(ray, t0, t1, ideal);
+  for (const parc::SegmentSource* source : sources)
+  {
+    got.clear();
+    source->Segments(parc::RayQuery::Anywhere(ray), got);
+    if (!Covers(got, ideal))
+    {
+      return false;
+    }
+  }
+  ++tally.Lines;
+  // How much of [t0, t1] the depth source (the first) leaves out.
+  got.clear();
+  sources[0]->Segments(parc::RayQuery::Anywhere(ray), got);
+  double kept = 0.0;
+  for (const parc::Segment& s : got)
+  {
+    kept += std::max(0.0, std::min(s.TFar, t1) - std::max(s.TNear, t0));
+  }
+  tally.TightLines += kept < 0.999 * (t1 - t0) ? 1 : 0;
+  return true;
+}
 
 /// Checks every pixel of the current camera; returns false on the first violation.
 bool CheckCamera(vtkRenderWindow* window, vtkRenderer* ren, vtkPARCRasterizer* rasterizer,
@@ -122,6 +178,27 @@ bool CheckCamera(vtkRenderWindow* window, vtkRenderer* ren, vtkPARCRasterizer* r
       }
       tally.Planes += idealPlanes.size();
       tally.ExtraPlanes += setPlanes.size() - idealPlanes.size();
+
+      // The same line without its pixel, forwards and reversed towards the eye.
+      const parc::BothSource both(depth, planes);
+      const std::vector<const parc::SegmentSource*> sources{ &depth, &planes, &both };
+      parc::Ray reversed = ray;
+      reversed.Origin = ray.Origin + (t1 + 1.0) * ray.Direction;
+      reversed.Direction = -ray.Direction;
+      reversed.TMin = 0.0;
+      reversed.TMax = t1 + 1.0 - ray.TMin;
+      double r0 = reversed.TMin, r1 = reversed.TMax;
+      if (!CheckLine(ray, t0, t1, oracle, sources, tally) ||
+        (parc::ClipToBox(worldToIndex.TransformPoint(reversed.Origin),
+           worldToIndex.TransformVector(reversed.Direction), { 0, 0, 0 },
+           { double(cells[0]), double(cells[1]), double(cells[2]) }, r0, r1) &&
+          !CheckLine(reversed, r0, r1, oracle, sources, tally)))
+      {
+        std::cerr << name << ": pixel (" << px << ", " << py
+                  << "): a query without the pixel misses a PC interval\n";
+        ++tally.Misses;
+        return false;
+      }
     }
   }
   return true;
@@ -299,6 +376,13 @@ int TestPARCRasterizer(int argc, char* argv[])
             << "Plane bits: " << tally.Planes << " true planes, " << tally.ExtraPlanes
             << " extra (" << 100.0 * tally.ExtraPlanes / std::max<std::size_t>(1, tally.Planes)
             << "%); " << tally.FrontOnly << " cameras drew only the faces towards the eye.\n";
+  std::cout << "Queries without a pixel: " << tally.Lines << " lines, no miss; "
+            << tally.TightLines << " depth answers left part of the line out.\n";
+  if (tally.TightLines < tally.Lines / 2)
+  {
+    std::cerr << "Fewer than half of the queries without a pixel were narrowed.\n";
+    return EXIT_FAILURE;
+  }
   if (tally.FrontOnly == 0 || tally.FrontOnly == cameras)
   {
     std::cerr << "Expected cameras both with and without the faces facing along the rays.\n";

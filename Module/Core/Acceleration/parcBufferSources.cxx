@@ -25,6 +25,81 @@ double VolumeScale(const SupercellGrid& grid)
   const int* c = grid.GetCellDimensions();
   return std::max({ 1, c[0], c[1], c[2] });
 }
+
+const Segment WholeLine{ -Infinity, Infinity };
+
+/// What a query without a pixel reads of a pass (see the file comment): the pixels whose
+/// centres surround the line's image point (columns X, rows Y), and the line's view depth
+/// as depth(t) = Depth0 + t * Cosine.
+struct LineFootprint
+{
+  int X[2], Y[2];
+  double Depth0, Cosine;
+
+  /// The ray-parameter interval of the view depths [d0, d1], widened by the depths'
+  /// rounding.
+  Segment Interval(double d0, double d1) const
+  {
+    d0 -= DepthTolerance * (std::fabs(d0) + 1.0);
+    d1 += DepthTolerance * (std::fabs(d1) + 1.0);
+    double t0 = (d0 - this->Depth0) / this->Cosine, t1 = (d1 - this->Depth0) / this->Cosine;
+    if (t0 > t1)
+    {
+      std::swap(t0, t1);
+    }
+    return { t0, t1 };
+  }
+  /// Appends the parts of the line the pass does not see, in front of the camera's near and
+  /// behind its far distance.
+  void Unseen(const Camera& camera, std::vector<Segment>& out) const
+  {
+    out.push_back(this->Interval(-Infinity, camera.NearDistance));
+    out.push_back(this->Interval(camera.FarDistance, Infinity));
+  }
+};
+
+/// The footprint of ray in the pass of camera; false when the pass cannot answer for the
+/// ray and it gets the whole line: it is not along the camera's rays, it projects outside
+/// the image, or it is inside a PC supercell where it crosses the near or far distance
+/// (a supercell the pass may have drawn only in part).
+bool Footprint(const Camera& camera, const SupercellGrid& grid, const Matrix4& worldToIndex,
+  double eps, const Ray& ray, LineFootprint& f)
+{
+  f.Cosine = Dot(ray.Direction, camera.Direction);
+  if (!(std::fabs(f.Cosine) > 0.0) || !camera.IsAlongRays(ray))
+  {
+    return false;
+  }
+  // In perspective the image point of a line through the eye is that of its direction.
+  const Vec3 point = camera.Parallel
+    ? ray.Origin
+    : camera.Eye + (f.Cosine > 0.0 ? 1.0 : -1.0) * ray.Direction;
+  double u, v;
+  if (!camera.Project(point, u, v) || !(u >= 0.0 && u <= camera.Width) ||
+    !(v >= 0.0 && v <= camera.Height))
+  {
+    return false;
+  }
+  const double image[2] = { u, v };
+  const int size[2] = { camera.Width, camera.Height };
+  int* pixels[2] = { f.X, f.Y };
+  for (int a = 0; a < 2; ++a)
+  {
+    const int first = static_cast<int>(std::floor(image[a] - 0.5));
+    pixels[a][0] = std::min(std::max(first, 0), size[a] - 1);
+    pixels[a][1] = std::min(std::max(first + 1, 0), size[a] - 1);
+  }
+  f.Depth0 = camera.ViewDepth(ray.Origin);
+  for (const double depth : { camera.NearDistance, camera.FarDistance })
+  {
+    const Vec3 x = ray.Origin + ((depth - f.Depth0) / f.Cosine) * ray.Direction;
+    if (grid.TouchesContributing(worldToIndex.TransformPoint(x), eps))
+    {
+      return false;
+    }
+  }
+  return true;
+}
 }
 
 void DepthBufferSource::Set(const Camera& view, std::vector<float> nearFar,
@@ -71,12 +146,45 @@ bool DepthBufferSource::MayHaveSegments(int px, int py) const
   return this->NearFar[2 * PixelIndex(this->View, px, py)] < Empty;
 }
 
-void DepthBufferSource::GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const
+void DepthBufferSource::Segments(const RayQuery& query, std::vector<Segment>& out) const
 {
+  if (!query.HasPixel)
+  {
+    this->LineSegments(query.Path, out);
+    return;
+  }
   Segment s;
-  if (this->PixelSegment(px, py, ray, s))
+  if (this->PixelSegment(query.Pixel[0], query.Pixel[1], query.Path, s))
   {
     out.push_back(s);
+  }
+}
+
+void DepthBufferSource::LineSegments(const Ray& ray, std::vector<Segment>& out) const
+{
+  LineFootprint f;
+  if (!Footprint(this->View, *this->Grid, this->WorldToIndex, this->StartEps, ray, f))
+  {
+    out.push_back(WholeLine);
+    return;
+  }
+  double zNear = Infinity, zFar = -Infinity;
+  for (const int py : f.Y)
+  {
+    for (const int px : f.X)
+    {
+      const std::size_t pixel = PixelIndex(this->View, px, py);
+      if (this->NearFar[2 * pixel] < Empty)
+      {
+        zNear = std::min(zNear, static_cast<double>(this->NearFar[2 * pixel]));
+        zFar = std::max(zFar, -static_cast<double>(this->NearFar[2 * pixel + 1]));
+      }
+    }
+  }
+  f.Unseen(this->View, out);
+  if (zNear <= zFar)
+  {
+    out.push_back(f.Interval(zNear, zFar));
   }
 }
 
@@ -93,9 +201,42 @@ void PlaneBufferSource::Set(const Camera& view, std::vector<std::uint32_t> bits,
   this->WorldToIndex = worldToIndex;
 }
 
-void PlaneBufferSource::GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const
+void PlaneBufferSource::Segments(const RayQuery& query, std::vector<Segment>& out) const
 {
-  const std::uint32_t* words = this->Bits.data() + PixelIndex(this->View, px, py) * this->WordsPerPixel;
+  if (query.HasPixel)
+  {
+    this->EmitSlabs(
+      this->Bits.data() + PixelIndex(this->View, query.Pixel[0], query.Pixel[1]) * this->WordsPerPixel,
+      query.Path, out);
+    return;
+  }
+  LineFootprint f;
+  if (!Footprint(this->View, *this->Grid, this->WorldToIndex,
+        StartTolerance * VolumeScale(*this->Grid), query.Path, f))
+  {
+    out.push_back(WholeLine);
+    return;
+  }
+  std::vector<std::uint32_t> merged(this->WordsPerPixel, 0u);
+  for (const int py : f.Y)
+  {
+    for (const int px : f.X)
+    {
+      const std::uint32_t* words =
+        this->Bits.data() + PixelIndex(this->View, px, py) * this->WordsPerPixel;
+      for (int w = 0; w < this->WordsPerPixel; ++w)
+      {
+        merged[w] |= words[w];
+      }
+    }
+  }
+  f.Unseen(this->View, out);
+  this->EmitSlabs(merged.data(), query.Path, out);
+}
+
+void PlaneBufferSource::EmitSlabs(
+  const std::uint32_t* words, const Ray& ray, std::vector<Segment>& out) const
+{
   const int a = this->Axis;
   const double o = this->WorldToIndex.TransformPoint(ray.Origin)[a];
   const double d = this->WorldToIndex.TransformVector(ray.Direction)[a];
@@ -103,7 +244,7 @@ void PlaneBufferSource::GetSegments(int px, int py, const Ray& ray, std::vector<
   auto emit = [&](int first, int last) {
     if (d == 0.0)
     {
-      out.push_back({ -Infinity, Infinity }); // the ray runs inside one slab
+      out.push_back(WholeLine); // the ray runs inside one slab
       return;
     }
     const double x0 = this->Grid->Boundary(a, this->FirstPlane + first);
@@ -162,25 +303,44 @@ void PlaneBufferSource::PixelPlanes(int px, int py, std::vector<int>& planes) co
   }
 }
 
-void BothSource::GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const
+void BothSource::Segments(const RayQuery& query, std::vector<Segment>& out) const
 {
-  Segment limit;
-  if (!this->Depth.PixelSegment(px, py, ray, limit))
+  const std::size_t begin = out.size();
+  if (query.HasPixel)
   {
+    Segment limit;
+    if (!this->Depth.PixelSegment(query.Pixel[0], query.Pixel[1], query.Path, limit))
+    {
+      return;
+    }
+    this->Planes.Segments(query, out);
+    std::size_t kept = begin;
+    for (std::size_t i = begin; i < out.size(); ++i)
+    {
+      const Segment s{ std::max(out[i].TNear, limit.TNear), std::min(out[i].TFar, limit.TFar) };
+      if (s.TNear <= s.TFar)
+      {
+        out[kept++] = s;
+      }
+    }
+    out.resize(kept);
     return;
   }
-  const std::size_t begin = out.size();
-  this->Planes.GetSegments(px, py, ray, out);
-  std::size_t kept = begin;
-  for (std::size_t i = begin; i < out.size(); ++i)
+  // Without a pixel both sources give several segments: every pair's intersection.
+  std::vector<Segment> limits, slabs;
+  this->Depth.Segments(query, limits);
+  this->Planes.Segments(query, slabs);
+  for (const Segment& limit : limits)
   {
-    const Segment s{ std::max(out[i].TNear, limit.TNear), std::min(out[i].TFar, limit.TFar) };
-    if (s.TNear <= s.TFar)
+    for (const Segment& slab : slabs)
     {
-      out[kept++] = s;
+      const Segment s{ std::max(slab.TNear, limit.TNear), std::min(slab.TFar, limit.TFar) };
+      if (s.TNear <= s.TFar)
+      {
+        out.push_back(s);
+      }
     }
   }
-  out.resize(kept);
 }
 
 } // namespace parc

@@ -1,5 +1,14 @@
 // PARC for VTK: segment sources fed by the buffers of the GL passes (no GL here).
 //
+// A primary ray (a query with its pixel) reads its own pixel. A ray without a pixel is
+// answered only when it lies on one of the camera's rays (Camera::IsAlongRays: a shadow
+// ray towards the eye of a light's camera, in either direction); it reads the up to 2 x 2
+// pixels whose centres surround its image point and takes the union of what they hold, and
+// the parts of the line outside the camera's near/far depth range count as covered. Any
+// other ray gets the whole line. The pixel-less answer is conservative for the lines the
+// pass itself was drawn conservatively for (a pass drawn for pixel centres covers the lines
+// through pixel centres).
+//
 // DepthBufferSource turns each pixel's near/far view depths (the smallest and largest
 // depth along the view direction of the depth-model faces covering the pixel, dilated so
 // that grazing rays are covered) into one ray segment. A ray whose start lies in a PC
@@ -20,7 +29,7 @@
 namespace parc
 {
 
-class DepthBufferSource : public SegmentSource
+class DepthBufferSource final : public SegmentSource
 {
 public:
   /// Depth values that mark "no face" (the pass clears to it); above any real depth.
@@ -35,13 +44,16 @@ public:
   /// Memory held by the buffer, in bytes.
   std::size_t GetMemorySize() const { return this->NearFar.capacity() * sizeof(float); }
 
-  void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const override;
+  void Segments(const RayQuery& query, std::vector<Segment>& out) const override;
   bool MayHaveSegments(int px, int py) const override;
 
-  /// The segment of one pixel; false when the ray meets no PC supercell.
+  /// The segment of one pixel's ray; false when the ray meets no PC supercell.
   bool PixelSegment(int px, int py, const Ray& ray, Segment& segment) const;
 
 private:
+  /// Segments for a ray without a pixel (see the file comment).
+  void LineSegments(const Ray& ray, std::vector<Segment>& out) const;
+
   Camera View; ///< of the pass
   std::vector<float> NearFar;
   const SupercellGrid* Grid = nullptr;
@@ -49,7 +61,7 @@ private:
   double StartEps = 0.0; ///< voxel-index tolerance of "the ray starts inside"
 };
 
-class PlaneBufferSource : public SegmentSource
+class PlaneBufferSource final : public SegmentSource
 {
 public:
   /// bits holds wordsPerPixel 32-bit words per pixel; bit p of the pixel's set is plane p
@@ -61,13 +73,16 @@ public:
   /// Memory held by the buffer, in bytes.
   std::size_t GetMemorySize() const { return this->Bits.capacity() * sizeof(std::uint32_t); }
 
-  void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const override;
+  void Segments(const RayQuery& query, std::vector<Segment>& out) const override;
   bool MayHaveSegments(int px, int py) const override;
 
   /// The plane indices set for one pixel (tests and statistics).
   void PixelPlanes(int px, int py, std::vector<int>& planes) const;
 
 private:
+  /// The slabs of the set planes of words (WordsPerPixel of them) along ray.
+  void EmitSlabs(const std::uint32_t* words, const Ray& ray, std::vector<Segment>& out) const;
+
   Camera View; ///< of the pass
   std::vector<std::uint32_t> Bits;
   int WordsPerPixel = 0;
@@ -78,7 +93,7 @@ private:
 };
 
 /// The segments of planes clipped to the depth source's [near, far].
-class BothSource : public SegmentSource
+class BothSource final : public SegmentSource
 {
 public:
   BothSource(const DepthBufferSource& depth, const PlaneBufferSource& planes)
@@ -86,7 +101,7 @@ public:
     , Planes(planes)
   {
   }
-  void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const override;
+  void Segments(const RayQuery& query, std::vector<Segment>& out) const override;
   bool MayHaveSegments(int px, int py) const override
   {
     return this->Depth.MayHaveSegments(px, py) && this->Planes.MayHaveSegments(px, py);

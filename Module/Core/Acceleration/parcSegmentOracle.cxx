@@ -116,9 +116,9 @@ void SegmentOracle::Intervals(const Ray& ray, double t0, double t1, std::vector<
   }
 }
 
-void SegmentOracle::GetSegments(int, int, const Ray& ray, std::vector<Segment>& out) const
+void SegmentOracle::Segments(const RayQuery& query, std::vector<Segment>& out) const
 {
-  this->Intervals(ray, ray.TMin, ray.TMax, out);
+  this->Intervals(query.Path, query.Path.TMin, query.Path.TMax, out);
 }
 
 } // namespace parc

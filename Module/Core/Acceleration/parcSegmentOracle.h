@@ -30,8 +30,8 @@ public:
   void Intervals(const Ray& ray, double t0, double t1, std::vector<Segment>& out,
     int axis = 0, std::vector<int>* planes = nullptr) const;
 
-  /// Same over [ray.TMin, ray.TMax].
-  void GetSegments(int px, int py, const Ray& ray, std::vector<Segment>& out) const override;
+  /// Same over [TMin, TMax] of the query's ray.
+  void Segments(const RayQuery& query, std::vector<Segment>& out) const override;
 
   /// Tolerance (voxel-index units) within which a point counts as on a boundary.
   double GetTolerance() const { return this->Eps; }

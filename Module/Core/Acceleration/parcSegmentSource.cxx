@@ -5,7 +5,7 @@
 namespace parc
 {
 
-void WholeRaySource::GetSegments(int, int, const Ray&, std::vector<Segment>& out) const
+void WholeRaySource::Segments(const RayQuery&, std::vector<Segment>& out) const
 {
   constexpr double inf = std::numeric_limits<double>::infinity();
   out.push_back({ -inf, inf });

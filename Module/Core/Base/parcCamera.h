@@ -27,6 +27,7 @@ public:
   Vec3 Eye;       ///< camera position (world)
   Vec3 Direction; ///< unit view direction (world)
   double NearDistance = 0.0; ///< near clipping distance along Direction
+  double FarDistance = 0.0;  ///< far clipping distance along Direction
 
   /// Sets WorldToNDC and NDCToWorld; false (the camera unchanged) when worldToNDC is
   /// singular.

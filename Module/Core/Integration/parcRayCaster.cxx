@@ -693,20 +693,21 @@ void Run(Function&& fn, const std::vector<LatticeRange>& ranges, float rgba[4])
 
 } // namespace
 
-void RayCaster::CastRay(const Ray& ray, int px, int py, const SegmentSource& source,
+void RayCaster::CastRay(const RayQuery& query, const SegmentSource& source,
   std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
   CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events) const
 {
   this->Field->Dispatch([&](const auto& field) {
-    this->CastRayIn(field, ray, px, py, source, segments, ranges, rgba, stats, firstHit, events);
+    this->CastRayIn(field, query, source, segments, ranges, rgba, stats, firstHit, events);
   });
 }
 
 template <class View>
-void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
-  const SegmentSource& source, std::vector<Segment>& segments, std::vector<LatticeRange>& ranges,
-  float rgba[4], CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events) const
+void RayCaster::CastRayIn(const View& field, const RayQuery& query, const SegmentSource& source,
+  std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
+  CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events) const
 {
+  const Ray& ray = query.Path;
   rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0.f;
   if (events)
   {
@@ -726,7 +727,7 @@ void RayCaster::CastRayIn(const View& field, const Ray& ray, int px, int py,
   }
   ++stats.Rays;
   segments.clear();
-  source.GetSegments(px, py, ray, segments);
+  source.Segments(query, segments);
   stats.Segments += segments.size();
   const double dt = this->Params->SampleDistance;
   SegmentsToLatticeRanges(segments, tEnter, tExit, dt, ranges);
@@ -786,7 +787,7 @@ struct RayScratch
 template <class Cast, class MayHave>
 struct TileCaster
 {
-  const Cast& CastOne;       ///< casts one ray: (ray, px, py, scratch, rgba)
+  const Cast& CastOne;       ///< casts one ray: (query, scratch, rgba)
   const MayHave& MayHaveRay; ///< (px, py): false when the pixel's ray surely gets nothing
   const Camera& View;
   const float* Depth;
@@ -821,7 +822,7 @@ struct TileCaster
             ray.TMax =
               std::min(ray.TMax, this->View.DepthToParameter(ray, px, py, this->Depth[pixel]));
           }
-          this->CastOne(ray, px, py, scratch, this->Image + 4 * pixel);
+          this->CastOne(RayQuery::AtPixel(ray, px, py), scratch, this->Image + 4 * pixel);
         }
       }
     }
@@ -877,8 +878,8 @@ bool RayCaster::CastImageIn(const View& field, const Camera& view, const float* 
   const SegmentSource& source, float* rgba, CastStatistics& stats,
   const std::function<bool(double)>& progress) const
 {
-  auto castOne = [&](const Ray& ray, int px, int py, RayScratch& scratch, float* pixel) {
-    this->CastRayIn(field, ray, px, py, source, scratch.Segments, scratch.Ranges, pixel,
+  auto castOne = [&](const RayQuery& query, RayScratch& scratch, float* pixel) {
+    this->CastRayIn(field, query, source, scratch.Segments, scratch.Ranges, pixel,
       scratch.Stats, nullptr, nullptr);
   };
   auto mayHave = [&](int px, int py) { return source.MayHaveSegments(px, py); };
@@ -898,7 +899,7 @@ bool SceneCaster::SetMembers(std::vector<Member> members, double terminationOpac
   return true;
 }
 
-void SceneCaster::CastRay(const Ray& ray, int px, int py, std::vector<Segment>& segments,
+void SceneCaster::CastRay(const RayQuery& query, std::vector<Segment>& segments,
   std::vector<LatticeRange>& ranges, std::vector<std::vector<RayEvent>>& events, float rgba[4],
   CastStatistics* stats) const
 {
@@ -909,10 +910,9 @@ void SceneCaster::CastRay(const Ray& ray, int px, int py, std::vector<Segment>& 
   {
     const Member& m = this->Members[v];
     events[v].clear();
-    if (m.Source->MayHaveSegments(px, py))
+    if (!query.HasPixel || m.Source->MayHaveSegments(query.Pixel[0], query.Pixel[1]))
     {
-      m.Caster->CastRay(
-        ray, px, py, *m.Source, segments, ranges, own, stats[v], nullptr, &events[v]);
+      m.Caster->CastRay(query, *m.Source, segments, ranges, own, stats[v], nullptr, &events[v]);
     }
   }
   // Merge by (ray parameter, volume index): each volume's events are in ray order.
@@ -946,9 +946,9 @@ bool SceneCaster::CastImage(const Camera& view, const float* depth, float* rgba,
   std::vector<CastStatistics>& stats, const std::function<bool(double)>& progress) const
 {
   const std::size_t n = this->Members.size();
-  auto castOne = [&](const Ray& ray, int px, int py, RayScratch& scratch, float* pixel) {
+  auto castOne = [&](const RayQuery& query, RayScratch& scratch, float* pixel) {
     scratch.MemberStats.resize(n);
-    this->CastRay(ray, px, py, scratch.Segments, scratch.Ranges, scratch.Events, pixel,
+    this->CastRay(query, scratch.Segments, scratch.Ranges, scratch.Events, pixel,
       scratch.MemberStats.data());
   };
   auto mayHave = [&](int px, int py) {

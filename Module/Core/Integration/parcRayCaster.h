@@ -63,7 +63,7 @@ public:
   /// events (optional) receives the ray's events in ray order (see the file comment); a
   /// composite or isosurface ray still stops where its own opacity reaches the
   /// termination opacity, which the merged opacity has reached by then.
-  void CastRay(const Ray& ray, int px, int py, const SegmentSource& source,
+  void CastRay(const RayQuery& query, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
     CastStatistics& stats, double* firstHit = nullptr,
     std::vector<RayEvent>* events = nullptr) const;
@@ -121,7 +121,7 @@ public:
 
 private:
   template <class View>
-  void CastRayIn(const View& field, const Ray& ray, int px, int py, const SegmentSource& source,
+  void CastRayIn(const View& field, const RayQuery& query, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
     CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events) const;
   template <class View>
@@ -151,7 +151,7 @@ public:
 
   /// One ray's premultiplied RGBA; events holds one scratch vector per member, stats one
   /// entry per member.
-  void CastRay(const Ray& ray, int px, int py, std::vector<Segment>& segments,
+  void CastRay(const RayQuery& query, std::vector<Segment>& segments,
     std::vector<LatticeRange>& ranges, std::vector<std::vector<RayEvent>>& events,
     float rgba[4], CastStatistics* stats) const;
   /// A whole image, like RayCaster::CastImage; stats receives one entry per member.
