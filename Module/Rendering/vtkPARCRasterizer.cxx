@@ -1,6 +1,10 @@
 #include "vtkPARCRasterizer.h"
 
 #include "parcBufferSources.h"
+#include "parcDepthFS.h"
+#include "parcFaceFS.h"
+#include "parcFaceVS.h"
+#include "parcPlaneFS.h"
 #include "parcVTKConversion.h"
 
 #include "vtkCamera.h"
@@ -34,213 +38,13 @@ constexpr double AffineTolerance = 1e-12;
 /// the shaders; the rasterizer test fails without it).
 constexpr float FaceDepthMargin = 1.0e-4f;
 
-// One instance a quad, with the quad's corner, its two edges and its plane (voxel-index
-// coordinates); vertex gl_VertexID (0 to 3) of the instance's triangle strip becomes that
-// corner of the quad's dilated screen bounding box, each vertex computing the same flat
-// outputs. The
-// quad is first clipped to the part in front of MinDepth. The shader also sets up the
-// ratios the fragment shaders evaluate (FaceFragment).
-const char* VertexShader = R"(
-layout(location = 0) in vec3 Corner;
-layout(location = 1) in vec3 Edge1;
-layout(location = 2) in vec3 Edge3;
-layout(location = 3) in int Plane;
-uniform mat4 IndexToRelative;
-uniform mat4 RelativeToClip;
-uniform vec3 ViewDirection;
-uniform float MinDepth;
-uniform vec2 Dilation;
-uniform vec3 SkipNormal;
-uniform float FrameScale;
-uniform vec3 RayBase[3];
-uniform vec3 RayDirection[3];
-flat out vec2 gDepthRange;
-flat out int gPlane;
-flat out vec3 gDenominator;
-flat out vec3 gDepthNumerator;
-flat out vec3 gEdgeNumerator[2];
-flat out vec2 gInverseEdgeLength;
-flat out float gFaceScale;
-// The affine coefficients of (dot(b, q) - c) d + m dot(u, q) for affine d and m.
-vec3 Numerator(vec3 q, float c, vec3 d, vec3 m)
-{
-  vec3 l = vec3(dot(RayBase[0], q) - c, dot(RayBase[1], q), dot(RayBase[2], q));
-  vec3 k = vec3(dot(RayDirection[0], q), dot(RayDirection[1], q), dot(RayDirection[2], q));
-  return vec3(l.x * d.x + m.x * k.x, l.x * d.y + l.y * d.x + m.x * k.y + m.y * k.x,
-    l.x * d.z + l.z * d.x + m.x * k.z + m.z * k.x);
-}
-void main()
-{
-  vec3 corners[4] = vec3[4](Corner, Corner + Edge1, Corner + Edge1 + Edge3, Corner + Edge3);
-  vec3 relative[4];
-  vec4 clip[4];
-  float depth[4];
-  for (int i = 0; i < 4; ++i)
-  {
-    relative[i] = (IndexToRelative * vec4(corners[i], 1.0)).xyz;
-    clip[i] = RelativeToClip * vec4(relative[i], 1.0);
-    depth[i] = dot(relative[i], ViewDirection);
-  }
-  vec2 lo = vec2(3.0e38);
-  vec2 hi = vec2(-3.0e38);
-  float zlo = 3.0e38;
-  float zhi = -3.0e38;
-  for (int i = 0; i < 4; ++i)
-  {
-    int j = (i + 1) % 4;
-    bool inI = depth[i] >= MinDepth;
-    bool inJ = depth[j] >= MinDepth;
-    if (inI)
-    {
-      vec2 ndc = clip[i].xy / clip[i].w;
-      lo = min(lo, ndc);
-      hi = max(hi, ndc);
-      zlo = min(zlo, depth[i]);
-      zhi = max(zhi, depth[i]);
-    }
-    if (inI != inJ)
-    {
-      vec4 c = mix(clip[i], clip[j], (MinDepth - depth[i]) / (depth[j] - depth[i]));
-      vec2 ndc = c.xy / c.w;
-      lo = min(lo, ndc);
-      hi = max(hi, ndc);
-      zlo = min(zlo, MinDepth);
-      zhi = max(zhi, MinDepth);
-    }
-  }
-  gPlane = Plane;
-  gDepthRange = vec2(zlo, zhi);
-  // Nothing in front, or a face the rays cannot enter through (its outward normal, the
-  // edges' cross product, along SkipNormal): a degenerate strip.
-  if (zlo > zhi || dot(cross(Edge1, Edge3), SkipNormal) > 0.0)
-  {
-    gl_Position = vec4(0.0, 0.0, 0.0, 1.0);
-    return;
-  }
-  // Beyond the viewport (NDC -1 to 1) the box only makes the primitive huge: clamped to a
-  // margin around it, so the rasterizer never clips far-away coordinates.
-  lo = max(lo - Dilation, vec2(-2.0));
-  hi = min(hi + Dilation, vec2(2.0));
-  int box = gl_VertexID;
-  gl_Position = vec4((box & 1) != 0 ? hi.x : lo.x, (box & 2) != 0 ? hi.y : lo.y, 0.0, 1.0);
-  // The face's plane dot(n, x) = w (eye-relative world coordinates). The ray through NDC
-  // (x, y) starts at b = RayBase . (1, x, y) and runs along u = RayDirection . (1, x, y); it
-  // meets the plane at p = b + u (w - dot(n, b)) / dot(n, u). For a vector q and offset c,
-  // (dot(p, q) - c) dot(n, u) = (dot(b, q) - c) dot(n, u) + (w - dot(n, b)) dot(u, q) is
-  // affine in (x, y) because b = 0 (perspective) or u is constant (parallel): the depth
-  // (q = view direction) and the face coordinates along both edges are ratios of affine
-  // functions with the common denominator dot(n, u). gFaceScale bounds the magnitudes
-  // they are computed from.
-  vec3 e1 = relative[1] - relative[0];
-  vec3 e3 = relative[3] - relative[0];
-  vec3 n = normalize(cross(e1, e3));
-  float w = dot(n, relative[0]);
-  vec3 m = vec3(w - dot(n, RayBase[0]), -dot(n, RayBase[1]), -dot(n, RayBase[2]));
-  vec3 d = vec3(dot(n, RayDirection[0]), dot(n, RayDirection[1]), dot(n, RayDirection[2]));
-  gDenominator = d;
-  gDepthNumerator = Numerator(ViewDirection, 0.0, d, m);
-  // The face coordinates of a point p of the plane are dot(p - relative[0], q) for the dual
-  // basis q1, q3 of the edges (dot(q1, e1) = dot(q3, e3) = 1, dot(q1, e3) = dot(q3, e1) = 0):
-  // a quad of a sheared volume is a parallelogram whose edges are not orthogonal. A point
-  // at distance r from p changes them by at most r |q|.
-  vec3 normal = cross(e1, e3);
-  vec3 q1 = cross(e3, normal) / dot(normal, normal);
-  vec3 q3 = cross(normal, e1) / dot(normal, normal);
-  gEdgeNumerator[0] = Numerator(q1, dot(relative[0], q1), d, m);
-  gEdgeNumerator[1] = Numerator(q3, dot(relative[0], q3), d, m);
-  gInverseEdgeLength = vec2(length(q1), length(q3));
-  gFaceScale = length(relative[0]) + FrameScale + length(e1) + length(e3) +
-    length(RayBase[0]) + length(RayBase[1]) + length(RayBase[2]);
-}
-)";
-
-// What both fragment shaders share: MeetsFace tests whether the ray through the pixel
-// centre meets the face, within a rounding margin that grows as the ray grazes the face, and
-// narrows the face's depth range to the depth of the hit (both from the ratios the vertex
-// shader set up). Without a usable denominator the face keeps its whole range.
-const char* FaceFragment = R"(
-flat in vec2 gDepthRange;
-flat in vec3 gDenominator;
-flat in vec3 gDepthNumerator;
-flat in vec3 gEdgeNumerator[2];
-flat in vec2 gInverseEdgeLength;
-flat in float gFaceScale;
-flat in int gPlane;
-uniform vec2 PixelToNDC;
-uniform float MarginScale;
-bool MeetsFace(inout vec2 range)
-{
-  vec3 ndc = vec3(1.0, gl_FragCoord.xy * PixelToNDC - 1.0);
-  float denominator = dot(gDenominator, ndc);
-  if (denominator == 0.0)
-  {
-    return true;
-  }
-  float depth = clamp(dot(gDepthNumerator, ndc) / denominator, range.x, range.y);
-  float margin = MarginScale * (gFaceScale + abs(depth)) / abs(denominator);
-  vec2 face = vec2(dot(gEdgeNumerator[0], ndc), dot(gEdgeNumerator[1], ndc)) / denominator;
-  vec2 tolerance = margin * gInverseEdgeLength;
-  if (any(lessThan(face, -tolerance)) || any(greaterThan(face, 1.0 + tolerance)))
-  {
-    return false;
-  }
-  range = vec2(max(range.x, depth - margin), min(range.y, depth + margin));
-  return true;
-}
-)";
-
-// A fragment whose ray misses the face writes the blending's neutral value (faster than
-// discard on llvmpipe).
-const char* DepthFragmentShader = R"(
-uniform float Empty;
-layout(location = 0) out vec4 NearFar;
-void main()
-{
-  vec2 range = gDepthRange;
-  NearFar = MeetsFace(range) ? vec4(range.x, -range.y, 0.0, 0.0) : vec4(Empty, Empty, 0.0, 0.0);
-}
-)";
-
-// The face's plane bit when its ray meets the face and the plane is in this pass; zero
-// (neutral for OR) otherwise.
-const char* PlaneFragmentShader = R"(
-uniform int PlaneBase;
-layout(location = 0) out uvec4 Bits0;
-layout(location = 1) out uvec4 Bits1;
-layout(location = 2) out uvec4 Bits2;
-layout(location = 3) out uvec4 Bits3;
-layout(location = 4) out uvec4 Bits4;
-layout(location = 5) out uvec4 Bits5;
-layout(location = 6) out uvec4 Bits6;
-layout(location = 7) out uvec4 Bits7;
-void main()
-{
-  int p = gPlane - PlaneBase;
-  vec2 range = gDepthRange;
-  uvec4 word = uvec4(0u);
-  if (p >= 0 && p < 1024 && MeetsFace(range))
-  {
-    word[(p >> 5) & 3] = 1u << uint(p & 31);
-  }
-  int a = p >> 7;
-  Bits0 = a == 0 ? word : uvec4(0u);
-  Bits1 = a == 1 ? word : uvec4(0u);
-  Bits2 = a == 2 ? word : uvec4(0u);
-  Bits3 = a == 3 ? word : uvec4(0u);
-  Bits4 = a == 4 ? word : uvec4(0u);
-  Bits5 = a == 5 ? word : uvec4(0u);
-  Bits6 = a == 6 ? word : uvec4(0u);
-  Bits7 = a == 7 ? word : uvec4(0u);
-}
-)";
-
-/// A compiled and linked program of the vertex shader and FaceFragment + fragment.
+/// A compiled and linked program of the vertex shader and parcFaceFS + fragment.
 GLuint BuildProgram(const char* fragment, std::string& error)
 {
   const char* version = "#version 330 core\n";
   const GLenum types[2] = { GL_VERTEX_SHADER, GL_FRAGMENT_SHADER };
-  const std::array<const char*, 3> sources[2] = { { version, VertexShader, "" },
-    { version, FaceFragment, fragment } };
+  const std::array<const char*, 3> sources[2] = { { version, parcFaceVS, "" },
+    { version, parcFaceFS, fragment } };
   const GLuint program = glCreateProgram();
   GLuint shaders[2];
   for (int s = 0; s < 2; ++s)
@@ -572,8 +376,8 @@ bool vtkPARCRasterizer::vtkInternals::Prepare(vtkRenderWindow* window, std::stri
       error = "the OpenGL context is older than 3.3";
       return false;
     }
-    this->DepthProgram = BuildProgram(DepthFragmentShader, error);
-    this->PlaneProgram = this->DepthProgram ? BuildProgram(PlaneFragmentShader, error) : 0;
+    this->DepthProgram = BuildProgram(parcDepthFS, error);
+    this->PlaneProgram = this->DepthProgram ? BuildProgram(parcPlaneFS, error) : 0;
     if (!this->PlaneProgram)
     {
       return false;
