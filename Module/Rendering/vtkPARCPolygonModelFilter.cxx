@@ -1,6 +1,6 @@
 #include "vtkPARCPolygonModelFilter.h"
 
-#include "parcPolygonModel.h"
+#include "parcAccelerationPlan.h"
 #include "parcVTKConversion.h"
 
 #include "vtkCellArray.h"
@@ -36,7 +36,8 @@ class vtkPARCPolygonModelFilter::vtkInternals
 {
 public:
   parc::ScalarField Field;
-  parc::RangePyramid Pyramid;
+  std::uint64_t FieldVersion = 0; ///< counts the fields wrapped
+  parc::AccelerationPlan Plan;    ///< the pyramid is kept while the field is the same
   vtkSmartPointer<vtkDataArray> FieldArray; ///< the values Field reads
   vtkMTimeType FieldTime = 0;
   vtkNew<vtkVolumeProperty> DefaultProperty;
@@ -114,7 +115,7 @@ int vtkPARCPolygonModelFilter::RequestData(
       vtkErrorMacro(<< error);
       return 1;
     }
-    in.Pyramid.Build(in.Field);
+    ++in.FieldVersion;
     in.FieldArray = scalars;
     in.FieldTime = time;
   }
@@ -127,8 +128,9 @@ int vtkPARCPolygonModelFilter::RequestData(
   p.AverageRange[1] = this->AverageIPScalarRange[1];
   parc::ContributionRule rule;
   rule.Set(p, in.Field.GetRange());
-  parc::SupercellGrid grid;
-  if (!grid.Configure(in.Pyramid.GetCellDimensions(), this->SupercellSize))
+  double size[3];
+  if (!in.Plan.Classify(in.Field, in.FieldVersion, rule, p.Interp, this->SupercellSize, size) ||
+    !std::equal(size, size + 3, this->SupercellSize))
   {
     vtkErrorMacro("Invalid supercell size (" << this->SupercellSize[0] << ", "
                                              << this->SupercellSize[1] << ", "
@@ -137,18 +139,12 @@ int vtkPARCPolygonModelFilter::RequestData(
                                                 "make at most 2^28 supercells.");
     return 1;
   }
-  grid.Classify(in.Pyramid, rule, p.Interp);
   this->UpdateProgress(0.5);
 
-  parc::PolygonModel model;
-  if (this->Model == COLOR_MODEL)
-  {
-    parc::BuildColorModel(grid, this->MajorAxis, this->MergeFaces, model);
-  }
-  else
-  {
-    parc::BuildDepthModel(grid, this->MergeFaces, model);
-  }
+  in.Plan.SetMergeFaces(this->MergeFaces != 0);
+  const parc::PolygonModel& model = this->Model == COLOR_MODEL
+    ? in.Plan.GetColorModel(this->MajorAxis, false)
+    : in.Plan.GetDepthModel(false);
   this->UpdateProgress(0.75);
 
   const parc::Matrix4 indexToPhysical = parc::vtk::IndexToPhysical(image);
@@ -179,7 +175,7 @@ int vtkPARCPolygonModelFilter::RequestData(
     std::copy(model.Planes.begin(), model.Planes.end(), planes->GetPointer(0));
     output->GetCellData()->AddArray(planes);
   }
-  const parc::ModelStatistics stats = parc::ComputeStatistics(grid, model);
+  const parc::ModelStatistics stats = parc::ComputeStatistics(in.Plan.GetGrid(), model);
   vtkFieldData* fd = output->GetFieldData();
   AddStatistic(fd, "Cells", static_cast<double>(stats.Cells));
   AddStatistic(fd, "Supercells", static_cast<double>(stats.Supercells));

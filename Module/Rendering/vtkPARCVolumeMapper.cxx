@@ -1,5 +1,6 @@
 #include "vtkPARCVolumeMapper.h"
 
+#include "parcAccelerationPlan.h"
 #include "parcBufferSources.h"
 #include "parcPolygonModel.h"
 #include "parcRayCaster.h"
@@ -41,7 +42,6 @@ namespace
 {
 /// Both models join coplanar neighbouring faces: fewer primitives, and the depth pass is as
 /// tight on a large face as on a small one (it tests each pixel's ray against the face).
-constexpr bool MergeFaces = true;
 
 constexpr float DisplayDepth = 1e-6f; ///< window depth of the displayed image quad
 
@@ -201,112 +201,10 @@ bool HasOtherGeometry(vtkRenderer* ren)
 
 namespace
 {
-/// Auto: each candidate (the passes, and none at all) is tried on one frame when the ray
-/// image size is new; then every frame takes the candidate with the least predicted time.
-/// A candidate's estimate is its fastest representative frame (projection + casting) for
-/// the current classification and view, or, from an earlier classification, that frame
-/// with its projection scaled by the number of PC supercells (the models grow with it).
-/// So an edit of a transfer function brings no trial frames: a candidate runs again only
-/// when it is predicted to be the fastest, and its estimate is then measured afresh. After
-/// the view turns or moves markedly, the next frame of a candidate replaces its estimate
-/// (a view can make any pass dearer or cheaper).
-struct AutoTrials
-{
-  static constexpr int Count = 4;
-  static constexpr int Candidates[Count] = { vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER,
-    vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER, vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_NONE };
-  /// A view change that makes the estimates stale: the view direction turns by more than
-  /// this angle (cosine), or the volume's distance from the eye changes by this fraction.
-  static constexpr double SameDirection = 0.985; // about 10 degrees
-  static constexpr double SameDistance = 0.2;
-  struct Estimate
-  {
-    bool Measured = false;
-    std::uint64_t ModelVersion = 0; ///< of the measured frame
-    std::uint64_t ViewVersion = 0;  ///< of the measured frame
-    std::size_t Contributing = 0;   ///< PC supercells of that frame's classification
-    double Projection = 0.0, Casting = 0.0;
-  };
-  int Size[2] = { 0, 0 };
-  Estimate Estimates[Count];
-  int Chosen = -1; ///< the candidate of the current frame, or -1
-  std::uint64_t ViewVersion = 0;
-  parc::Vec3 Direction;  ///< view direction at the last view change
-  double Distance = 0.0; ///< the volume's distance from the eye then
-
-  /// Notes the view: direction, and the volume's distance from the eye.
-  void SetView(const parc::Vec3& direction, double distance)
-  {
-    if (parc::Dot(direction, this->Direction) < SameDirection ||
-      std::fabs(distance - this->Distance) > SameDistance * this->Distance)
-    {
-      ++this->ViewVersion;
-      this->Direction = direction;
-      this->Distance = distance;
-    }
-  }
-  /// The mode for this frame.
-  int Mode(std::uint64_t modelVersion, std::size_t contributing, int width, int height)
-  {
-    if (width != this->Size[0] || height != this->Size[1])
-    {
-      std::fill_n(this->Estimates, Count, Estimate());
-      this->Size[0] = width;
-      this->Size[1] = height;
-    }
-    this->Chosen = 0;
-    for (int i = 0; i < Count; ++i)
-    {
-      if (!this->Estimates[i].Measured)
-      {
-        this->Chosen = i;
-        return Candidates[i];
-      }
-      if (Predict(this->Estimates[i], modelVersion, contributing) <
-        Predict(this->Estimates[this->Chosen], modelVersion, contributing))
-      {
-        this->Chosen = i;
-      }
-    }
-    return Candidates[this->Chosen];
-  }
-  static double Predict(const Estimate& e, std::uint64_t modelVersion, std::size_t contributing)
-  {
-    const double scale = (e.ModelVersion == modelVersion || e.Contributing == 0)
-      ? 1.0
-      : static_cast<double>(contributing) / static_cast<double>(e.Contributing);
-    return scale * e.Projection + e.Casting;
-  }
-  /// The times of the frame Mode chose. A frame that was aborted or also did set-up work
-  /// (building or uploading a model) does not count.
-  void Record(std::uint64_t modelVersion, std::size_t contributing, double projection,
-    double casting, bool representative)
-  {
-    if (this->Chosen >= 0 && representative)
-    {
-      Estimate& e = this->Estimates[this->Chosen];
-      if (!e.Measured || e.ModelVersion != modelVersion || e.ViewVersion != this->ViewVersion ||
-        projection + casting < e.Projection + e.Casting)
-      {
-        e = { true, modelVersion, this->ViewVersion, contributing, projection, casting };
-      }
-    }
-    this->Chosen = -1;
-  }
-  int Remaining() const
-  {
-    return static_cast<int>(std::count_if(this->Estimates, this->Estimates + Count,
-      [](const Estimate& e) { return !e.Measured; }));
-  }
-};
-
-/// The model of a pass. Its vertices are built when the GPU lacks the model and released
-/// once uploaded: the passes draw the GPU copy.
-struct PassModel
-{
-  parc::PolygonModel Model;
-  std::size_t Quads = 0;
-  bool Current = false; ///< built for the current classification
+/// The modes Auto tries, in the plan's candidate numbering (no pass last).
+constexpr int AutoCandidates[parc::AutoTrials::Count] = {
+  vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER, vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER,
+  vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_NONE
 };
 
 /// What a classification was made from: it is made again when any of it changes.
@@ -348,14 +246,10 @@ public:
   parc::CastStatistics Stats; ///< of the last render
   int LastMode = ACCELERATION_NONE;
 
-  // PARC: cached classification and models, rebuilt only when their inputs change.
-  parc::RangePyramid Pyramid;
-  std::uint64_t PyramidFieldVersion = 0;
-  parc::SupercellGrid Grid;
-  PassModel DepthModel;
-  PassModel ColorModels[3]; ///< per major axis
-  std::uint64_t ModelVersion = 0;
+  // PARC: the classification and models, remade only when their inputs change.
+  parc::AccelerationPlan Plan;
   ClassificationKey Classified;
+  bool ClassifiedOK = false; ///< whether Classified gave a grid
   vtkNew<vtkPARCRasterizer> Rasterizer;
   parc::DepthBufferSource DepthSource;
   parc::PlaneBufferSource PlaneSource;
@@ -367,37 +261,12 @@ public:
   int PlaneCount = 0;
   int PassCount = 0;
   double ProjectionTime = 0.0; ///< of the last render
-  vtkIdType PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
-  double ClassificationTime = 0.0;
-  AutoTrials Trials;
-
-  /// Makes pass hold its model's vertices unless the GPU has the model (built by build).
-  template <class Build>
-  void EnsureModel(PassModel& pass, bool uploaded, Build&& build)
-  {
-    if (!pass.Current || (!uploaded && pass.Model.Vertices.empty()))
-    {
-      build(pass.Model);
-      pass.Quads = pass.Model.GetNumberOfQuads();
-      pass.Current = true;
-      ++this->ModelBuilds;
-    }
-  }
-  /// Frees the vertices of pass once the GPU has them.
-  static void ReleaseUploaded(PassModel& pass, bool uploaded)
-  {
-    if (uploaded)
-    {
-      std::vector<parc::Vec3>().swap(pass.Model.Vertices);
-      std::vector<int>().swap(pass.Model.Planes);
-    }
-  }
 
   /// Frees the buffers and GL objects of the passes a settled mode does not use (Auto
   /// keeps them while it still has modes to try).
   void ReleaseUnusedPasses(vtkRenderWindow* window, bool depth, bool color)
   {
-    if (this->Trials.Remaining() > 0 && this->Trials.Chosen >= 0)
+    if (this->Plan.Auto.Remaining() > 0 && this->Plan.Auto.Chosen >= 0)
     {
       return;
     }
@@ -755,7 +624,7 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
   // The passes of each volume, then one cast of all of them.
   struct SetUp
   {
-    vtkIdType Builds;
+    std::uint64_t Builds;
     std::uint64_t Uploads;
   };
   std::vector<SetUp> before;
@@ -763,8 +632,8 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
   for (const auto& entry : in.Rendered)
   {
     vtkVolumeState& volume = *entry.first;
-    before.push_back({ volume.ModelBuilds, volume.Rasterizer->GetUploadCount() });
-    volume.Trials.Chosen = -1;
+    before.push_back({ volume.Plan.GetModelBuilds(), volume.Rasterizer->GetUploadCount() });
+    volume.Plan.Auto.Chosen = -1;
     const double projectionStart = vtkTimerLog::GetUniversalTime();
     const parc::SegmentSource& source = volume.RunPasses(this, ren, entry.second, passView);
     volume.ProjectionTime = vtkTimerLog::GetUniversalTime() - projectionStart;
@@ -810,9 +679,10 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
     const double share = in.Stats.Samples > 0
       ? static_cast<double>(volume.Stats.Samples) / static_cast<double>(in.Stats.Samples)
       : 1.0 / static_cast<double>(in.Rendered.size());
-    const bool setUp = volume.ModelBuilds != before[v].Builds ||
+    const bool setUp = volume.Plan.GetModelBuilds() != before[v].Builds ||
       volume.Rasterizer->GetUploadCount() != before[v].Uploads;
-    volume.Trials.Record(volume.ModelVersion, volume.Grid.GetNumberOfContributing(),
+    volume.Plan.Auto.Record(volume.Plan.GetModelVersion(),
+      volume.Plan.GetGrid().GetNumberOfContributing(),
       volume.ProjectionTime, share * in.CastingTime, completed && !setUp);
   }
 }
@@ -826,8 +696,9 @@ int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   {
     return requested;
   }
-  const std::size_t pc = in.Grid.GetNumberOfContributing();
-  if (pc == in.Grid.GetNumberOfSupercells())
+  const parc::SupercellGrid& grid = in.Plan.GetGrid();
+  const std::size_t pc = grid.GetNumberOfContributing();
+  if (pc == grid.GetNumberOfSupercells())
   {
     return ACCELERATION_NONE; // every supercell may contribute: no pass can help
   }
@@ -836,8 +707,9 @@ int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   const int* dims = in.Field.GetDimensions();
   const parc::Vec3 centre = in.IndexToFrame.TransformPoint( // the eye is the frame's origin
     { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
-  in.Trials.SetView(camera.Direction, parc::Length(centre));
-  return in.Trials.Mode(in.ModelVersion, pc, camera.Width, camera.Height);
+  in.Plan.Auto.SetView(camera.Direction, parc::Length(centre));
+  return AutoCandidates[in.Plan.Auto.Choose(
+    in.Plan.GetModelVersion(), pc, camera.Width, camera.Height)];
 }
 
 //------------------------------------------------------------------------------
@@ -854,7 +726,8 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     in.ReleaseUnusedPasses(window, false, false);
     return in.WholeRays;
   }
-  if (in.Grid.GetNumberOfContributing() == 0)
+  const parc::SupercellGrid& grid = in.Plan.GetGrid();
+  if (grid.GetNumberOfContributing() == 0)
   {
     in.LastMode = requested;
     in.ReleaseUnusedPasses(window, false, false);
@@ -872,35 +745,38 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   bool ok = true;
   if (depth)
   {
-    PassModel& pass = in.DepthModel;
-    in.EnsureModel(pass, in.Rasterizer->HasModel(window, false, in.ModelVersion),
-      [&](parc::PolygonModel& model) { parc::BuildDepthModel(in.Grid, MergeFaces, model); });
+    const std::uint64_t version = in.Plan.GetModelVersion();
+    const parc::PolygonModel& model =
+      in.Plan.GetDepthModel(in.Rasterizer->HasModel(window, false, version));
     std::vector<float> nearFar = in.DepthSource.ReleaseBuffer();
-    ok = in.Rasterizer->RenderDepth(
-      window, pass.Model, in.ModelVersion, indexToWorld, passView, nearFar);
-    ReleaseUploaded(pass, in.Rasterizer->HasModel(window, false, in.ModelVersion));
-    in.DepthSource.Set(passView.Camera, std::move(nearFar), &in.Grid, in.Parameters.WorldToIndex);
-    in.PolygonCount += static_cast<vtkIdType>(pass.Quads);
+    ok = in.Rasterizer->RenderDepth(window, model, version, indexToWorld, passView, nearFar);
+    if (in.Rasterizer->HasModel(window, false, version))
+    {
+      in.Plan.ReleaseDepthVertices();
+    }
+    in.DepthSource.Set(passView.Camera, std::move(nearFar), &grid, in.Parameters.WorldToIndex);
+    in.PolygonCount += static_cast<vtkIdType>(in.Plan.GetDepthQuads());
   }
   if (ok && color)
   {
     const int axis = MajorAxis(indexToWorld, passView);
-    PassModel& pass = in.ColorModels[axis];
-    const std::uint64_t version = 4 * in.ModelVersion + axis;
-    in.EnsureModel(pass, in.Rasterizer->HasModel(window, true, version),
-      [&](parc::PolygonModel& model) { parc::BuildColorModel(in.Grid, axis, MergeFaces, model); });
+    const std::uint64_t version = in.Plan.GetColorModelVersion(axis);
+    const parc::PolygonModel& model =
+      in.Plan.GetColorModel(axis, in.Rasterizer->HasModel(window, true, version));
     std::vector<std::uint32_t> bits = in.PlaneSource.ReleaseBuffer();
     int words = 0;
     std::vector<parc::Vec3> starts, directions;
     passView.Camera.RayBounds(in.Parameters.WorldToIndex, starts, directions);
-    const parc::PolygonModel& model = pass.Model;
     ok = in.Rasterizer->RenderPlanes(window, model, version, indexToWorld, passView,
       parc::RayAxisSign(model, starts, directions), bits, words, in.PassCount);
-    ReleaseUploaded(pass, in.Rasterizer->HasModel(window, true, version));
-    in.PlaneSource.Set(passView.Camera, std::move(bits), words, &in.Grid, axis, model.FirstPlane,
+    if (in.Rasterizer->HasModel(window, true, version))
+    {
+      in.Plan.ReleaseColorVertices(axis);
+    }
+    in.PlaneSource.Set(passView.Camera, std::move(bits), words, &grid, axis, model.FirstPlane,
       in.Parameters.WorldToIndex);
     in.PlaneCount = model.PlaneCount;
-    in.PolygonCount += static_cast<vtkIdType>(pass.Quads);
+    in.PolygonCount += static_cast<vtkIdType>(in.Plan.GetColorQuads(axis));
   }
   if (!ok)
   {
@@ -926,12 +802,6 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
 //------------------------------------------------------------------------------
 bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
 {
-  if (in.PyramidFieldVersion != in.FieldVersion)
-  {
-    in.Pyramid.Build(in.Field);
-    in.PyramidFieldVersion = in.FieldVersion;
-    ++in.PyramidBuilds;
-  }
   ClassificationKey key;
   key.FieldVersion = in.FieldVersion;
   key.Property = vol->GetProperty();
@@ -941,13 +811,16 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
   std::copy_n(this->SupercellSize, 3, key.Size);
   if (key == in.Classified)
   {
-    return in.Grid.GetNumberOfSupercells() > 0;
+    return in.ClassifiedOK;
   }
   in.Classified = key;
-  const int* cells = in.Pyramid.GetCellDimensions();
+  parc::ContributionRule rule;
+  rule.Set(in.Parameters, in.Field.GetRange());
   const double* requested = this->SupercellSize;
   double size[3];
-  if (!parc::SupercellGrid::FitSize(cells, requested, size) || !in.Grid.Configure(cells, size))
+  in.ClassifiedOK = in.Plan.Classify(in.Field, in.FieldVersion, rule, in.Parameters.Interp,
+    requested, size);
+  if (!in.ClassifiedOK)
   {
     vtkErrorMacro("Invalid supercell size (" << requested[0] << ", " << requested[1] << ", "
                                              << requested[2] << "): casting unaccelerated.");
@@ -956,22 +829,11 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
   if (!std::equal(size, size + 3, requested))
   {
     vtkWarningMacro("Supercell size (" << requested[0] << ", " << requested[1] << ", "
-      << requested[2] << ") would make " << parc::SupercellGrid::CountSupercells(cells, requested)
+      << requested[2] << ") would make "
+      << parc::SupercellGrid::CountSupercells(in.Plan.GetGrid().GetCellDimensions(), requested)
       << " supercells, more than the " << parc::SupercellGrid::MaxSupercells
       << " allowed: using (" << size[0] << ", " << size[1] << ", " << size[2] << ").");
   }
-  const double start = vtkTimerLog::GetUniversalTime();
-  parc::ContributionRule rule;
-  rule.Set(in.Parameters, in.Field.GetRange());
-  in.Grid.Classify(in.Pyramid, rule, in.Parameters.Interp);
-  in.ClassificationTime = vtkTimerLog::GetUniversalTime() - start;
-  in.DepthModel.Current = false;
-  for (PassModel& pass : in.ColorModels)
-  {
-    pass.Current = false;
-  }
-  ++in.ModelVersion;
-  ++in.Classifications;
   return true;
 }
 
@@ -1050,7 +912,7 @@ vtkIdType vtkPARCVolumeMapper::GetLastGradientCount()
 }
 int vtkPARCVolumeMapper::GetAutoTrialsRemaining()
 {
-  return this->Internals->Sum<int>([](const vtkVolumeState& v) { return v.Trials.Remaining(); });
+  return this->Internals->Sum<int>([](const vtkVolumeState& v) { return v.Plan.Auto.Remaining(); });
 }
 
 //------------------------------------------------------------------------------
@@ -1093,12 +955,12 @@ vtkIdType vtkPARCVolumeMapper::GetLastCellCount()
 vtkIdType vtkPARCVolumeMapper::GetLastSupercellCount()
 {
   return this->Internals->Sum<vtkIdType>(
-    [](const vtkVolumeState& v) { return v.Grid.GetNumberOfSupercells(); });
+    [](const vtkVolumeState& v) { return v.Plan.GetGrid().GetNumberOfSupercells(); });
 }
 vtkIdType vtkPARCVolumeMapper::GetLastContributingSupercellCount()
 {
   return this->Internals->Sum<vtkIdType>(
-    [](const vtkVolumeState& v) { return v.Grid.GetNumberOfContributing(); });
+    [](const vtkVolumeState& v) { return v.Plan.GetGrid().GetNumberOfContributing(); });
 }
 int vtkPARCVolumeMapper::GetLastPlaneCount()
 {
@@ -1111,20 +973,22 @@ int vtkPARCVolumeMapper::GetLastPassCount()
 double vtkPARCVolumeMapper::GetLastClassificationTime()
 {
   return this->Internals->Sum<double>(
-    [](const vtkVolumeState& v) { return v.ClassificationTime; });
+    [](const vtkVolumeState& v) { return v.Plan.GetClassificationTime(); });
 }
 vtkIdType vtkPARCVolumeMapper::GetPyramidBuildCount()
 {
-  return this->Internals->Sum<vtkIdType>([](const vtkVolumeState& v) { return v.PyramidBuilds; });
+  return this->Internals->Sum<vtkIdType>(
+    [](const vtkVolumeState& v) { return static_cast<vtkIdType>(v.Plan.GetPyramidBuilds()); });
 }
 vtkIdType vtkPARCVolumeMapper::GetClassificationCount()
 {
   return this->Internals->Sum<vtkIdType>(
-    [](const vtkVolumeState& v) { return v.Classifications; });
+    [](const vtkVolumeState& v) { return static_cast<vtkIdType>(v.Plan.GetClassifications()); });
 }
 vtkIdType vtkPARCVolumeMapper::GetModelBuildCount()
 {
-  return this->Internals->Sum<vtkIdType>([](const vtkVolumeState& v) { return v.ModelBuilds; });
+  return this->Internals->Sum<vtkIdType>(
+    [](const vtkVolumeState& v) { return static_cast<vtkIdType>(v.Plan.GetModelBuilds()); });
 }
 vtkIdType vtkPARCVolumeMapper::GetModelUploadCount()
 {
@@ -1191,9 +1055,9 @@ void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
       os << "Port " << v.Port << ":\n";
     }
     os << indent << "Acceleration: " << GetAccelerationModeAsString(v.LastMode) << "\n"
-       << indent << "Auto trials remaining: " << v.Trials.Remaining() << "\n"
-       << indent << "Supercells: " << v.Grid.GetNumberOfSupercells() << " ("
-       << v.Grid.GetNumberOfContributing() << " possibly contributing)\n"
+       << indent << "Auto trials remaining: " << v.Plan.Auto.Remaining() << "\n"
+       << indent << "Supercells: " << v.Plan.GetGrid().GetNumberOfSupercells() << " ("
+       << v.Plan.GetGrid().GetNumberOfContributing() << " possibly contributing)\n"
        << indent << "Polygons: " << v.PolygonCount << "\n"
        << indent << "Planes: " << v.PlaneCount << " in " << v.PassCount << " passes\n"
        << indent << "Samples: " << v.Stats.Samples << "\n";
@@ -1213,16 +1077,11 @@ void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
 std::vector<std::pair<const char*, std::size_t>>
 vtkPARCVolumeMapper::vtkVolumeState::Memory() const
 {
-  std::size_t colorModels = 0;
-  for (const PassModel& pass : this->ColorModels)
-  {
-    colorModels += pass.Model.GetMemorySize();
-  }
   return { { "scalar copy", this->Field.GetMemorySize() },
-    { "range pyramid", this->Pyramid.GetMemorySize() },
-    { "supercell flags", this->Grid.GetMemorySize() },
-    { "depth model", this->DepthModel.Model.GetMemorySize() },
-    { "colour models", colorModels },
+    { "range pyramid", this->Plan.GetPyramidMemorySize() },
+    { "supercell flags", this->Plan.GetGrid().GetMemorySize() },
+    { "depth model", this->Plan.GetDepthModelMemorySize() },
+    { "colour models", this->Plan.GetColorModelsMemorySize() },
     { "depth buffer", this->DepthSource.GetMemorySize() },
     { "bit-plane buffer", this->PlaneSource.GetMemorySize() },
     { "OpenGL models and targets", this->Rasterizer->GetMemorySize() } };

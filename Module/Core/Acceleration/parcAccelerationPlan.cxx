@@ -1,0 +1,155 @@
+#include "parcAccelerationPlan.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace parc
+{
+
+void AutoTrials::SetView(const Vec3& direction, double distance)
+{
+  if (Dot(direction, this->Direction) < SameDirection ||
+    std::fabs(distance - this->Distance) > SameDistance * this->Distance)
+  {
+    ++this->ViewVersion;
+    this->Direction = direction;
+    this->Distance = distance;
+  }
+}
+
+int AutoTrials::Choose(std::uint64_t modelVersion, std::size_t contributing, int width, int height)
+{
+  if (width != this->Size[0] || height != this->Size[1])
+  {
+    std::fill_n(this->Estimates, Count, Estimate());
+    this->Size[0] = width;
+    this->Size[1] = height;
+  }
+  this->Chosen = 0;
+  for (int i = 0; i < Count; ++i)
+  {
+    if (!this->Estimates[i].Measured)
+    {
+      this->Chosen = i;
+      return i;
+    }
+    if (Predict(this->Estimates[i], modelVersion, contributing) <
+      Predict(this->Estimates[this->Chosen], modelVersion, contributing))
+    {
+      this->Chosen = i;
+    }
+  }
+  return this->Chosen;
+}
+
+double AutoTrials::Predict(const Estimate& e, std::uint64_t modelVersion, std::size_t contributing)
+{
+  const double scale = (e.ModelVersion == modelVersion || e.Contributing == 0)
+    ? 1.0
+    : static_cast<double>(contributing) / static_cast<double>(e.Contributing);
+  return scale * e.Projection + e.Casting;
+}
+
+void AutoTrials::Record(std::uint64_t modelVersion, std::size_t contributing, double projection,
+  double casting, bool representative)
+{
+  if (this->Chosen >= 0 && representative)
+  {
+    Estimate& e = this->Estimates[this->Chosen];
+    if (!e.Measured || e.ModelVersion != modelVersion || e.ViewVersion != this->ViewVersion ||
+      projection + casting < e.Projection + e.Casting)
+    {
+      e = { true, modelVersion, this->ViewVersion, contributing, projection, casting };
+    }
+  }
+  this->Chosen = -1;
+}
+
+int AutoTrials::Remaining() const
+{
+  return static_cast<int>(std::count_if(this->Estimates, this->Estimates + Count,
+    [](const Estimate& e) { return !e.Measured; }));
+}
+
+void AccelerationPlan::SetMergeFaces(bool merge)
+{
+  if (merge != this->MergeFaces)
+  {
+    this->MergeFaces = merge;
+    this->Depth.Current = false;
+    for (PassModel& pass : this->Color)
+    {
+      pass.Current = false;
+    }
+    ++this->ModelVersion;
+  }
+}
+
+bool AccelerationPlan::Classify(const ScalarField& field, std::uint64_t fieldVersion,
+  const ContributionRule& rule, Interpolation interpolation, const double size[3],
+  double fitted[3])
+{
+  if (!this->HavePyramid || this->PyramidFieldVersion != fieldVersion)
+  {
+    this->Pyramid.Build(field);
+    this->PyramidFieldVersion = fieldVersion;
+    this->HavePyramid = true;
+    ++this->PyramidBuilds;
+  }
+  this->Depth.Current = false;
+  for (PassModel& pass : this->Color)
+  {
+    pass.Current = false;
+  }
+  ++this->ModelVersion;
+  const int* cells = this->Pyramid.GetCellDimensions();
+  if (!SupercellGrid::FitSize(cells, size, fitted) || !this->Grid.Configure(cells, fitted))
+  {
+    this->Grid = SupercellGrid();
+    return false;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  this->Grid.Classify(this->Pyramid, rule, interpolation);
+  this->ClassificationTime =
+    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  ++this->Classifications;
+  return true;
+}
+
+const PolygonModel& AccelerationPlan::Ensure(PassModel& pass, int axis, bool uploaded)
+{
+  if (!pass.Current || (!uploaded && pass.Model.Vertices.empty()))
+  {
+    if (axis < 0)
+    {
+      BuildDepthModel(this->Grid, this->MergeFaces, pass.Model);
+    }
+    else
+    {
+      BuildColorModel(this->Grid, axis, this->MergeFaces, pass.Model);
+    }
+    pass.Quads = pass.Model.GetNumberOfQuads();
+    pass.Current = true;
+    ++this->ModelBuilds;
+  }
+  return pass.Model;
+}
+
+void AccelerationPlan::Release(PassModel& pass)
+{
+  std::vector<Vec3>().swap(pass.Model.Vertices);
+  std::vector<int>().swap(pass.Model.Planes);
+}
+
+std::size_t AccelerationPlan::GetColorModelsMemorySize() const
+{
+  std::size_t bytes = 0;
+  for (const PassModel& pass : this->Color)
+  {
+    bytes += pass.Model.GetMemorySize();
+  }
+  return bytes;
+}
+
+} // namespace parc

@@ -1,0 +1,147 @@
+// PARC for VTK: the acceleration plan of one volume (DESIGN.md section 9), shared by the
+// mapper and the polygon-model filter: the range pyramid, the supercell classification,
+// the polygon models of the passes with their versions, and Auto's measurements. No GL:
+// the caller draws the models and says whether its GPU holds a model's version already.
+//
+// Pyramid and classification are remade only when asked: the pyramid when the field's
+// version changes, the classification on every Classify (the caller decides, from what
+// it knows of its inputs, when the ray function changed). Each classification makes a new
+// model version; a model's vertices are built once per version, and only while the caller
+// does not hold an uploaded copy.
+#ifndef parcAccelerationPlan_h
+#define parcAccelerationPlan_h
+
+#include "parcClassification.h"
+#include "parcMath.h"
+#include "parcPolygonModel.h"
+#include "parcSupercellGrid.h"
+
+#include <cstddef>
+#include <cstdint>
+
+namespace parc
+{
+
+/// Auto: each candidate pass (0 to Count - 1, the caller's numbering; the last is "no pass")
+/// is tried on one frame when the ray image size is new; then every frame takes the
+/// candidate with the least predicted time. A candidate's estimate is its fastest
+/// representative frame (projection + casting) for the current classification and view,
+/// or, from an earlier classification, that frame with its projection scaled by the number
+/// of PC supercells (the models grow with it). So an edit of a transfer function brings no
+/// trial frames: a candidate runs again only when it is predicted to be the fastest, and
+/// its estimate is then measured afresh. After the view turns or moves markedly, the next
+/// frame of a candidate replaces its estimate (a view can make any pass dearer or cheaper).
+struct AutoTrials
+{
+  static constexpr int Count = 4;
+  /// A view change that makes the estimates stale: the view direction turns by more than
+  /// this angle (cosine), or the volume's distance from the eye changes by this fraction.
+  static constexpr double SameDirection = 0.985; // about 10 degrees
+  static constexpr double SameDistance = 0.2;
+  struct Estimate
+  {
+    bool Measured = false;
+    std::uint64_t ModelVersion = 0; ///< of the measured frame
+    std::uint64_t ViewVersion = 0;  ///< of the measured frame
+    std::size_t Contributing = 0;   ///< PC supercells of that frame's classification
+    double Projection = 0.0, Casting = 0.0;
+  };
+  int Size[2] = { 0, 0 };
+  Estimate Estimates[Count];
+  int Chosen = -1; ///< the candidate of the current frame, or -1
+  std::uint64_t ViewVersion = 0;
+  Vec3 Direction;        ///< view direction at the last view change
+  double Distance = 0.0; ///< the volume's distance from the eye then
+
+  /// Notes the view: direction, and the volume's distance from the eye.
+  void SetView(const Vec3& direction, double distance);
+  /// The candidate for this frame.
+  int Choose(std::uint64_t modelVersion, std::size_t contributing, int width, int height);
+  /// The times of the frame Choose chose. A frame that was aborted or also did set-up work
+  /// (building or uploading a model) does not count.
+  void Record(std::uint64_t modelVersion, std::size_t contributing, double projection,
+    double casting, bool representative);
+  /// Candidates not measured yet.
+  int Remaining() const;
+
+private:
+  static double Predict(const Estimate& e, std::uint64_t modelVersion, std::size_t contributing);
+};
+
+class AccelerationPlan
+{
+public:
+  /// Joins coplanar neighbouring faces in the models (fewer primitives; the depth pass is
+  /// as tight on a large face as on a small one).
+  void SetMergeFaces(bool merge);
+
+  /// Makes the pyramid again if fieldVersion (the caller's count of the fields it wrapped)
+  /// changed, then classifies the supercells of size (cells per axis; scaled up uniformly
+  /// into fitted when it would make more than SupercellGrid::MaxSupercells) under rule.
+  /// field must outlive the plan's use. False, the grid empty, for an invalid size.
+  bool Classify(const ScalarField& field, std::uint64_t fieldVersion,
+    const ContributionRule& rule, Interpolation interpolation, const double size[3],
+    double fitted[3]);
+
+  const SupercellGrid& GetGrid() const { return this->Grid; }
+  /// Counts the classifications: the version of the models.
+  std::uint64_t GetModelVersion() const { return this->ModelVersion; }
+  /// The version of the colour model along axis: distinct for each axis and classification.
+  std::uint64_t GetColorModelVersion(int axis) const { return 4 * this->ModelVersion + axis; }
+
+  /// The depth model of the current classification, its vertices built unless uploaded
+  /// (the caller's GPU holds this version and needs none).
+  const PolygonModel& GetDepthModel(bool uploaded) { return this->Ensure(this->Depth, -1, uploaded); }
+  /// The colour model along axis, likewise.
+  const PolygonModel& GetColorModel(int axis, bool uploaded)
+  {
+    return this->Ensure(this->Color[axis], axis, uploaded);
+  }
+  /// Quads of the pass's model (known also when its vertices were released).
+  std::size_t GetDepthQuads() const { return this->Depth.Quads; }
+  std::size_t GetColorQuads(int axis) const { return this->Color[axis].Quads; }
+  /// Frees a model's vertices once the caller's GPU holds them.
+  void ReleaseDepthVertices() { Release(this->Depth); }
+  void ReleaseColorVertices(int axis) { Release(this->Color[axis]); }
+
+  /// Work done so far (statistics).
+  std::uint64_t GetPyramidBuilds() const { return this->PyramidBuilds; }
+  std::uint64_t GetClassifications() const { return this->Classifications; }
+  std::uint64_t GetModelBuilds() const { return this->ModelBuilds; }
+  /// Seconds of the last classification.
+  double GetClassificationTime() const { return this->ClassificationTime; }
+
+  /// Bytes held by the pyramid, the supercell flags, the depth model and the colour models.
+  std::size_t GetPyramidMemorySize() const { return this->Pyramid.GetMemorySize(); }
+  std::size_t GetDepthModelMemorySize() const { return this->Depth.Model.GetMemorySize(); }
+  std::size_t GetColorModelsMemorySize() const;
+
+  AutoTrials Auto; ///< Auto's measurements for this volume
+
+private:
+  struct PassModel
+  {
+    PolygonModel Model;
+    std::size_t Quads = 0;
+    bool Current = false; ///< built for the current classification
+  };
+  /// Builds pass's model (axis -1: the depth model) unless it is current and either has its
+  /// vertices or is uploaded.
+  const PolygonModel& Ensure(PassModel& pass, int axis, bool uploaded);
+  static void Release(PassModel& pass);
+
+  bool MergeFaces = true;
+  RangePyramid Pyramid;
+  std::uint64_t PyramidFieldVersion = 0;
+  bool HavePyramid = false;
+  SupercellGrid Grid;
+  PassModel Depth;
+  PassModel Color[3]; ///< per major axis
+  std::uint64_t ModelVersion = 0;
+  std::uint64_t PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
+  double ClassificationTime = 0.0;
+};
+
+} // namespace parc
+
+#endif
