@@ -315,6 +315,28 @@ public:
   /// Bytes held per structure (see GetMemorySize).
   std::vector<std::pair<const char*, std::size_t>> Memory() const;
 
+  // The phases of a render after the volumes are prepared (see Render).
+  /// The ray image's view for the renderer's camera; false (nothing to cast) when the
+  /// viewport is empty or the projection singular.
+  bool MakeView(vtkPARCVolumeMapper* self, vtkRenderer* ren, vtkPARCRasterizer::View& view);
+  /// The window depth of the other geometry under each ray-image pixel.
+  const float* ReadGeometryDepth(vtkRenderer* ren, const parc::Camera& rays);
+  /// What set-up work the volumes have done so far: a frame that did some does not count
+  /// for Auto.
+  struct SetUpWork
+  {
+    std::uint64_t ModelBuilds, Uploads;
+  };
+  std::vector<SetUpWork> CountSetUpWork() const;
+  /// Runs each volume's PARC passes: the volumes with the segment source each casts with.
+  std::vector<parc::SceneCaster::Member> RunPasses(
+    vtkPARCVolumeMapper* self, vtkRenderer* ren, const vtkPARCRasterizer::View& view);
+  /// Casts the ray image; false when aborted.
+  bool Cast(vtkPARCVolumeMapper* self, vtkRenderer* ren, const parc::Camera& rays,
+    const float* depth, const std::vector<parc::SceneCaster::Member>& members);
+  /// Gives each volume's Auto the times of this frame.
+  void RecordAuto(const std::vector<SetUpWork>& before, bool completed);
+
   vtkVolumeState& At(int port)
   {
     if (static_cast<std::size_t>(port) >= this->Volumes.size())
@@ -377,12 +399,30 @@ const char* vtkPARCVolumeMapper::GetAccelerationModeAsString(int mode)
 //------------------------------------------------------------------------------
 void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
+  // The phases: the volumes' fields and ray functions; then for the camera the ray image's
+  // view, the depth of other geometry, each volume's PARC passes, one cast of all volumes
+  // and Auto's bookkeeping (CastImage); last the image over the viewport.
   vtkInternals& in = *this->Internals;
   const double renderStart = vtkTimerLog::GetUniversalTime();
   this->SetAbortExecute(0); // like an algorithm's execution, each render starts un-aborted
   in.Stats = parc::CastStatistics();
   in.CastingTime = in.ProjectionTime = 0.0;
   in.ImageSize[0] = in.ImageSize[1] = 0; // no image until a cast fills one
+  if (this->PrepareVolumes(ren, vol))
+  {
+    this->InvokeEvent(vtkCommand::VolumeMapperRenderStartEvent, nullptr);
+    this->CastImage(ren);
+    this->InvokeEvent(vtkCommand::VolumeMapperRenderEndEvent, nullptr);
+    this->DisplayImage(ren, vol);
+  }
+  in.RenderTime = vtkTimerLog::GetUniversalTime() - renderStart;
+  this->TimeToDraw = in.RenderTime;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPARCVolumeMapper::PrepareVolumes(vtkRenderer* ren, vtkVolume* vol)
+{
+  vtkInternals& in = *this->Internals;
   in.Rendered.clear();
   for (const auto& input : CollectInputs(this, vol))
   {
@@ -395,8 +435,7 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     if (!this->PrepareField(volume) || !this->PrepareParameters(volume, ren, input.second))
     {
       in.Rendered.clear();
-      in.RenderTime = vtkTimerLog::GetUniversalTime() - renderStart;
-      return;
+      return false;
     }
     in.Rendered.emplace_back(&volume, input.second);
   }
@@ -404,15 +443,9 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   {
     vtkErrorMacro("The multi-volume holds no vtkVolume for a connected input port; nothing "
                   "is drawn.");
-    in.RenderTime = vtkTimerLog::GetUniversalTime() - renderStart;
-    return;
+    return false;
   }
-  this->InvokeEvent(vtkCommand::VolumeMapperRenderStartEvent, nullptr);
-  this->CastImage(ren);
-  this->InvokeEvent(vtkCommand::VolumeMapperRenderEndEvent, nullptr);
-  this->DisplayImage(ren, vol);
-  in.RenderTime = vtkTimerLog::GetUniversalTime() - renderStart;
-  this->TimeToDraw = in.RenderTime;
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -586,104 +619,148 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
 void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
 {
   vtkInternals& in = *this->Internals;
-  int width, height, x0, y0;
-  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  vtkPARCRasterizer::View view;
+  if (!in.MakeView(this, ren, view))
+  {
+    return;
+  }
+  const float* depth = this->IntermixIntersectingGeometry && HasOtherGeometry(ren)
+    ? in.ReadGeometryDepth(ren, view.Camera)
+    : nullptr;
+  const std::vector<vtkInternals::SetUpWork> before = in.CountSetUpWork();
+  const std::vector<parc::SceneCaster::Member> members = in.RunPasses(this, ren, view);
+  const bool completed = in.Cast(this, ren, view.Camera, depth, members);
+  in.RecordAuto(before, completed);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPARCVolumeMapper::vtkInternals::MakeView(
+  vtkPARCVolumeMapper* self, vtkRenderer* ren, vtkPARCRasterizer::View& view)
+{
+  int width, height;
+  ren->GetTiledSize(&width, &height);
   if (width < 1 || height < 1)
   {
-    return;
+    return false;
   }
-  vtkPARCRasterizer::View passView;
-  const parc::Camera& view = passView.Camera;
-  if (!vtkPARCRasterizer::MakeView(ren,
-        std::max(1, static_cast<int>(width / this->ImageSampleDistance)),
-        std::max(1, static_cast<int>(height / this->ImageSampleDistance)), passView))
+  const double step = self->ImageSampleDistance;
+  if (!vtkPARCRasterizer::MakeView(ren, std::max(1, static_cast<int>(width / step)),
+        std::max(1, static_cast<int>(height / step)), view))
   {
-    vtkErrorMacro("The camera's projection is singular.");
-    return;
+    vtkErrorWithObjectMacro(self, "The camera's projection is singular.");
+    return false;
   }
-  const std::size_t pixels = static_cast<std::size_t>(view.Width) * view.Height;
-  const float* depth = nullptr;
-  if (this->IntermixIntersectingGeometry && HasOtherGeometry(ren))
-  {
-    std::vector<float> screen(static_cast<std::size_t>(width) * height);
-    ren->GetRenderWindow()->GetZbufferData(x0, y0, x0 + width - 1, y0 + height - 1, screen.data());
-    in.Depth.resize(pixels);
-    for (int py = 0; py < view.Height; ++py)
-    {
-      const int sy = std::min(height - 1, static_cast<int>((py + 0.5) * height / view.Height));
-      for (int px = 0; px < view.Width; ++px)
-      {
-        const int sx = std::min(width - 1, static_cast<int>((px + 0.5) * width / view.Width));
-        in.Depth[static_cast<std::size_t>(py) * view.Width + px] =
-          screen[static_cast<std::size_t>(sy) * width + sx];
-      }
-    }
-    depth = in.Depth.data();
-  }
+  return true;
+}
 
-  // The passes of each volume, then one cast of all of them.
-  struct SetUp
+//------------------------------------------------------------------------------
+const float* vtkPARCVolumeMapper::vtkInternals::ReadGeometryDepth(
+  vtkRenderer* ren, const parc::Camera& rays)
+{
+  int width, height, x0, y0;
+  ren->GetTiledSizeAndOrigin(&width, &height, &x0, &y0);
+  std::vector<float> screen(static_cast<std::size_t>(width) * height);
+  ren->GetRenderWindow()->GetZbufferData(x0, y0, x0 + width - 1, y0 + height - 1, screen.data());
+  this->Depth.resize(static_cast<std::size_t>(rays.Width) * rays.Height);
+  for (int py = 0; py < rays.Height; ++py)
   {
-    std::uint64_t Builds;
-    std::uint64_t Uploads;
-  };
-  std::vector<SetUp> before;
+    const int sy = std::min(height - 1, static_cast<int>((py + 0.5) * height / rays.Height));
+    for (int px = 0; px < rays.Width; ++px)
+    {
+      const int sx = std::min(width - 1, static_cast<int>((px + 0.5) * width / rays.Width));
+      this->Depth[static_cast<std::size_t>(py) * rays.Width + px] =
+        screen[static_cast<std::size_t>(sy) * width + sx];
+    }
+  }
+  return this->Depth.data();
+}
+
+//------------------------------------------------------------------------------
+std::vector<vtkPARCVolumeMapper::vtkInternals::SetUpWork>
+vtkPARCVolumeMapper::vtkInternals::CountSetUpWork() const
+{
+  std::vector<SetUpWork> work;
+  for (const auto& entry : this->Rendered)
+  {
+    work.push_back(
+      { entry.first->Plan.GetModelBuilds(), entry.first->Rasterizer->GetUploadCount() });
+  }
+  return work;
+}
+
+//------------------------------------------------------------------------------
+std::vector<parc::SceneCaster::Member> vtkPARCVolumeMapper::vtkInternals::RunPasses(
+  vtkPARCVolumeMapper* self, vtkRenderer* ren, const vtkPARCRasterizer::View& view)
+{
   std::vector<parc::SceneCaster::Member> members;
-  for (const auto& entry : in.Rendered)
+  for (const auto& entry : this->Rendered)
   {
     vtkVolumeState& volume = *entry.first;
-    before.push_back({ volume.Plan.GetModelBuilds(), volume.Rasterizer->GetUploadCount() });
     volume.Plan.Auto.Chosen = -1;
-    const double projectionStart = vtkTimerLog::GetUniversalTime();
-    const parc::SegmentSource& source = volume.RunPasses(this, ren, entry.second, passView);
-    volume.ProjectionTime = vtkTimerLog::GetUniversalTime() - projectionStart;
-    in.ProjectionTime += volume.ProjectionTime;
+    const double start = vtkTimerLog::GetUniversalTime();
+    const parc::SegmentSource& source = volume.RunPasses(self, ren, entry.second, view);
+    volume.ProjectionTime = vtkTimerLog::GetUniversalTime() - start;
+    this->ProjectionTime += volume.ProjectionTime;
     members.push_back({ &volume.Caster, &source });
   }
-  in.Image.resize(4 * pixels);
-  in.ImageSize[0] = view.Width;
-  in.ImageSize[1] = view.Height;
+  return members;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPARCVolumeMapper::vtkInternals::Cast(vtkPARCVolumeMapper* self, vtkRenderer* ren,
+  const parc::Camera& rays, const float* depth,
+  const std::vector<parc::SceneCaster::Member>& members)
+{
+  this->Image.resize(4 * static_cast<std::size_t>(rays.Width) * rays.Height);
+  this->ImageSize[0] = rays.Width;
+  this->ImageSize[1] = rays.Height;
   vtkRenderWindow* window = ren->GetRenderWindow();
-  auto progress = [this, window](double fraction) {
-    this->UpdateProgress(fraction);
-    return !this->GetAbortExecute() && !window->CheckAbortStatus();
+  auto progress = [self, window](double fraction) {
+    self->UpdateProgress(fraction);
+    return !self->GetAbortExecute() && !window->CheckAbortStatus();
   };
-  const double castStart = vtkTimerLog::GetUniversalTime();
+  const double start = vtkTimerLog::GetUniversalTime();
   bool completed;
   if (members.size() == 1)
   {
-    vtkVolumeState& volume = *in.Rendered[0].first;
+    vtkVolumeState& volume = *this->Rendered[0].first;
     completed = volume.Caster.CastImage(
-      view, depth, *members[0].Source, in.Image.data(), volume.Stats, progress);
+      rays, depth, *members[0].Source, this->Image.data(), volume.Stats, progress);
   }
   else
   {
-    in.Scene.SetMembers(members, this->TerminationOpacity);
-    completed = in.Scene.CastImage(view, depth, in.Image.data(), in.MemberStats, progress);
+    this->Scene.SetMembers(members, self->TerminationOpacity);
+    completed = this->Scene.CastImage(rays, depth, this->Image.data(), this->MemberStats, progress);
     for (std::size_t v = 0; v < members.size(); ++v)
     {
-      in.Rendered[v].first->Stats = in.MemberStats[v];
+      this->Rendered[v].first->Stats = this->MemberStats[v];
     }
   }
-  in.CastingTime = vtkTimerLog::GetUniversalTime() - castStart;
-  // Each volume's Auto estimate takes its own projection and its share of the casting, in
-  // proportion to its samples.
-  for (std::size_t v = 0; v < in.Rendered.size(); ++v)
+  this->CastingTime = vtkTimerLog::GetUniversalTime() - start;
+  for (const auto& entry : this->Rendered)
   {
-    vtkVolumeState& volume = *in.Rendered[v].first;
-    in.Stats += volume.Stats;
+    this->Stats += entry.first->Stats;
   }
-  for (std::size_t v = 0; v < in.Rendered.size(); ++v)
+  return completed;
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
+  const std::vector<SetUpWork>& before, bool completed)
+{
+  // Each volume's estimate takes its own projection and its share of the casting, in
+  // proportion to its samples.
+  for (std::size_t v = 0; v < this->Rendered.size(); ++v)
   {
-    vtkVolumeState& volume = *in.Rendered[v].first;
-    const double share = in.Stats.Samples > 0
-      ? static_cast<double>(volume.Stats.Samples) / static_cast<double>(in.Stats.Samples)
-      : 1.0 / static_cast<double>(in.Rendered.size());
-    const bool setUp = volume.Plan.GetModelBuilds() != before[v].Builds ||
+    vtkVolumeState& volume = *this->Rendered[v].first;
+    const double share = this->Stats.Samples > 0
+      ? static_cast<double>(volume.Stats.Samples) / static_cast<double>(this->Stats.Samples)
+      : 1.0 / static_cast<double>(this->Rendered.size());
+    const bool setUp = volume.Plan.GetModelBuilds() != before[v].ModelBuilds ||
       volume.Rasterizer->GetUploadCount() != before[v].Uploads;
     volume.Plan.Auto.Record(volume.Plan.GetModelVersion(),
-      volume.Plan.GetGrid().GetNumberOfContributing(),
-      volume.ProjectionTime, share * in.CastingTime, completed && !setUp);
+      volume.Plan.GetGrid().GetNumberOfContributing(), volume.ProjectionTime,
+      share * this->CastingTime, completed && !setUp);
   }
 }
 

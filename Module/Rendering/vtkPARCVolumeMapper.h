@@ -260,6 +260,11 @@ protected:
 
   class vtkVolumeState;
   /**
+   * Render's first phase: prepares the volumes of vol (itself, or a multi-volume's) with
+   * PrepareField and PrepareParameters; false (nothing drawn) on bad input.
+   */
+  bool PrepareVolumes(vtkRenderer* ren, vtkVolume* vol);
+  /**
    * Updates the input of the volume's port and converts its scalars when they changed;
    * false on bad input.
    */
@@ -269,7 +274,10 @@ protected:
    * the renderer's lights into the caster's parameters.
    */
   bool PrepareParameters(vtkVolumeState& volume, vtkRenderer* ren, vtkVolume* prop);
-  /** Casts the ray image for the renderer's camera (statistics and times included). */
+  /**
+   * Render's middle phases for the renderer's camera: the ray image's view, the depth of
+   * other geometry, each volume's PARC passes, the cast, Auto's measurements.
+   */
   void CastImage(vtkRenderer* ren);
   /** Classifies and builds the volume's polygon models when their inputs changed. */
   bool PrepareModels(vtkVolumeState& volume, vtkVolume* prop);
