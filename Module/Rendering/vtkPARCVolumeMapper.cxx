@@ -249,7 +249,6 @@ public:
   // PARC: the classification and models, remade only when their inputs change.
   parc::AccelerationPlan Plan;
   ClassificationKey Classified;
-  bool ClassifiedOK = false; ///< whether Classified gave a grid
   vtkNew<vtkPARCRasterizer> Rasterizer;
   parc::DepthBufferSource DepthSource;
   parc::PlaneBufferSource PlaneSource;
@@ -888,16 +887,14 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
   std::copy_n(this->SupercellSize, 3, key.Size);
   if (key == in.Classified)
   {
-    return in.ClassifiedOK;
+    return in.Plan.GetGrid().GetNumberOfSupercells() > 0; // empty after a failed one
   }
   in.Classified = key;
   parc::ContributionRule rule;
   rule.Set(in.Parameters, in.Field.GetRange());
   const double* requested = this->SupercellSize;
   double size[3];
-  in.ClassifiedOK = in.Plan.Classify(in.Field, in.FieldVersion, rule, in.Parameters.Interp,
-    requested, size);
-  if (!in.ClassifiedOK)
+  if (!in.Plan.Classify(in.Field, in.FieldVersion, rule, in.Parameters.Interp, requested, size))
   {
     vtkErrorMacro("Invalid supercell size (" << requested[0] << ", " << requested[1] << ", "
                                              << requested[2] << "): casting unaccelerated.");

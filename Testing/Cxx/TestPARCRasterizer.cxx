@@ -56,6 +56,7 @@ bool CheckLine(const parc::Ray& ray, double t0, double t1, const parc::SegmentOr
 {
   std::vector<parc::Segment> ideal, got;
   oracle.Intervals(ray, t0, t1, ideal);
+  double kept = 0.0; ///< how much of [t0, t1] the depth source (the first) keeps
   for (const parc::SegmentSource* source : sources)
   {
     got.clear();
@@ -64,16 +65,15 @@ bool CheckLine(const parc::Ray& ray, double t0, double t1, const parc::SegmentOr
     {
       return false;
     }
+    if (source == sources[0])
+    {
+      for (const parc::Segment& s : got)
+      {
+        kept += std::max(0.0, std::min(s.TFar, t1) - std::max(s.TNear, t0));
+      }
+    }
   }
   ++tally.Lines;
-  // How much of [t0, t1] the depth source (the first) leaves out.
-  got.clear();
-  sources[0]->Segments(parc::RayQuery::Anywhere(ray), got);
-  double kept = 0.0;
-  for (const parc::Segment& s : got)
-  {
-    kept += std::max(0.0, std::min(s.TFar, t1) - std::max(s.TNear, t0));
-  }
   tally.TightLines += kept < 0.999 * (t1 - t0) ? 1 : 0;
   return true;
 }

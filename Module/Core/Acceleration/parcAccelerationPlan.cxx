@@ -77,12 +77,7 @@ void AccelerationPlan::SetMergeFaces(bool merge)
   if (merge != this->MergeFaces)
   {
     this->MergeFaces = merge;
-    this->Depth.Current = false;
-    for (PassModel& pass : this->Color)
-    {
-      pass.Current = false;
-    }
-    ++this->ModelVersion;
+    this->NewModelVersion();
   }
 }
 
@@ -97,12 +92,7 @@ bool AccelerationPlan::Classify(const ScalarField& field, std::uint64_t fieldVer
     this->HavePyramid = true;
     ++this->PyramidBuilds;
   }
-  this->Depth.Current = false;
-  for (PassModel& pass : this->Color)
-  {
-    pass.Current = false;
-  }
-  ++this->ModelVersion;
+  this->NewModelVersion();
   const int* cells = this->Pyramid.GetCellDimensions();
   if (!SupercellGrid::FitSize(cells, size, fitted) || !this->Grid.Configure(cells, fitted))
   {
@@ -115,6 +105,16 @@ bool AccelerationPlan::Classify(const ScalarField& field, std::uint64_t fieldVer
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++this->Classifications;
   return true;
+}
+
+void AccelerationPlan::NewModelVersion()
+{
+  this->Depth.Current = false;
+  for (PassModel& pass : this->Color)
+  {
+    pass.Current = false;
+  }
+  ++this->ModelVersion;
 }
 
 const PolygonModel& AccelerationPlan::Ensure(PassModel& pass, int axis, bool uploaded)

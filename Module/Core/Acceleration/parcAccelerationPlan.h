@@ -125,6 +125,8 @@ private:
     std::size_t Quads = 0;
     bool Current = false; ///< built for the current classification
   };
+  /// Marks every model stale under a new version (a new classification or face merging).
+  void NewModelVersion();
   /// Builds pass's model (axis -1: the depth model) unless it is current and either has its
   /// vertices or is uploaded.
   const PolygonModel& Ensure(PassModel& pass, int axis, bool uploaded);

@@ -28,6 +28,13 @@ double VolumeScale(const SupercellGrid& grid)
 
 const Segment WholeLine{ -Infinity, Infinity };
 
+/// The common part of a and b into s; false when they do not overlap.
+bool Intersect(const Segment& a, const Segment& b, Segment& s)
+{
+  s = { std::max(a.TNear, b.TNear), std::min(a.TFar, b.TFar) };
+  return s.TNear <= s.TFar;
+}
+
 /// What a query without a pixel reads of a pass (see the file comment): the pixels whose
 /// centres surround the line's image point (columns X, rows Y), and the line's view depth
 /// as depth(t) = Depth0 + t * Cosine.
@@ -201,13 +208,16 @@ void PlaneBufferSource::Set(const Camera& view, std::vector<std::uint32_t> bits,
   this->WorldToIndex = worldToIndex;
 }
 
+const std::uint32_t* PlaneBufferSource::PixelWords(int px, int py) const
+{
+  return this->Bits.data() + PixelIndex(this->View, px, py) * this->WordsPerPixel;
+}
+
 void PlaneBufferSource::Segments(const RayQuery& query, std::vector<Segment>& out) const
 {
   if (query.HasPixel)
   {
-    this->EmitSlabs(
-      this->Bits.data() + PixelIndex(this->View, query.Pixel[0], query.Pixel[1]) * this->WordsPerPixel,
-      query.Path, out);
+    this->EmitSlabs(this->PixelWords(query.Pixel[0], query.Pixel[1]), query.Path, out);
     return;
   }
   LineFootprint f;
@@ -222,8 +232,7 @@ void PlaneBufferSource::Segments(const RayQuery& query, std::vector<Segment>& ou
   {
     for (const int px : f.X)
     {
-      const std::uint32_t* words =
-        this->Bits.data() + PixelIndex(this->View, px, py) * this->WordsPerPixel;
+      const std::uint32_t* words = this->PixelWords(px, py);
       for (int w = 0; w < this->WordsPerPixel; ++w)
       {
         merged[w] |= words[w];
@@ -285,15 +294,14 @@ void PlaneBufferSource::EmitSlabs(
 
 bool PlaneBufferSource::MayHaveSegments(int px, int py) const
 {
-  const std::uint32_t* words =
-    this->Bits.data() + PixelIndex(this->View, px, py) * this->WordsPerPixel;
+  const std::uint32_t* words = this->PixelWords(px, py);
   return std::any_of(words, words + this->WordsPerPixel, [](std::uint32_t w) { return w != 0; });
 }
 
 void PlaneBufferSource::PixelPlanes(int px, int py, std::vector<int>& planes) const
 {
   planes.clear();
-  const std::uint32_t* words = this->Bits.data() + PixelIndex(this->View, px, py) * this->WordsPerPixel;
+  const std::uint32_t* words = this->PixelWords(px, py);
   for (int w = 0; w < this->WordsPerPixel; ++w)
   {
     for (std::uint32_t word = words[w]; word != 0; word &= word - 1)
@@ -317,8 +325,8 @@ void BothSource::Segments(const RayQuery& query, std::vector<Segment>& out) cons
     std::size_t kept = begin;
     for (std::size_t i = begin; i < out.size(); ++i)
     {
-      const Segment s{ std::max(out[i].TNear, limit.TNear), std::min(out[i].TFar, limit.TFar) };
-      if (s.TNear <= s.TFar)
+      Segment s;
+      if (Intersect(out[i], limit, s))
       {
         out[kept++] = s;
       }
@@ -334,8 +342,8 @@ void BothSource::Segments(const RayQuery& query, std::vector<Segment>& out) cons
   {
     for (const Segment& slab : slabs)
     {
-      const Segment s{ std::max(slab.TNear, limit.TNear), std::min(slab.TFar, limit.TFar) };
-      if (s.TNear <= s.TFar)
+      Segment s;
+      if (Intersect(slab, limit, s))
       {
         out.push_back(s);
       }

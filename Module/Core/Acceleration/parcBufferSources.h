@@ -80,6 +80,8 @@ public:
   void PixelPlanes(int px, int py, std::vector<int>& planes) const;
 
 private:
+  /// The WordsPerPixel words of pixel (px, py).
+  const std::uint32_t* PixelWords(int px, int py) const;
   /// The slabs of the set planes of words (WordsPerPixel of them) along ray.
   void EmitSlabs(const std::uint32_t* words, const Ray& ray, std::vector<Segment>& out) const;
 
