@@ -366,46 +366,6 @@ TEST(RayCaster, SparseSegmentsGiveBitIdenticalImages)
   }
 }
 
-// The caster's own skip of cells that fail the contribution rule changes no bit, for every
-// ray function it applies to, with shading, gradient opacity and opacity correction.
-TEST(RayCaster, SkippingEmptyCellsGivesBitIdenticalImages)
-{
-  const parc::ScalarField field = Blobs();
-  for (BlendMode mode : { BlendMode::Composite, BlendMode::Additive })
-  {
-    for (double dt : { 1.0, 0.5, 0.37 })
-    {
-      for (int variant = 0; variant < 3; ++variant) // plain, shaded, gradient opacity
-      {
-        CastParameters p;
-        p.Opacity.SetNodes({ 0.0, 60.0, 90.0, 140.0, 200.0 }, { 0.0, 0.0, 0.3, 0.0, 0.8 }, true);
-        p.Color.SetTable(0.0, 255.0, { 1.f, 0.f, 0.f, 0.f, 1.f, 0.5f });
-        p.Blend = mode;
-        p.SampleDistance = dt;
-        p.Shade = variant == 1;
-        p.UseGradientOpacity = variant == 2;
-        p.GradientOpacity.SetNodes({ 0.0, 30.0 }, { 0.2, 1.0 }, true);
-        parc::Light light;
-        light.Position = { 0.0, 50.0, 50.0 };
-        p.Lights = { light };
-        const parc::Camera view = ParallelView(48, 40, 0.4);
-        std::vector<float> skipped(4 * 48 * 40), full(4 * 48 * 40);
-        parc::CastStatistics s1, s2;
-        parc::RayCaster caster;
-        ASSERT_TRUE(caster.Prepare(&field, &p));
-        caster.CastImage(view, nullptr, parc::WholeRaySource(), skipped.data(), s1);
-        p.SkipEmptyCells = false;
-        ASSERT_TRUE(caster.Prepare(&field, &p));
-        caster.CastImage(view, nullptr, parc::WholeRaySource(), full.data(), s2);
-        EXPECT_EQ(0, std::memcmp(skipped.data(), full.data(), full.size() * sizeof(float)))
-          << "mode " << static_cast<int>(mode) << " dt " << dt << " variant " << variant;
-        EXPECT_EQ(s1.ContributingSamples, s2.ContributingSamples);
-        EXPECT_GT(s1.ContributingSamples, 0u);
-      }
-    }
-  }
-}
-
 // A gradient opacity that is the same everywhere (VTK creates a constant 1 on any
 // GetGradientOpacity call) costs no gradient, and a constant factor scales the opacity.
 TEST(RayCaster, ConstantGradientOpacityNeedsNoGradient)

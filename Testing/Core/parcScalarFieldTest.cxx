@@ -7,6 +7,7 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <random>
 #include <vector>
@@ -30,6 +31,56 @@ TEST(ScalarField, TrilinearReproducesLinearFieldsAndVoxelValues)
   }
   EXPECT_EQ(field.SampleLinear({ 2, 3, 4 }), field.GetValue(2, 3, 4));
   EXPECT_EQ(field.SampleLinear({ 4, 5, 6 }), field.GetValue(4, 5, 6)) << "the far corner";
+}
+
+// The caster takes a ray's lattice samples in blocks: each must be the same bits as the
+// sample at its own position, and its location the cell and fractions of that position.
+TEST(ScalarField, LatticeBlocksAreTheSamplesAtTheirPositions)
+{
+  const int n[3] = { 9, 7, 8 };
+  std::vector<std::uint16_t> values(9 * 7 * 8);
+  std::mt19937 rng(5);
+  for (auto& v : values)
+  {
+    v = static_cast<std::uint16_t>(rng() % 4000);
+  }
+  parc::ScalarField field;
+  field.Wrap(values.data(), n);
+  std::uniform_real_distribution<double> u(-2.0, 10.0);
+  std::size_t outside = 0;
+  for (int ray = 0; ray < 300; ++ray)
+  {
+    const parc::Vec3 o{ u(rng), u(rng), u(rng) };
+    const parc::Vec3 d = parc::Normalized(parc::Vec3{ u(rng), u(rng), u(rng) } - o);
+    const double dt = 0.05 + 0.5 * (ray % 7) / 7.0;
+    const long k0 = static_cast<long>(rng() % 40) - 5;
+    const int count = 1 + static_cast<int>(rng() % 8);
+    for (auto mode : { parc::Interpolation::Linear, parc::Interpolation::Nearest })
+    {
+      float block[8];
+      parc::SampleLocation where[8];
+      field.Dispatch([&](const auto& view) {
+        view.SampleLattice(o, d, dt, k0, count, mode, block, where);
+      });
+      for (int j = 0; j < count; ++j)
+      {
+        const parc::Vec3 p = o + (static_cast<double>(k0 + j) * dt) * d;
+        const float expected = field.Sample(p, mode);
+        EXPECT_EQ(0, std::memcmp(&expected, &block[j], sizeof(float))) << ray << " " << j;
+        if (mode == parc::Interpolation::Linear)
+        {
+          const parc::Vec3 g = field.Dispatch([&](const auto& view) {
+            parc::CellDifferences differences;
+            return view.Gradient(p, mode, differences, &where[j]);
+          });
+          const parc::Vec3 expectedG = field.Gradient(p, mode);
+          EXPECT_EQ(0, std::memcmp(&g, &expectedG, sizeof(g))) << ray << " " << j;
+        }
+        outside += (p.X < 0.0 || p.X > 8.0 || p.Y < 0.0 || p.Y > 6.0 || p.Z < 0.0 || p.Z > 7.0);
+      }
+    }
+  }
+  EXPECT_GT(outside, 100u) << "clamped positions are tested too";
 }
 
 TEST(ScalarField, NearestRoundsAndOutsideIsClamped)

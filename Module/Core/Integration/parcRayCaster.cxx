@@ -16,6 +16,9 @@ namespace
 {
 constexpr int TileSize = 16;        ///< ray-image pixels per tile edge
 constexpr int TileRowsPerBand = 4;  ///< tile rows cast between two progress reports
+/// Lattice samples taken together along a ray; a ray that stops early has taken at most
+/// this many - 1 in vain.
+constexpr int SampleBlockSize = 8;
 constexpr int RegulaFalsiSteps = 2; ///< isosurface refinement steps
 /// Specular powers up to this whole number are computed by repeated squaring.
 constexpr double MaxIntegerSpecularPower = 1024.0;
@@ -86,12 +89,6 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
         Vec3f(parameters->Diffuse * light.Color), Vec3f(parameters->Specular * light.Color) });
     }
   }
-  k.SkipEmptyCells = parameters->SkipEmptyCells && parameters->Interp == Interpolation::Linear &&
-    (parameters->Blend == BlendMode::Composite || parameters->Blend == BlendMode::Additive);
-  if (k.SkipEmptyCells)
-  {
-    k.Rule.Set(*parameters, field->GetRange());
-  }
   k.SortedIsoValues = UsedIsoValues(*parameters);
   return true;
 }
@@ -144,8 +141,10 @@ struct RayContext
   double FirstHit = std::numeric_limits<double>::infinity();
   /// Where the ray's events go (several volumes), or null.
   std::vector<RayEvent>* Events = nullptr;
-  /// The corners of the cell the last lattice sample was in.
-  CellCorners Corners;
+  /// The block of lattice samples taken last: their values and (linear interpolation)
+  /// their locations.
+  float Values[SampleBlockSize];
+  SampleLocation Where[SampleBlockSize];
   /// The voxel differences of the cell the last gradient was taken in.
   CellDifferences Differences;
   /// Unit vector from the samples to the eye (parallel light rays: the same for all).
@@ -197,49 +196,30 @@ struct RayContext
   }
 
   Vec3 IndexPosition(double t) const { return this->IndexOrigin + t * this->IndexDirection; }
-  PARC_HOT_INLINE float SampleAt(double t)
+  /// Takes lattice samples k0 .. k0 + n - 1 (n <= SampleBlockSize) into Values and Where.
+  PARC_HOT_INLINE void SampleBlock(long k0, int n)
   {
-    ++this->Stats.Samples;
-    return this->Field.Sample(this->IndexPosition(t), this->P.Interp, this->Corners);
+    this->Field.SampleLattice(this->IndexOrigin, this->IndexDirection, this->Dt, k0, n,
+      this->P.Interp, this->Values, this->Where);
   }
-  /// The sample at t in s, or false (s unset) for a sample in a cell that cannot contribute
-  /// when the caster skips such cells: its opacity would be exactly 0.
-  PARC_HOT_INLINE bool ContributingSampleAt(double t, float& s)
+  /// The location of sample j of the block, when the interpolation located it.
+  const SampleLocation* Located(int j) const
   {
-    if (!this->K.SkipEmptyCells)
-    {
-      s = this->SampleAt(t);
-      return true;
-    }
-    ++this->Stats.Samples;
-    float f[3];
-    if (this->Field.LocateCell(this->IndexPosition(t), this->Corners, f))
-    {
-      const float* c = this->Corners.Values;
-      const auto range = std::minmax({ c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7] });
-      this->Corners.Contributing = this->K.Rule.IsPossiblyContributing(range.first, range.second);
-    }
-    if (!this->Corners.Contributing)
-    {
-      return false;
-    }
-    s = View::Interpolate(this->Corners.Values, f);
-    return true;
+    return this->P.Interp == Interpolation::Linear ? &this->Where[j] : nullptr;
   }
-  /// The world-space gradient at ray parameter t; atLastSample when t is the lattice sample
-  /// just taken (its cell and fractions are reused).
-  Vec3f WorldGradient(double t, bool atLastSample)
+  /// The world-space gradient at ray parameter t; located (optional) is t's location.
+  Vec3f WorldGradient(double t, const SampleLocation* located)
   {
     ++this->Stats.GradientEvaluations;
-    const Vec3f g(this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences,
-      atLastSample ? &this->Corners : nullptr));
+    const Vec3f g(
+      this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences, located));
     const float* m = this->K.GradientToWorld;
     return { m[0] * g.X + m[1] * g.Y + m[2] * g.Z, m[3] * g.X + m[4] * g.Y + m[5] * g.Z,
       m[6] * g.X + m[7] * g.Y + m[8] * g.Z };
   }
   /// Scales opacity a by the gradient opacity of gradient g (computed only when needed);
   /// false when the result is 0.
-  bool ApplyGradientOpacity(float& a, double t, Vec3f& g, bool& haveGradient)
+  bool ApplyGradientOpacity(float& a, int j, double t, Vec3f& g, bool& haveGradient)
   {
     if (!this->P.UseGradientOpacity)
     {
@@ -253,23 +233,19 @@ struct RayContext
     {
       if (!haveGradient)
       {
-        g = this->WorldGradient(t, true);
+        g = this->WorldGradient(t, this->Located(j));
         haveGradient = true;
       }
       a *= this->P.GradientOpacity.Evaluate(Length(g));
     }
     return a != 0.f;
   }
-  /// The sample s at t and its corrected opacity a (with gradient opacity; g holds the
-  /// gradient when haveGradient), counted and recorded as a hit; false when a is 0.
-  bool ContributingOpacity(double t, float& s, float& a, Vec3f& g, bool& haveGradient)
+  /// The corrected opacity a of sample j of the block, at t (with gradient opacity; g holds
+  /// the gradient when haveGradient), counted and recorded as a hit; false when a is 0.
+  bool ContributingOpacity(int j, double t, float& a, Vec3f& g, bool& haveGradient)
   {
-    if (!this->ContributingSampleAt(t, s))
-    {
-      return false;
-    }
-    a = this->P.Opacity.Evaluate(s);
-    if (a == 0.f || !this->ApplyGradientOpacity(a, t, g, haveGradient))
+    a = this->P.Opacity.Evaluate(this->Values[j]);
+    if (a == 0.f || !this->ApplyGradientOpacity(a, j, t, g, haveGradient))
     {
       return false;
     }
@@ -401,8 +377,10 @@ void Premultiply(const float rgb[3], float a, float rgba[4])
   rgba[3] = a;
 }
 
-// Each ray function: bool operator()(long k, bool previousSampled) visits lattice sample
-// k (false stops the ray) and Finish(rgba) writes the result.
+// Each ray function: bool operator()(long k0, int n, bool follows, int& visited) visits
+// lattice samples k0 .. k0 + n - 1, taken into the context's block (follows: k0 - 1 was
+// visited just before); false stops the ray after the first `visited` of them. Finish(rgba)
+// writes the result.
 
 template <class Context>
 struct CompositeFunction
@@ -411,23 +389,32 @@ struct CompositeFunction
   Context& C;
   EventCompositor Out;
 
-  bool operator()(long k, bool)
+  bool operator()(long k0, int n, bool, int& visited)
   {
-    const double t = k * this->C.Dt;
-    float s, a;
-    Vec3f g;
-    bool haveGradient = false;
-    if (!this->C.ContributingOpacity(t, s, a, g, haveGradient))
+    this->C.SampleBlock(k0, n);
+    for (int j = 0; j < n; ++j)
     {
-      return true;
+      const double t = (k0 + j) * this->C.Dt;
+      float a;
+      Vec3f g;
+      bool haveGradient = false;
+      if (!this->C.ContributingOpacity(j, t, a, g, haveGradient))
+      {
+        continue;
+      }
+      float rgb[3];
+      this->C.P.Color.Lookup(this->C.Values[j], rgb);
+      if (this->C.P.Shade)
+      {
+        this->C.Shade(rgb, t, haveGradient ? g : this->C.WorldGradient(t, this->C.Located(j)));
+      }
+      if (!this->C.Over(this->Out, t, rgb, a))
+      {
+        visited = j + 1;
+        return false;
+      }
     }
-    float rgb[3];
-    this->C.P.Color.Lookup(s, rgb);
-    if (this->C.P.Shade)
-    {
-      this->C.Shade(rgb, t, haveGradient ? g : this->C.WorldGradient(t, true));
-    }
-    return this->C.Over(this->Out, t, rgb, a);
+    return true;
   }
   void Finish(float rgba[4]) const { this->Out.Finish(rgba); }
 };
@@ -442,15 +429,18 @@ struct ExtremeFunction
   bool Found = false;
   double ExtremeAt = 0.0; ///< the first sample with the extreme value
 
-  bool operator()(long k, bool)
+  bool operator()(long k0, int n, bool, int&)
   {
-    const double t = k * this->C.Dt;
-    const float s = this->C.SampleAt(t);
-    if (!this->Found || Sign * s > Sign * this->Extreme)
+    this->C.SampleBlock(k0, n);
+    for (int j = 0; j < n; ++j)
     {
-      this->Extreme = s;
-      this->Found = true;
-      this->ExtremeAt = t;
+      const float s = this->C.Values[j];
+      if (!this->Found || Sign * s > Sign * this->Extreme)
+      {
+        this->Extreme = s;
+        this->Found = true;
+        this->ExtremeAt = (k0 + j) * this->C.Dt;
+      }
     }
     return true;
   }
@@ -478,19 +468,22 @@ struct AverageFunction
   std::uint64_t Count = 0;
   double FirstAt = 0.0; ///< the first averaged sample
 
-  bool operator()(long k, bool)
+  bool operator()(long k0, int n, bool, int&)
   {
-    const double t = k * this->C.Dt;
-    const float s = this->C.SampleAt(t);
-    if (s >= this->C.P.AverageRange[0] && s <= this->C.P.AverageRange[1])
+    this->C.SampleBlock(k0, n);
+    for (int j = 0; j < n; ++j)
     {
-      if (this->Count == 0)
+      const float s = this->C.Values[j];
+      if (s >= this->C.P.AverageRange[0] && s <= this->C.P.AverageRange[1])
       {
-        this->FirstAt = t;
+        if (this->Count == 0)
+        {
+          this->FirstAt = (k0 + j) * this->C.Dt;
+        }
+        this->Sum += s;
+        ++this->Count;
+        ++this->C.Stats.ContributingSamples;
       }
-      this->Sum += s;
-      ++this->Count;
-      ++this->C.Stats.ContributingSamples;
     }
     return true;
   }
@@ -517,22 +510,26 @@ struct AdditiveFunction
   float Rgb[3] = { 0.f, 0.f, 0.f };
   float Alpha = 0.f;
 
-  bool operator()(long k, bool)
+  bool operator()(long k0, int n, bool, int&)
   {
-    float s, a;
-    Vec3f g;
-    bool haveGradient = false;
-    if (!this->C.ContributingOpacity(k * this->C.Dt, s, a, g, haveGradient))
+    this->C.SampleBlock(k0, n);
+    for (int j = 0; j < n; ++j)
     {
-      return true;
+      float a;
+      Vec3f g;
+      bool haveGradient = false;
+      if (!this->C.ContributingOpacity(j, (k0 + j) * this->C.Dt, a, g, haveGradient))
+      {
+        continue;
+      }
+      float rgb[3];
+      this->C.P.Color.Lookup(this->C.Values[j], rgb);
+      for (int c = 0; c < 3; ++c)
+      {
+        this->Rgb[c] += a * rgb[c];
+      }
+      this->Alpha += a;
     }
-    float rgb[3];
-    this->C.P.Color.Lookup(s, rgb);
-    for (int c = 0; c < 3; ++c)
-    {
-      this->Rgb[c] += a * rgb[c];
-    }
-    this->Alpha += a;
     return true;
   }
   void Finish(float rgba[4]) const
@@ -595,15 +592,28 @@ struct IsoSurfaceFunction
     this->C.P.Color.Lookup(v, rgb);
     if (this->C.P.Shade)
     {
-      this->C.Shade(rgb, t, this->C.WorldGradient(t, false));
+      this->C.Shade(rgb, t, this->C.WorldGradient(t, nullptr));
     }
     return this->C.Over(this->Out, t, rgb, a);
   }
 
-  bool operator()(long k, bool previousSampled)
+  bool operator()(long k0, int n, bool follows, int& visited)
   {
-    const double t1 = k * this->C.Dt;
-    const float s1 = this->C.SampleAt(t1);
+    this->C.SampleBlock(k0, n);
+    for (int j = 0; j < n; ++j)
+    {
+      if (!this->Crossings((k0 + j) * this->C.Dt, this->C.Values[j], j > 0 || follows))
+      {
+        visited = j + 1;
+        return false;
+      }
+    }
+    return true;
+  }
+  /// Composites the crossings between the previous sample and sample s1 at t1; false once
+  /// the ray may stop.
+  bool Crossings(double t1, float s1, bool previousSampled)
+  {
     const float s0 = this->Previous;
     this->Previous = s1;
     if (!previousSampled || s0 == s1)
@@ -645,21 +655,27 @@ std::uint64_t CellsCrossed(const Vec3& a, const Vec3& b)
   return n;
 }
 
-/// Visits the lattice samples of ranges in order; returns the last one visited.
+/// Visits the lattice samples of ranges in order, in blocks, and counts them; returns the
+/// last one visited.
 template <class Function>
 long Walk(const std::vector<LatticeRange>& ranges, Function& fn)
 {
   long previous = std::numeric_limits<long>::min();
   for (const LatticeRange& r : ranges)
   {
-    for (long k = std::max(r.First, previous + 1); k <= r.Last; ++k)
+    for (long k0 = std::max(r.First, previous + 1); k0 <= r.Last;)
     {
-      const bool follows = (k == previous + 1);
-      previous = k;
-      if (!fn(k, follows))
+      const int n = static_cast<int>(std::min<long>(SampleBlockSize, r.Last - k0 + 1));
+      const bool follows = (k0 == previous + 1);
+      int visited = n;
+      const bool more = fn(k0, n, follows, visited);
+      fn.C.Stats.Samples += static_cast<std::uint64_t>(visited);
+      previous = k0 + visited - 1;
+      if (!more)
       {
-        return k;
+        return previous;
       }
+      k0 += n;
     }
   }
   return previous;

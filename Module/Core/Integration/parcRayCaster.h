@@ -31,7 +31,6 @@
 
 #include "parcCamera.h"
 #include "parcCastParameters.h"
-#include "parcClassification.h"
 #include "parcCompositor.h"
 #include "parcRay.h"
 #include "parcScalarField.h"
@@ -115,8 +114,6 @@ public:
     std::vector<DirectionalLight> DirectionalLights;
     std::vector<PositionalLight> PositionalLights;
     std::vector<double> SortedIsoValues;
-    bool SkipEmptyCells = false; ///< the parameters' SkipEmptyCells, where it applies
-    ContributionRule Rule;       ///< what SkipEmptyCells tests each cell against
   };
 
 private:

@@ -66,10 +66,6 @@ struct CastParameters
   /// ... and to the rendered cropping regions (voxel-index coordinates). A sample outside
   /// them is never taken, whatever the acceleration.
   Cropping Crop;
-  /// Composite and additive rays with linear interpolation do not interpolate samples in
-  /// cells whose 8 corners fail the contribution rule (parcClassification.h): such samples
-  /// have opacity exactly 0, so the image is the same bit for bit. Off only to test that.
-  bool SkipEmptyCells = true;
 };
 
 /// The iso values the isosurface ray function uses, for the caster and the classification

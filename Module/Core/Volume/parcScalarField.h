@@ -63,15 +63,12 @@ constexpr ScalarType ScalarTypeOf()
   }
 }
 
-/// The 8 corner values of the cell a ray sampled last: consecutive samples in one cell
-/// reuse them (the same values, so the same sample bits).
-struct CellCorners
+/// Where a sample lies: its cell, its fractions in the cell and the cell's first voxel.
+struct SampleLocation
 {
-  std::ptrdiff_t Offset = -1; ///< the cell's first voxel, or -1
-  float Values[8];
-  bool Contributing = true; ///< the caller's verdict on the cell (see RayCaster)
-  int Cell[3] = { 0, 0, 0 }; ///< the cell of the last located point
-  float Fractions[3] = { 0.f, 0.f, 0.f }; ///< that point's fractions in the cell
+  int Cell[3];
+  float Fractions[3];
+  std::ptrdiff_t Offset;
 };
 
 /// The voxel differences v(c + e_a) - v(c - e_a) at the 8 corners of the cell a ray's
@@ -124,29 +121,33 @@ public:
     this->Locate(p, cell, f);
     return this->Trilinear(cell, f);
   }
-  /// The same, reusing (and updating) the corners of the cell sampled last.
-  PARC_HOT_INLINE float SampleLinear(const Vec3& p, CellCorners& corners) const
+  /// The samples of the lattice o + (k dt) d (index coordinates) for k = k0 .. k0 + n - 1:
+  /// their values, and for linear interpolation their locations (where, n entries). Each
+  /// sample is the same arithmetic as Sample(o + (k dt) d); no branch depends on the data,
+  /// so that a block of samples costs the same wherever it lies.
+  PARC_HOT_INLINE void SampleLattice(const Vec3& o, const Vec3& d, double dt, long k0, int n,
+    Interpolation mode, float* values, SampleLocation* where) const
   {
-    float f[3];
-    this->LocateCell(p, corners, f);
-    return Interpolate(corners.Values, f);
-  }
-  /// Makes corners hold the cell of p (loading them unless it is the cell they hold) and
-  /// sets f to p's fractions in it; true when the cell changed.
-  PARC_HOT_INLINE bool LocateCell(const Vec3& p, CellCorners& corners, float f[3]) const
-  {
-    int* cell = corners.Cell;
-    this->Locate(p, cell, f);
-    std::copy_n(f, 3, corners.Fractions);
-    const std::ptrdiff_t offset =
-      cell[0] * this->Step[0] + cell[1] * this->Step[1] + cell[2] * this->Step[2];
-    if (offset == corners.Offset)
+    if (mode == Interpolation::Nearest)
     {
-      return false;
+      for (int j = 0; j < n; ++j)
+      {
+        values[j] = this->SampleNearest(o + (static_cast<double>(k0 + j) * dt) * d);
+      }
+      return;
     }
-    this->LoadCorners(this->Data + offset, corners.Values);
-    corners.Offset = offset;
-    return true;
+    for (int j = 0; j < n; ++j)
+    {
+      SampleLocation& w = where[j];
+      this->Locate(o + (static_cast<double>(k0 + j) * dt) * d, w.Cell, w.Fractions);
+      w.Offset = w.Cell[0] * this->Step[0] + w.Cell[1] * this->Step[1] + w.Cell[2] * this->Step[2];
+    }
+    for (int j = 0; j < n; ++j)
+    {
+      float c[8];
+      this->LoadCorners(this->Data + where[j].Offset, c);
+      values[j] = Interpolate(c, where[j].Fractions);
+    }
   }
   /// Interpolates 8 corner values (x fastest) at fractions f.
   static PARC_HOT_INLINE float Interpolate(const float c[8], const float f[3])
@@ -176,12 +177,6 @@ public:
   {
     return mode == Interpolation::Linear ? this->SampleLinear(p) : this->SampleNearest(p);
   }
-  PARC_HOT_INLINE float Sample(const Vec3& p, Interpolation mode, CellCorners& corners) const
-  {
-    return mode == Interpolation::Linear ? this->SampleLinear(p, corners)
-                                         : this->SampleNearest(p);
-  }
-
   /// Central-difference gradient of the interpolated field at p (offsets of one voxel), in
   /// scalar units per voxel index; one-sided where p is within one voxel of a box face.
   Vec3 Gradient(const Vec3& p, Interpolation mode) const
@@ -190,10 +185,10 @@ public:
     return this->Gradient(p, mode, differences);
   }
   /// The same, reusing (and updating) the differences of the cell of the last gradient.
-  /// located (optional, linear interpolation only) holds p's cell and fractions when p is
-  /// the point its last LocateCell located: they are not computed again.
+  /// located (optional, linear interpolation only) is p's location, from SampleLattice: it
+  /// is not computed again.
   Vec3 Gradient(const Vec3& p, Interpolation mode, CellDifferences& differences,
-    const CellCorners* located = nullptr) const
+    const SampleLocation* located = nullptr) const
   {
     return mode == Interpolation::Linear ? this->GradientLinear(p, differences, located)
                                          : this->GradientNearest(p);
@@ -241,7 +236,8 @@ private:
     return Interpolate(c, f);
   }
 
-  Vec3 GradientLinear(const Vec3& p, CellDifferences& differences, const CellCorners* located) const
+  Vec3 GradientLinear(
+    const Vec3& p, CellDifferences& differences, const SampleLocation* located) const
   {
     int cell[3];
     float f[3];
