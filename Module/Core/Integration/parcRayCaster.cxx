@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 
@@ -102,6 +103,17 @@ bool RayCaster::ClipRay(const Ray& ray, double& tEnter, double& tExit) const
 
 namespace
 {
+
+/// x when sign > 0, else -x, without a branch (the sign of a normal towards the eye is
+/// as unpredictable as the data).
+float FlipUnlessPositive(float x, float sign)
+{
+  std::uint32_t bits;
+  std::memcpy(&bits, &x, sizeof(bits));
+  bits ^= static_cast<std::uint32_t>(!(sign > 0.f)) << 31;
+  std::memcpy(&x, &bits, sizeof(bits));
+  return x;
+}
 
 /// x^n for a whole n >= 0 by repeated squaring.
 float IntegerPower(float x, int n)
@@ -211,8 +223,10 @@ struct RayContext
   Vec3f WorldGradient(double t, const SampleLocation* located)
   {
     ++this->Stats.GradientEvaluations;
-    const Vec3f g(
-      this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences, located));
+    const Vec3f g = located && this->Field.IsInteriorCell(located->Cell)
+      ? this->Field.InteriorGradient(*located, this->Differences)
+      : Vec3f(
+          this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences, located));
     const float* m = this->K.GradientToWorld;
     return { m[0] * g.X + m[1] * g.Y + m[2] * g.Z, m[3] * g.X + m[4] * g.Y + m[5] * g.Z,
       m[6] * g.X + m[7] * g.Y + m[8] * g.Z };
@@ -295,8 +309,7 @@ void RayContext<View>::Shade(float rgb[3], double t, const Vec3f& g) const
   if (length > 0.f)
   {
     // The normal faces the eye (two-sided lighting).
-    const float towardsEye = Dot(g, this->ToEye) > 0.f ? 1.f : -1.f;
-    const Vec3f n = (towardsEye / length) * g;
+    const Vec3f n = FlipUnlessPositive(1.f / length, Dot(g, this->ToEye)) * g;
     const auto& lights = this->K.DirectionalLights;
     for (std::size_t i = 0; i < lights.size(); ++i)
     {

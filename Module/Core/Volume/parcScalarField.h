@@ -90,6 +90,8 @@ public:
     for (int a = 0; a < 3; ++a)
     {
       this->Dims[a] = dims[a];
+      this->Last[a] = dims[a] - 1;
+      this->LastCell[a] = dims[a] - 2;
     }
     this->Step[0] = stride;
     this->Step[1] = stride * dims[0];
@@ -193,23 +195,49 @@ public:
     return mode == Interpolation::Linear ? this->GradientLinear(p, differences, located)
                                          : this->GradientNearest(p);
   }
+  /// Whether central differences in every point of cell need no voxel outside the box.
+  bool IsInteriorCell(const int cell[3]) const
+  {
+    bool interior = true;
+    for (int a = 0; a < 3; ++a)
+    {
+      interior = interior && cell[a] >= 1 && cell[a] + 3 <= this->Dims[a];
+    }
+    return interior;
+  }
+  /// The linear-interpolation gradient at a located point of an interior cell, in float:
+  /// the same bits as Gradient. Inside, f(p + e_a) - f(p - e_a) is the trilinear
+  /// interpolation, in p's own cell, of the voxel differences v(c + e_a) - v(c - e_a) at
+  /// its 8 corners.
+  PARC_HOT_INLINE Vec3f InteriorGradient(
+    const SampleLocation& w, CellDifferences& differences) const
+  {
+    if (w.Offset != differences.Offset)
+    {
+      this->LoadDifferences(this->Data + w.Offset, differences.Values);
+      differences.Offset = w.Offset;
+    }
+    return { 0.5f * Interpolate(differences.Values[0], w.Fractions),
+      0.5f * Interpolate(differences.Values[1], w.Fractions),
+      0.5f * Interpolate(differences.Values[2], w.Fractions) };
+  }
 
 private:
-  /// The cell along one axis and the fraction inside it, for a clamped coordinate.
-  static PARC_HOT_INLINE void LocateAxis(double x, int n, int& i, float& f)
+  /// The cell along one axis and the fraction inside it, for x clamped to [0, last]
+  /// (last = lastCell + 1, the number of cells).
+  static PARC_HOT_INLINE void LocateAxis(double x, double last, int lastCell, int& i, float& f)
   {
     x = x > 0.0 ? x : 0.0; // also NaN
-    const double last = n - 1;
     x = x < last ? x : last;
     i = static_cast<int>(x);
-    i = i < n - 2 ? i : n - 2;
+    i = i < lastCell ? i : lastCell;
     f = static_cast<float>(x - i);
   }
   PARC_HOT_INLINE void Locate(const Vec3& p, int cell[3], float f[3]) const
   {
-    LocateAxis(p.X, this->Dims[0], cell[0], f[0]);
-    LocateAxis(p.Y, this->Dims[1], cell[1], f[1]);
-    LocateAxis(p.Z, this->Dims[2], cell[2], f[2]);
+    LocateAxis(p.X, this->Last[0], this->LastCell[0], cell[0], f[0]);
+    LocateAxis(p.Y, this->Last[1], this->LastCell[1], cell[1], f[1]);
+    LocateAxis(p.Z, this->Last[2], this->LastCell[2], cell[2], f[2]);
   }
   static PARC_HOT_INLINE float Lerp(float a, float b, float t) { return a + t * (b - a); }
   const T* CellPointer(const int cell[3]) const
@@ -239,37 +267,22 @@ private:
   Vec3 GradientLinear(
     const Vec3& p, CellDifferences& differences, const SampleLocation* located) const
   {
-    int cell[3];
-    float f[3];
+    SampleLocation w;
     if (located)
     {
-      std::copy_n(located->Cell, 3, cell);
-      std::copy_n(located->Fractions, 3, f);
+      w = *located;
     }
     else
     {
-      this->Locate(p, cell, f);
+      this->Locate(p, w.Cell, w.Fractions);
+      w.Offset = w.Cell[0] * this->Step[0] + w.Cell[1] * this->Step[1] + w.Cell[2] * this->Step[2];
     }
-    bool interior = true;
-    for (int a = 0; a < 3; ++a)
+    if (!this->IsInteriorCell(w.Cell))
     {
-      interior = interior && cell[a] >= 1 && cell[a] + 3 <= this->Dims[a];
+      return this->GradientNearFaces(p, w.Cell, w.Fractions);
     }
-    if (!interior)
-    {
-      return this->GradientNearFaces(p, cell, f);
-    }
-    // Inside, f(p + e_a) - f(p - e_a) is the trilinear interpolation, in p's own cell, of
-    // the voxel differences v(c + e_a) - v(c - e_a) at its 8 corners.
-    const std::ptrdiff_t offset =
-      cell[0] * this->Step[0] + cell[1] * this->Step[1] + cell[2] * this->Step[2];
-    if (offset != differences.Offset)
-    {
-      this->LoadDifferences(this->Data + offset, differences.Values);
-      differences.Offset = offset;
-    }
-    return { 0.5 * Interpolate(differences.Values[0], f),
-      0.5 * Interpolate(differences.Values[1], f), 0.5 * Interpolate(differences.Values[2], f) };
+    const Vec3f g = this->InteriorGradient(w, differences);
+    return { g.X, g.Y, g.Z };
   }
   /// The voxel differences v(c + e_a) - v(c - e_a) at the 8 corners c of the interior cell
   /// whose first voxel is v (corner n: x offset n & 1, y (n >> 1) & 1, z (n >> 2) & 1). Per
@@ -315,9 +328,9 @@ private:
       }
       int shifted[3] = { cell[0], cell[1], cell[2] };
       float shiftedF[3] = { f[0], f[1], f[2] };
-      LocateAxis(hi, this->Dims[a], shifted[a], shiftedF[a]);
+      LocateAxis(hi, this->Last[a], this->LastCell[a], shifted[a], shiftedF[a]);
       const float high = this->Trilinear(shifted, shiftedF);
-      LocateAxis(lo, this->Dims[a], shifted[a], shiftedF[a]);
+      LocateAxis(lo, this->Last[a], this->LastCell[a], shifted[a], shiftedF[a]);
       const float low = this->Trilinear(shifted, shiftedF);
       g[a] = (high - low) / h;
     }
@@ -340,6 +353,8 @@ private:
   const T* Data;
   std::ptrdiff_t Step[3]; ///< elements between neighbours along x, y, z
   int Dims[3];
+  double Last[3]; ///< the last index coordinate along x, y, z
+  int LastCell[3]; ///< the last cell index along x, y, z
 };
 
 /// A field of any scalar type, referencing the caller's values or holding a copy.
