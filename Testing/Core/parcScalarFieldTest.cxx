@@ -54,24 +54,21 @@ TEST(ScalarField, LatticeBlocksAreTheSamplesAtTheirPositions)
     const parc::Vec3 d = parc::Normalized(parc::Vec3{ u(rng), u(rng), u(rng) } - o);
     const double dt = 0.05 + 0.5 * (ray % 7) / 7.0;
     const long k0 = static_cast<long>(rng() % 40) - 5;
-    const int count = 1 + static_cast<int>(rng() % 8);
     for (auto mode : { parc::Interpolation::Linear, parc::Interpolation::Nearest })
     {
-      float block[8];
-      parc::SampleLocation where[8];
-      field.Dispatch([&](const auto& view) {
-        view.SampleLattice(o, d, dt, k0, count, mode, block, where);
-      });
-      for (int j = 0; j < count; ++j)
+      parc::LatticeBlock block;
+      field.Dispatch([&](const auto& view) { view.SampleLattice(o, d, dt, k0, mode, block); });
+      for (int j = 0; j < parc::LatticeBlock::Size; ++j)
       {
         const parc::Vec3 p = o + (static_cast<double>(k0 + j) * dt) * d;
         const float expected = field.Sample(p, mode);
-        EXPECT_EQ(0, std::memcmp(&expected, &block[j], sizeof(float))) << ray << " " << j;
+        EXPECT_EQ(0, std::memcmp(&expected, &block.Values[j], sizeof(float))) << ray << " " << j;
         if (mode == parc::Interpolation::Linear)
         {
+          const parc::SampleLocation where = block.Location(j);
           const parc::Vec3 g = field.Dispatch([&](const auto& view) {
             parc::CellDifferences differences;
-            return view.Gradient(p, mode, differences, &where[j]);
+            return view.Gradient(p, mode, differences, &where);
           });
           const parc::Vec3 expectedG = field.Gradient(p, mode);
           EXPECT_EQ(0, std::memcmp(&g, &expectedG, sizeof(g))) << ray << " " << j;

@@ -19,7 +19,7 @@ constexpr int TileSize = 16;        ///< ray-image pixels per tile edge
 constexpr int TileRowsPerBand = 4;  ///< tile rows cast between two progress reports
 /// Lattice samples taken together along a ray; a ray that stops early has taken at most
 /// this many - 1 in vain.
-constexpr int SampleBlockSize = 8;
+constexpr int SampleBlockSize = LatticeBlock::Size;
 constexpr int RegulaFalsiSteps = 2; ///< isosurface refinement steps
 /// Specular powers up to this whole number are computed by repeated squaring.
 constexpr double MaxIntegerSpecularPower = 1024.0;
@@ -153,10 +153,8 @@ struct RayContext
   double FirstHit = std::numeric_limits<double>::infinity();
   /// Where the ray's events go (several volumes), or null.
   std::vector<RayEvent>* Events = nullptr;
-  /// The block of lattice samples taken last: their values and (linear interpolation)
-  /// their locations.
-  float Values[SampleBlockSize];
-  SampleLocation Where[SampleBlockSize];
+  /// The block of lattice samples taken last.
+  LatticeBlock Block;
   /// The voxel differences of the cell the last gradient was taken in.
   CellDifferences Differences;
   /// Unit vector from the samples to the eye (parallel light rays: the same for all).
@@ -208,25 +206,30 @@ struct RayContext
   }
 
   Vec3 IndexPosition(double t) const { return this->IndexOrigin + t * this->IndexDirection; }
-  /// Takes lattice samples k0 .. k0 + n - 1 (n <= SampleBlockSize) into Values and Where.
-  PARC_HOT_INLINE void SampleBlock(long k0, int n)
+  /// Takes lattice samples k0 .. k0 + SampleBlockSize - 1 into Block.
+  PARC_HOT_INLINE void SampleBlock(long k0)
   {
-    this->Field.SampleLattice(this->IndexOrigin, this->IndexDirection, this->Dt, k0, n,
-      this->P.Interp, this->Values, this->Where);
+    this->Field.SampleLattice(
+      this->IndexOrigin, this->IndexDirection, this->Dt, k0, this->P.Interp, this->Block);
   }
-  /// The location of sample j of the block, when the interpolation located it.
-  const SampleLocation* Located(int j) const
-  {
-    return this->P.Interp == Interpolation::Linear ? &this->Where[j] : nullptr;
-  }
-  /// The world-space gradient at ray parameter t; located (optional) is t's location.
-  Vec3f WorldGradient(double t, const SampleLocation* located)
+  float Value(int j) const { return this->Block.Values[j]; }
+  /// The world-space gradient at ray parameter t, sample j of the block (or, with j < 0,
+  /// not a lattice sample).
+  Vec3f WorldGradient(double t, int j)
   {
     ++this->Stats.GradientEvaluations;
-    const Vec3f g = located && this->Field.IsInteriorCell(located->Cell)
-      ? this->Field.InteriorGradient(*located, this->Differences)
-      : Vec3f(
-          this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences, located));
+    Vec3f g;
+    if (j >= 0 && this->P.Interp == Interpolation::Linear)
+    {
+      const SampleLocation w = this->Block.Location(j);
+      g = this->Field.IsInteriorCell(w.Cell)
+        ? this->Field.InteriorGradient(w, this->Differences)
+        : Vec3f(this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences, &w));
+    }
+    else
+    {
+      g = Vec3f(this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences));
+    }
     const float* m = this->K.GradientToWorld;
     return { m[0] * g.X + m[1] * g.Y + m[2] * g.Z, m[3] * g.X + m[4] * g.Y + m[5] * g.Z,
       m[6] * g.X + m[7] * g.Y + m[8] * g.Z };
@@ -247,7 +250,7 @@ struct RayContext
     {
       if (!haveGradient)
       {
-        g = this->WorldGradient(t, this->Located(j));
+        g = this->WorldGradient(t, j);
         haveGradient = true;
       }
       a *= this->P.GradientOpacity.Evaluate(Length(g));
@@ -258,7 +261,7 @@ struct RayContext
   /// the gradient when haveGradient), counted and recorded as a hit; false when a is 0.
   bool ContributingOpacity(int j, double t, float& a, Vec3f& g, bool& haveGradient)
   {
-    a = this->P.Opacity.Evaluate(this->Values[j]);
+    a = this->P.Opacity.Evaluate(this->Value(j));
     if (a == 0.f || !this->ApplyGradientOpacity(a, j, t, g, haveGradient))
     {
       return false;
@@ -404,7 +407,7 @@ struct CompositeFunction
 
   bool operator()(long k0, int n, bool, int& visited)
   {
-    this->C.SampleBlock(k0, n);
+    this->C.SampleBlock(k0);
     for (int j = 0; j < n; ++j)
     {
       const double t = (k0 + j) * this->C.Dt;
@@ -416,10 +419,10 @@ struct CompositeFunction
         continue;
       }
       float rgb[3];
-      this->C.P.Color.Lookup(this->C.Values[j], rgb);
+      this->C.P.Color.Lookup(this->C.Value(j), rgb);
       if (this->C.P.Shade)
       {
-        this->C.Shade(rgb, t, haveGradient ? g : this->C.WorldGradient(t, this->C.Located(j)));
+        this->C.Shade(rgb, t, haveGradient ? g : this->C.WorldGradient(t, j));
       }
       if (!this->C.Over(this->Out, t, rgb, a))
       {
@@ -444,10 +447,10 @@ struct ExtremeFunction
 
   bool operator()(long k0, int n, bool, int&)
   {
-    this->C.SampleBlock(k0, n);
+    this->C.SampleBlock(k0);
     for (int j = 0; j < n; ++j)
     {
-      const float s = this->C.Values[j];
+      const float s = this->C.Value(j);
       if (!this->Found || Sign * s > Sign * this->Extreme)
       {
         this->Extreme = s;
@@ -483,10 +486,10 @@ struct AverageFunction
 
   bool operator()(long k0, int n, bool, int&)
   {
-    this->C.SampleBlock(k0, n);
+    this->C.SampleBlock(k0);
     for (int j = 0; j < n; ++j)
     {
-      const float s = this->C.Values[j];
+      const float s = this->C.Value(j);
       if (s >= this->C.P.AverageRange[0] && s <= this->C.P.AverageRange[1])
       {
         if (this->Count == 0)
@@ -525,7 +528,7 @@ struct AdditiveFunction
 
   bool operator()(long k0, int n, bool, int&)
   {
-    this->C.SampleBlock(k0, n);
+    this->C.SampleBlock(k0);
     for (int j = 0; j < n; ++j)
     {
       float a;
@@ -536,7 +539,7 @@ struct AdditiveFunction
         continue;
       }
       float rgb[3];
-      this->C.P.Color.Lookup(this->C.Values[j], rgb);
+      this->C.P.Color.Lookup(this->C.Value(j), rgb);
       for (int c = 0; c < 3; ++c)
       {
         this->Rgb[c] += a * rgb[c];
@@ -605,17 +608,17 @@ struct IsoSurfaceFunction
     this->C.P.Color.Lookup(v, rgb);
     if (this->C.P.Shade)
     {
-      this->C.Shade(rgb, t, this->C.WorldGradient(t, nullptr));
+      this->C.Shade(rgb, t, this->C.WorldGradient(t, -1));
     }
     return this->C.Over(this->Out, t, rgb, a);
   }
 
   bool operator()(long k0, int n, bool follows, int& visited)
   {
-    this->C.SampleBlock(k0, n);
+    this->C.SampleBlock(k0);
     for (int j = 0; j < n; ++j)
     {
-      if (!this->Crossings((k0 + j) * this->C.Dt, this->C.Values[j], j > 0 || follows))
+      if (!this->Crossings((k0 + j) * this->C.Dt, this->C.Value(j), j > 0 || follows))
       {
         visited = j + 1;
         return false;

@@ -23,6 +23,10 @@
 #include <type_traits>
 #include <vector>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace parc
 {
 
@@ -69,6 +73,23 @@ struct SampleLocation
   int Cell[3];
   float Fractions[3];
   std::ptrdiff_t Offset;
+};
+
+/// Consecutive lattice samples along a ray, taken together (FieldView::SampleLattice),
+/// one lane per sample: values and, for linear interpolation, locations.
+struct LatticeBlock
+{
+  static constexpr int Size = 8;
+  float Values[Size];
+  int Cell[3][Size];
+  float Fractions[3][Size];
+  std::ptrdiff_t Offset[Size];
+
+  SampleLocation Location(int j) const
+  {
+    return { { this->Cell[0][j], this->Cell[1][j], this->Cell[2][j] },
+      { this->Fractions[0][j], this->Fractions[1][j], this->Fractions[2][j] }, this->Offset[j] };
+  }
 };
 
 /// The voxel differences v(c + e_a) - v(c - e_a) at the 8 corners of the cell a ray's
@@ -123,33 +144,49 @@ public:
     this->Locate(p, cell, f);
     return this->Trilinear(cell, f);
   }
-  /// The samples of the lattice o + (k dt) d (index coordinates) for k = k0 .. k0 + n - 1:
-  /// their values, and for linear interpolation their locations (where, n entries). Each
-  /// sample is the same arithmetic as Sample(o + (k dt) d); no branch depends on the data,
-  /// so that a block of samples costs the same wherever it lies.
-  PARC_HOT_INLINE void SampleLattice(const Vec3& o, const Vec3& d, double dt, long k0, int n,
-    Interpolation mode, float* values, SampleLocation* where) const
+  /// The samples of the lattice o + (k dt) d (index coordinates) for k = k0 .. k0 +
+  /// LatticeBlock::Size - 1 into block. Each is the same arithmetic as Sample(o + (k dt) d)
+  /// and its location that of Locate. No branch depends on the data, and each step works
+  /// on all lanes at once, so that the compiler can vectorise it.
+  PARC_HOT_INLINE void SampleLattice(const Vec3& o, const Vec3& d, double dt, long k0,
+    Interpolation mode, LatticeBlock& block) const
   {
+    constexpr int n = LatticeBlock::Size;
+    double t[n];
+    for (int j = 0; j < n; ++j)
+    {
+      t[j] = (static_cast<double>(k0) + j) * dt; // k0 + j exactly, as a double
+    }
     if (mode == Interpolation::Nearest)
     {
       for (int j = 0; j < n; ++j)
       {
-        values[j] = this->SampleNearest(o + (static_cast<double>(k0 + j) * dt) * d);
+        block.Values[j] = this->SampleNearest(o + t[j] * d);
       }
       return;
     }
-    for (int j = 0; j < n; ++j)
+    for (int a = 0; a < 3; ++a)
     {
-      SampleLocation& w = where[j];
-      this->Locate(o + (static_cast<double>(k0 + j) * dt) * d, w.Cell, w.Fractions);
-      w.Offset = w.Cell[0] * this->Step[0] + w.Cell[1] * this->Step[1] + w.Cell[2] * this->Step[2];
+      LocateLanes(o[a], d[a], t, this->Last[a], this->LastCell[a], block.Cell[a],
+        block.Fractions[a]);
     }
     for (int j = 0; j < n; ++j)
     {
-      float c[8];
-      this->LoadCorners(this->Data + where[j].Offset, c);
-      values[j] = Interpolate(c, where[j].Fractions);
+      block.Offset[j] = block.Cell[0][j] * this->Step[0] + block.Cell[1][j] * this->Step[1] +
+        block.Cell[2][j] * this->Step[2];
     }
+    const std::ptrdiff_t sx = this->Step[0], sy = this->Step[1], sz = this->Step[2];
+    const std::ptrdiff_t corner[8] = { 0, sx, sy, sy + sx, sz, sz + sx, sz + sy, sz + sy + sx };
+    float c[8][n]; // corner values, lane by lane
+    for (int j = 0; j < n; ++j)
+    {
+      const T* v = this->Data + block.Offset[j];
+      for (int m = 0; m < 8; ++m)
+      {
+        c[m][j] = static_cast<float>(v[corner[m]]);
+      }
+    }
+    InterpolateLanes(c, block.Fractions, block.Values);
   }
   /// Interpolates 8 corner values (x fastest) at fractions f.
   static PARC_HOT_INLINE float Interpolate(const float c[8], const float f[3])
@@ -232,6 +269,69 @@ private:
     i = static_cast<int>(x);
     i = i < lastCell ? i : lastCell;
     f = static_cast<float>(x - i);
+  }
+  // The lanes of a LatticeBlock, with SSE2 where there is SSE2: the same IEEE operations
+  // in the same order as the scalar code (LocateAxis, Interpolate), so the same bits.
+
+  /// LocateAxis for the coordinates o + t[j] d of the lanes. The last cell holds
+  /// [lastCell, last], so min(floor(x), lastCell) = floor(min(x, lastCell)).
+  static PARC_HOT_INLINE void LocateLanes(
+    double o, double d, const double* t, double last, int lastCell, int* cell, float* f)
+  {
+    const double lastCellStart = lastCell;
+#if defined(__SSE2__)
+    const __m128d vo = _mm_set1_pd(o), vd = _mm_set1_pd(d), vlast = _mm_set1_pd(last);
+    const __m128d vcell = _mm_set1_pd(lastCellStart), zero = _mm_setzero_pd();
+    for (int j = 0; j < LatticeBlock::Size; j += 2)
+    {
+      __m128d x = _mm_add_pd(vo, _mm_mul_pd(_mm_loadu_pd(t + j), vd));
+      x = _mm_max_pd(x, zero); // x > 0 ? x : 0, also for NaN
+      x = _mm_min_pd(x, vlast); // x < last ? x : last
+      const __m128i i = _mm_cvttpd_epi32(_mm_min_pd(x, vcell));
+      _mm_storel_epi64(reinterpret_cast<__m128i*>(cell + j), i);
+      const __m128 fraction = _mm_cvtpd_ps(_mm_sub_pd(x, _mm_cvtepi32_pd(i)));
+      _mm_storel_pi(reinterpret_cast<__m64*>(f + j), fraction);
+    }
+#else
+    for (int j = 0; j < LatticeBlock::Size; ++j)
+    {
+      double x = o + t[j] * d;
+      x = x > 0.0 ? x : 0.0; // also NaN
+      x = x < last ? x : last;
+      const int i = static_cast<int>(x < lastCellStart ? x : lastCellStart);
+      cell[j] = i;
+      f[j] = static_cast<float>(x - i);
+    }
+#endif
+  }
+  /// Interpolate for the lanes: c[corner][lane], f[axis][lane].
+  static PARC_HOT_INLINE void InterpolateLanes(
+    const float c[8][LatticeBlock::Size], const float f[3][LatticeBlock::Size], float* values)
+  {
+#if defined(__SSE2__)
+    auto lerp = [](__m128 a, __m128 b, __m128 t) {
+      return _mm_add_ps(a, _mm_mul_ps(t, _mm_sub_ps(b, a)));
+    };
+    for (int j = 0; j < LatticeBlock::Size; j += 4)
+    {
+      const __m128 fx = _mm_loadu_ps(f[0] + j), fy = _mm_loadu_ps(f[1] + j);
+      const __m128 fz = _mm_loadu_ps(f[2] + j);
+      const __m128 c00 = lerp(_mm_loadu_ps(c[0] + j), _mm_loadu_ps(c[1] + j), fx);
+      const __m128 c10 = lerp(_mm_loadu_ps(c[2] + j), _mm_loadu_ps(c[3] + j), fx);
+      const __m128 c01 = lerp(_mm_loadu_ps(c[4] + j), _mm_loadu_ps(c[5] + j), fx);
+      const __m128 c11 = lerp(_mm_loadu_ps(c[6] + j), _mm_loadu_ps(c[7] + j), fx);
+      _mm_storeu_ps(values + j, lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz));
+    }
+#else
+    for (int j = 0; j < LatticeBlock::Size; ++j)
+    {
+      const float c00 = Lerp(c[0][j], c[1][j], f[0][j]);
+      const float c10 = Lerp(c[2][j], c[3][j], f[0][j]);
+      const float c01 = Lerp(c[4][j], c[5][j], f[0][j]);
+      const float c11 = Lerp(c[6][j], c[7][j], f[0][j]);
+      values[j] = Lerp(Lerp(c00, c10, f[1][j]), Lerp(c01, c11, f[1][j]), f[2][j]);
+    }
+#endif
   }
   PARC_HOT_INLINE void Locate(const Vec3& p, int cell[3], float f[3]) const
   {
