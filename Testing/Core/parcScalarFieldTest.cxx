@@ -56,9 +56,11 @@ TEST(ScalarField, LatticeBlocksAreTheSamplesAtTheirPositions)
     const long k0 = static_cast<long>(rng() % 40) - 5;
     for (auto mode : { parc::Interpolation::Linear, parc::Interpolation::Nearest })
     {
+      const int count = 1 + static_cast<int>(rng() % parc::LatticeBlock::Size);
       parc::LatticeBlock block;
-      field.Dispatch([&](const auto& view) { view.SampleLattice(o, d, dt, k0, mode, block); });
-      for (int j = 0; j < parc::LatticeBlock::Size; ++j)
+      field.Dispatch(
+        [&](const auto& view) { view.SampleLattice(o, d, dt, k0, count, mode, block); });
+      for (int j = 0; j < count; ++j)
       {
         const parc::Vec3 p = o + (static_cast<double>(k0 + j) * dt) * d;
         const float expected = field.Sample(p, mode);

@@ -206,11 +206,11 @@ struct RayContext
   }
 
   Vec3 IndexPosition(double t) const { return this->IndexOrigin + t * this->IndexDirection; }
-  /// Takes lattice samples k0 .. k0 + SampleBlockSize - 1 into Block.
-  PARC_HOT_INLINE void SampleBlock(long k0)
+  /// Takes lattice samples k0 .. k0 + n - 1 (n <= SampleBlockSize) into Block.
+  PARC_HOT_INLINE void SampleBlock(long k0, int n)
   {
     this->Field.SampleLattice(
-      this->IndexOrigin, this->IndexDirection, this->Dt, k0, this->P.Interp, this->Block);
+      this->IndexOrigin, this->IndexDirection, this->Dt, k0, n, this->P.Interp, this->Block);
   }
   float Value(int j) const { return this->Block.Values[j]; }
   /// The world-space gradient at ray parameter t, sample j of the block (or, with j < 0,
@@ -407,7 +407,7 @@ struct CompositeFunction
 
   bool operator()(long k0, int n, bool, int& visited)
   {
-    this->C.SampleBlock(k0);
+    this->C.SampleBlock(k0, n);
     for (int j = 0; j < n; ++j)
     {
       const double t = (k0 + j) * this->C.Dt;
@@ -447,7 +447,7 @@ struct ExtremeFunction
 
   bool operator()(long k0, int n, bool, int&)
   {
-    this->C.SampleBlock(k0);
+    this->C.SampleBlock(k0, n);
     for (int j = 0; j < n; ++j)
     {
       const float s = this->C.Value(j);
@@ -486,7 +486,7 @@ struct AverageFunction
 
   bool operator()(long k0, int n, bool, int&)
   {
-    this->C.SampleBlock(k0);
+    this->C.SampleBlock(k0, n);
     for (int j = 0; j < n; ++j)
     {
       const float s = this->C.Value(j);
@@ -528,7 +528,7 @@ struct AdditiveFunction
 
   bool operator()(long k0, int n, bool, int&)
   {
-    this->C.SampleBlock(k0);
+    this->C.SampleBlock(k0, n);
     for (int j = 0; j < n; ++j)
     {
       float a;
@@ -615,7 +615,7 @@ struct IsoSurfaceFunction
 
   bool operator()(long k0, int n, bool follows, int& visited)
   {
-    this->C.SampleBlock(k0);
+    this->C.SampleBlock(k0, n);
     for (int j = 0; j < n; ++j)
     {
       if (!this->Crossings((k0 + j) * this->C.Dt, this->C.Value(j), j > 0 || follows))

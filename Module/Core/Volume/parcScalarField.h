@@ -79,7 +79,8 @@ struct SampleLocation
 /// one lane per sample: values and, for linear interpolation, locations.
 struct LatticeBlock
 {
-  static constexpr int Size = 8;
+  static constexpr int Size = 8;  ///< lanes of a block
+  static constexpr int Lanes = 4; ///< lanes computed together (a multiple of 2, dividing Size)
   float Values[Size];
   int Cell[3][Size];
   float Fractions[3][Size];
@@ -145,14 +146,15 @@ public:
     return this->Trilinear(cell, f);
   }
   /// The samples of the lattice o + (k dt) d (index coordinates) for k = k0 .. k0 +
-  /// LatticeBlock::Size - 1 into block. Each is the same arithmetic as Sample(o + (k dt) d)
-  /// and its location that of Locate. No branch depends on the data, and each step works
-  /// on all lanes at once, so that the compiler can vectorise it.
+  /// count - 1 (count <= LatticeBlock::Size) into block; lanes up to the next multiple of
+  /// LatticeBlock::Lanes hold the samples after them. Each is the same arithmetic as
+  /// Sample(o + (k dt) d) and its location that of Locate. No branch depends on the data,
+  /// and each step works on several lanes at once.
   PARC_HOT_INLINE void SampleLattice(const Vec3& o, const Vec3& d, double dt, long k0,
-    Interpolation mode, LatticeBlock& block) const
+    int count, Interpolation mode, LatticeBlock& block) const
   {
-    constexpr int n = LatticeBlock::Size;
-    double t[n];
+    const int n = LatticeBlock::Lanes * ((count + LatticeBlock::Lanes - 1) / LatticeBlock::Lanes);
+    double t[LatticeBlock::Size];
     for (int j = 0; j < n; ++j)
     {
       t[j] = (static_cast<double>(k0) + j) * dt; // k0 + j exactly, as a double
@@ -167,7 +169,7 @@ public:
     }
     for (int a = 0; a < 3; ++a)
     {
-      LocateLanes(o[a], d[a], t, this->Last[a], this->LastCell[a], block.Cell[a],
+      LocateLanes(o[a], d[a], t, n, this->Last[a], this->LastCell[a], block.Cell[a],
         block.Fractions[a]);
     }
     for (int j = 0; j < n; ++j)
@@ -177,7 +179,7 @@ public:
     }
     const std::ptrdiff_t sx = this->Step[0], sy = this->Step[1], sz = this->Step[2];
     const std::ptrdiff_t corner[8] = { 0, sx, sy, sy + sx, sz, sz + sx, sz + sy, sz + sy + sx };
-    float c[8][n]; // corner values, lane by lane
+    float c[8][LatticeBlock::Size]; // corner values, lane by lane
     for (int j = 0; j < n; ++j)
     {
       const T* v = this->Data + block.Offset[j];
@@ -186,7 +188,7 @@ public:
         c[m][j] = static_cast<float>(v[corner[m]]);
       }
     }
-    InterpolateLanes(c, block.Fractions, block.Values);
+    InterpolateLanes(c, block.Fractions, n, block.Values);
   }
   /// Interpolates 8 corner values (x fastest) at fractions f.
   static PARC_HOT_INLINE float Interpolate(const float c[8], const float f[3])
@@ -276,13 +278,13 @@ private:
   /// LocateAxis for the coordinates o + t[j] d of the lanes. The last cell holds
   /// [lastCell, last], so min(floor(x), lastCell) = floor(min(x, lastCell)).
   static PARC_HOT_INLINE void LocateLanes(
-    double o, double d, const double* t, double last, int lastCell, int* cell, float* f)
+    double o, double d, const double* t, int n, double last, int lastCell, int* cell, float* f)
   {
     const double lastCellStart = lastCell;
 #if defined(__SSE2__)
     const __m128d vo = _mm_set1_pd(o), vd = _mm_set1_pd(d), vlast = _mm_set1_pd(last);
     const __m128d vcell = _mm_set1_pd(lastCellStart), zero = _mm_setzero_pd();
-    for (int j = 0; j < LatticeBlock::Size; j += 2)
+    for (int j = 0; j < n; j += 2)
     {
       __m128d x = _mm_add_pd(vo, _mm_mul_pd(_mm_loadu_pd(t + j), vd));
       x = _mm_max_pd(x, zero); // x > 0 ? x : 0, also for NaN
@@ -293,7 +295,7 @@ private:
       _mm_storel_pi(reinterpret_cast<__m64*>(f + j), fraction);
     }
 #else
-    for (int j = 0; j < LatticeBlock::Size; ++j)
+    for (int j = 0; j < n; ++j)
     {
       double x = o + t[j] * d;
       x = x > 0.0 ? x : 0.0; // also NaN
@@ -305,14 +307,14 @@ private:
 #endif
   }
   /// Interpolate for the lanes: c[corner][lane], f[axis][lane].
-  static PARC_HOT_INLINE void InterpolateLanes(
-    const float c[8][LatticeBlock::Size], const float f[3][LatticeBlock::Size], float* values)
+  static PARC_HOT_INLINE void InterpolateLanes(const float c[8][LatticeBlock::Size],
+    const float f[3][LatticeBlock::Size], int n, float* values)
   {
 #if defined(__SSE2__)
     auto lerp = [](__m128 a, __m128 b, __m128 t) {
       return _mm_add_ps(a, _mm_mul_ps(t, _mm_sub_ps(b, a)));
     };
-    for (int j = 0; j < LatticeBlock::Size; j += 4)
+    for (int j = 0; j < n; j += 4)
     {
       const __m128 fx = _mm_loadu_ps(f[0] + j), fy = _mm_loadu_ps(f[1] + j);
       const __m128 fz = _mm_loadu_ps(f[2] + j);
@@ -323,7 +325,7 @@ private:
       _mm_storeu_ps(values + j, lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz));
     }
 #else
-    for (int j = 0; j < LatticeBlock::Size; ++j)
+    for (int j = 0; j < n; ++j)
     {
       const float c00 = Lerp(c[0][j], c[1][j], f[0][j]);
       const float c10 = Lerp(c[2][j], c[3][j], f[0][j]);
