@@ -4,7 +4,10 @@
 // SegmentSource gives it. Samples are visited in increasing lattice index, each at most
 // once, with the same arithmetic whatever the source: a sample whose opacity is exactly 0
 // changes nothing, so a source that leaves out only such samples gives a bit-identical
-// image (DESIGN.md sections 1-2).
+// image (DESIGN.md sections 1-2). The samples of a lattice range are taken in blocks of up
+// to LatticeBlock::Size (FieldView::SampleLattice: no branch on the data, several lanes at
+// once), each with the arithmetic of a single sample; a ray that stops early has taken at
+// most a block's worth in vain, which the statistics do not count.
 //
 // Ray functions (one functor each, dispatched in one switch):
 // - Composite: front-to-back "over" with opacity correction
