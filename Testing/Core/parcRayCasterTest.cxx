@@ -419,6 +419,37 @@ TEST(RayCaster, ImageIsTheSameForOneAndManyThreads)
   EXPECT_EQ(s1.Samples, s2.Samples);
 }
 
+// The rays of an image share a thread's cache of cell differences: neighbouring rays cross
+// the same cells, so most gradients load none, and the image is the one of rays cast alone.
+TEST(RayCaster, NeighbouringRaysShareCellDifferences)
+{
+  const parc::ScalarField field = Blobs();
+  CastParameters p = BlobParameters();
+  p.Shade = true;
+  parc::RayCaster caster;
+  ASSERT_TRUE(caster.Prepare(&field, &p));
+  const int size = 96; // rays about 0.4 voxel apart
+  const parc::Camera view = ParallelView(size, size, 0.3);
+  std::vector<float> image(4 * size * size), alone(4 * size * size);
+  parc::CastStatistics stats, aloneStats;
+  vtkSMPTools::Initialize(1);
+  caster.CastImage(view, nullptr, parc::WholeRaySource(), image.data(), stats);
+  std::vector<parc::Segment> segments;
+  std::vector<parc::LatticeRange> ranges;
+  for (int py = 0; py < size; ++py)
+  {
+    for (int px = 0; px < size; ++px)
+    {
+      caster.CastRay(parc::RayQuery::AtPixel(view.MakeRay(px, py), px, py),
+        parc::WholeRaySource(), segments, ranges, &alone[4 * (py * size + px)], aloneStats);
+    }
+  }
+  EXPECT_EQ(0, std::memcmp(image.data(), alone.data(), image.size() * sizeof(float)));
+  EXPECT_EQ(stats.GradientEvaluations, aloneStats.GradientEvaluations);
+  EXPECT_GT(stats.GradientEvaluations, 10000u);
+  EXPECT_LT(stats.DifferenceLoads, aloneStats.DifferenceLoads / 2);
+}
+
 TEST(RayCaster, ProgressCanAbortTheImage)
 {
   const parc::ScalarField field = Blobs();

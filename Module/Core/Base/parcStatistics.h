@@ -15,6 +15,8 @@ struct CastStatistics
   std::uint64_t Samples = 0;             ///< scalar samples taken on the lattice
   std::uint64_t ContributingSamples = 0; ///< non-zero opacity, or isosurface crossings
   std::uint64_t GradientEvaluations = 0;
+  /// Cells whose voxel differences were loaded for gradients (the rest were cached).
+  std::uint64_t DifferenceLoads = 0;
   std::uint64_t Cells = 0; ///< cells crossed by the cast lattice ranges (paper, Table 2)
 
   CastStatistics& operator+=(const CastStatistics& o)
@@ -24,6 +26,7 @@ struct CastStatistics
     this->Samples += o.Samples;
     this->ContributingSamples += o.ContributingSamples;
     this->GradientEvaluations += o.GradientEvaluations;
+    this->DifferenceLoads += o.DifferenceLoads;
     this->Cells += o.Cells;
     return *this;
   }

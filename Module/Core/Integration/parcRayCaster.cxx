@@ -23,6 +23,10 @@ constexpr int SampleBlockSize = LatticeBlock::Size;
 constexpr int RegulaFalsiSteps = 2; ///< isosurface refinement steps
 /// Specular powers up to this whole number are computed by repeated squaring.
 constexpr double MaxIntegerSpecularPower = 1024.0;
+/// Cells whose voxel differences a thread keeps for gradients (a power of two): the rays
+/// of a tile cross mostly the same cells.
+constexpr std::size_t DifferenceCacheCells = 512;
+static_assert((DifferenceCacheCells & (DifferenceCacheCells - 1)) == 0, "a power of two");
 /// Directional lights whose half vectors are computed once per ray.
 constexpr std::size_t MaxHoistedLights = 8;
 
@@ -156,7 +160,11 @@ struct RayContext
   /// The block of lattice samples taken last.
   LatticeBlock Block;
   /// The voxel differences of the cell the last gradient was taken in.
-  CellDifferences Differences;
+  CellDifferences OwnDifferences;
+  /// The cells whose differences are kept, direct-mapped by cell (one slot, OwnDifferences,
+  /// unless the thread shares its cache).
+  CellDifferences* DifferenceSlots = &OwnDifferences;
+  std::uint64_t DifferenceMask = 0;
   /// Unit vector from the samples to the eye (parallel light rays: the same for all).
   Vec3f ToEye;
   /// Half vectors of the first directional lights for this ray (Blinn-Phong).
@@ -213,6 +221,12 @@ struct RayContext
       this->IndexOrigin, this->IndexDirection, this->Dt, k0, n, this->P.Interp, this->Block);
   }
   float Value(int j) const { return this->Block.Values[j]; }
+  /// The slot that holds, or will hold, the differences of the cell at offset.
+  CellDifferences& DifferencesOf(std::ptrdiff_t offset)
+  {
+    const std::uint64_t hash = static_cast<std::uint64_t>(offset) * 0x9E3779B97F4A7C15ull;
+    return this->DifferenceSlots[(hash >> 32) & this->DifferenceMask];
+  }
   /// The world-space gradient at ray parameter t, sample j of the block (or, with j < 0,
   /// not a lattice sample).
   Vec3f WorldGradient(double t, int j)
@@ -222,13 +236,21 @@ struct RayContext
     if (j >= 0 && this->P.Interp == Interpolation::Linear)
     {
       const SampleLocation w = this->Block.Location(j);
-      g = this->Field.IsInteriorCell(w.Cell)
-        ? this->Field.InteriorGradient(w, this->Differences)
-        : Vec3f(this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences, &w));
+      if (this->Field.IsInteriorCell(w.Cell))
+      {
+        CellDifferences& slot = this->DifferencesOf(w.Offset);
+        this->Stats.DifferenceLoads += (slot.Offset != w.Offset);
+        g = this->Field.InteriorGradient(w, slot);
+      }
+      else
+      {
+        g = Vec3f(
+          this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->OwnDifferences, &w));
+      }
     }
     else
     {
-      g = Vec3f(this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->Differences));
+      g = Vec3f(this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->OwnDifferences));
     }
     const float* m = this->K.GradientToWorld;
     return { m[0] * g.X + m[1] * g.Y + m[2] * g.Z, m[3] * g.X + m[4] * g.Y + m[5] * g.Z,
@@ -730,14 +752,16 @@ void RayCaster::CastRay(const RayQuery& query, const SegmentSource& source,
   CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events) const
 {
   this->Field->Dispatch([&](const auto& field) {
-    this->CastRayIn(field, query, source, segments, ranges, rgba, stats, firstHit, events);
+    this->CastRayIn(
+      field, query, source, segments, ranges, rgba, stats, firstHit, events, nullptr);
   });
 }
 
 template <class View>
 void RayCaster::CastRayIn(const View& field, const RayQuery& query, const SegmentSource& source,
   std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
-  CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events) const
+  CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events,
+  std::vector<CellDifferences>* differences) const
 {
   const Ray& ray = query.Path;
   rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0.f;
@@ -776,6 +800,11 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
   using Context = RayContext<View>;
   Context context(field, *this->Params, this->Constants, ray, indexOrigin, indexDirection, stats);
   context.Events = events;
+  if (differences && !differences->empty())
+  {
+    context.DifferenceSlots = differences->data();
+    context.DifferenceMask = differences->size() - 1;
+  }
   switch (this->Params->Blend)
   {
     case BlendMode::Composite:
@@ -813,6 +842,7 @@ struct RayScratch
   std::vector<std::vector<RayEvent>> Events; ///< per volume (SceneCaster)
   CastStatistics Stats;
   std::vector<CastStatistics> MemberStats; ///< per volume (SceneCaster)
+  std::vector<CellDifferences> Differences; ///< of one volume's cells (RayCaster)
 };
 
 /// Casts the tiles of one band of rows; vtkSMPTools functor.
@@ -911,8 +941,12 @@ bool RayCaster::CastImageIn(const View& field, const Camera& view, const float* 
   const std::function<bool(double)>& progress) const
 {
   auto castOne = [&](const RayQuery& query, RayScratch& scratch, float* pixel) {
+    if (this->Constants.GradientNeeded && scratch.Differences.empty())
+    {
+      scratch.Differences.resize(DifferenceCacheCells);
+    }
     this->CastRayIn(field, query, source, scratch.Segments, scratch.Ranges, pixel,
-      scratch.Stats, nullptr, nullptr);
+      scratch.Stats, nullptr, nullptr, &scratch.Differences);
   };
   auto mayHave = [&](int px, int py) { return source.MayHaveSegments(px, py); };
   auto reduce = [&stats](const RayScratch& scratch) { stats += scratch.Stats; };

@@ -120,10 +120,13 @@ public:
   };
 
 private:
+  /// differences (optional): a thread's cache of cell differences for gradients, a power
+  /// of two of them, shared by the rays of one image.
   template <class View>
   void CastRayIn(const View& field, const RayQuery& query, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
-    CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events) const;
+    CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events,
+    std::vector<CellDifferences>* differences) const;
   template <class View>
   bool CastImageIn(const View& field, const Camera& view, const float* depth,
     const SegmentSource& source, float* rgba, CastStatistics& stats,
