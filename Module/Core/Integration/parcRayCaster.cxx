@@ -320,13 +320,13 @@ struct RayContext
   }
   /// Shades rgb in place at ray parameter t with world gradient g (Blinn-Phong, two-sided,
   /// in float).
-  void Shade(float rgb[3], double t, const Vec3f& g) const;
+  PARC_HOT_INLINE void Shade(float rgb[3], double t, const Vec3f& g) const;
   /// Adds the positional lights' terms at ray parameter t for unit normal n.
   void AddPositionalLights(double t, const Vec3f& n, float diffuse[3], float specular[3]) const;
 };
 
 template <class View>
-void RayContext<View>::Shade(float rgb[3], double t, const Vec3f& g) const
+PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f& g) const
 {
   float diffuse[3] = { 0.f, 0.f, 0.f };
   float specular[3] = { 0.f, 0.f, 0.f };
