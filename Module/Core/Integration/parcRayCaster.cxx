@@ -27,6 +27,9 @@ constexpr double MaxIntegerSpecularPower = 1024.0;
 /// of a tile cross mostly the same cells.
 constexpr std::size_t DifferenceCacheCells = 512;
 static_assert((DifferenceCacheCells & (DifferenceCacheCells - 1)) == 0, "a power of two");
+/// The block lane of a gradient at a point that is not a lattice sample (an isosurface
+/// crossing).
+constexpr int NotALatticeSample = -1;
 /// Directional lights whose half vectors are computed once per ray.
 constexpr std::size_t MaxHoistedLights = 8;
 
@@ -227,13 +230,13 @@ struct RayContext
     const std::uint64_t hash = static_cast<std::uint64_t>(offset) * 0x9E3779B97F4A7C15ull;
     return this->DifferenceSlots[(hash >> 32) & this->DifferenceMask];
   }
-  /// The world-space gradient at ray parameter t, sample j of the block (or, with j < 0,
-  /// not a lattice sample).
+  /// The world-space gradient at ray parameter t, sample j of the block (or
+  /// NotALatticeSample).
   Vec3f WorldGradient(double t, int j)
   {
     ++this->Stats.GradientEvaluations;
     Vec3f g;
-    if (j >= 0 && this->P.Interp == Interpolation::Linear)
+    if (j != NotALatticeSample && this->P.Interp == Interpolation::Linear)
     {
       const SampleLocation w = this->Block.Location(j);
       if (this->Field.IsInteriorCell(w.Cell))
@@ -630,7 +633,7 @@ struct IsoSurfaceFunction
     this->C.P.Color.Lookup(v, rgb);
     if (this->C.P.Shade)
     {
-      this->C.Shade(rgb, t, this->C.WorldGradient(t, -1));
+      this->C.Shade(rgb, t, this->C.WorldGradient(t, NotALatticeSample));
     }
     return this->C.Over(this->Out, t, rgb, a);
   }

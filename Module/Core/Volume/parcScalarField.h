@@ -177,8 +177,8 @@ public:
       block.Offset[j] = block.Cell[0][j] * this->Step[0] + block.Cell[1][j] * this->Step[1] +
         block.Cell[2][j] * this->Step[2];
     }
-    const std::ptrdiff_t sx = this->Step[0], sy = this->Step[1], sz = this->Step[2];
-    const std::ptrdiff_t corner[8] = { 0, sx, sy, sy + sx, sz, sz + sx, sz + sy, sz + sy + sx };
+    std::ptrdiff_t corner[8];
+    this->CornerOffsets(corner);
     float c[8][LatticeBlock::Size]; // corner values, lane by lane
     for (int j = 0; j < n; ++j)
     {
@@ -347,17 +347,24 @@ private:
     return this->Data + cell[0] * this->Step[0] + cell[1] * this->Step[1] +
       cell[2] * this->Step[2];
   }
+  /// The offsets of a cell's 8 corners from its first voxel (corner n: x offset n & 1,
+  /// y (n >> 1) & 1, z (n >> 2) & 1).
+  PARC_HOT_INLINE void CornerOffsets(std::ptrdiff_t corner[8]) const
+  {
+    for (int n = 0; n < 8; ++n)
+    {
+      corner[n] = ((n & 1) ? this->Step[0] : 0) + ((n & 2) ? this->Step[1] : 0) +
+        ((n & 4) ? this->Step[2] : 0);
+    }
+  }
   PARC_HOT_INLINE void LoadCorners(const T* v, float c[8]) const
   {
-    const std::ptrdiff_t sx = this->Step[0], sy = this->Step[1], sz = this->Step[2];
-    c[0] = static_cast<float>(v[0]);
-    c[1] = static_cast<float>(v[sx]);
-    c[2] = static_cast<float>(v[sy]);
-    c[3] = static_cast<float>(v[sy + sx]);
-    c[4] = static_cast<float>(v[sz]);
-    c[5] = static_cast<float>(v[sz + sx]);
-    c[6] = static_cast<float>(v[sz + sy]);
-    c[7] = static_cast<float>(v[sz + sy + sx]);
+    std::ptrdiff_t corner[8];
+    this->CornerOffsets(corner);
+    for (int n = 0; n < 8; ++n)
+    {
+      c[n] = static_cast<float>(v[corner[n]]);
+    }
   }
   float Trilinear(const int cell[3], const float f[3]) const
   {
@@ -392,8 +399,13 @@ private:
   /// loads and 24 outer ones.
   PARC_HOT_INLINE void LoadDifferences(const T* v, float d[3][8]) const
   {
+    std::ptrdiff_t corner[8];
+    this->CornerOffsets(corner);
     float c[8];
-    this->LoadCorners(v, c);
+    for (int n = 0; n < 8; ++n)
+    {
+      c[n] = static_cast<float>(v[corner[n]]);
+    }
     for (int a = 0; a < 3; ++a)
     {
       const std::ptrdiff_t s = this->Step[a];
@@ -407,8 +419,7 @@ private:
         // Corners n (low along a) and n | bit (high): the low one's difference is the high
         // corner minus the voxel before the cell, the high one's the voxel after the cell
         // minus the low corner.
-        const T* low = v + ((n & 1) ? this->Step[0] : 0) + ((n & 2) ? this->Step[1] : 0) +
-          ((n & 4) ? this->Step[2] : 0);
+        const T* low = v + corner[n];
         d[a][n] = c[n | bit] - static_cast<float>(low[-s]);
         d[a][n | bit] = static_cast<float>(low[2 * s]) - c[n];
       }
