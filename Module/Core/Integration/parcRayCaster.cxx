@@ -162,7 +162,7 @@ struct RayContext
   std::vector<RayEvent>* Events = nullptr;
   /// The block of lattice samples taken last.
   LatticeBlock Block;
-  /// The voxel differences of the cell the last gradient was taken in.
+  /// One cell's voxel differences: the cache of a ray whose thread shares none.
   CellDifferences OwnDifferences;
   /// The cells whose differences are kept, direct-mapped by cell (one slot, OwnDifferences,
   /// unless the thread shares its cache).
@@ -236,16 +236,18 @@ struct RayContext
   {
     ++this->Stats.GradientEvaluations;
     Vec3f g;
-    if (j != NotALatticeSample && this->P.Interp == Interpolation::Linear)
+    if (this->P.Interp == Interpolation::Linear)
     {
-      const SampleLocation w = this->Block.Location(j);
+      const SampleLocation w = j != NotALatticeSample
+        ? this->Block.Location(j)
+        : this->Field.LocationOf(this->IndexPosition(t));
       if (this->Field.IsInteriorCell(w.Cell))
       {
         CellDifferences& slot = this->DifferencesOf(w.Offset);
         this->Stats.DifferenceLoads += (slot.Offset != w.Offset);
         g = this->Field.InteriorGradient(w, slot);
       }
-      else
+      else // near a face: one-sided differences, no cell differences
       {
         g = Vec3f(
           this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->OwnDifferences, &w));

@@ -234,6 +234,14 @@ public:
     return mode == Interpolation::Linear ? this->GradientLinear(p, differences, located)
                                          : this->GradientNearest(p);
   }
+  /// Where p (clamped to the box) lies, as Sample locates it.
+  SampleLocation LocationOf(const Vec3& p) const
+  {
+    SampleLocation w;
+    this->Locate(p, w.Cell, w.Fractions);
+    w.Offset = this->CellOffset(w.Cell);
+    return w;
+  }
   /// Whether central differences in every point of cell need no voxel outside the box.
   bool IsInteriorCell(const int cell[3]) const
   {
@@ -342,11 +350,11 @@ private:
     LocateAxis(p.Z, this->Last[2], this->LastCell[2], cell[2], f[2]);
   }
   static PARC_HOT_INLINE float Lerp(float a, float b, float t) { return a + t * (b - a); }
-  const T* CellPointer(const int cell[3]) const
+  std::ptrdiff_t CellOffset(const int cell[3]) const
   {
-    return this->Data + cell[0] * this->Step[0] + cell[1] * this->Step[1] +
-      cell[2] * this->Step[2];
+    return cell[0] * this->Step[0] + cell[1] * this->Step[1] + cell[2] * this->Step[2];
   }
+  const T* CellPointer(const int cell[3]) const { return this->Data + this->CellOffset(cell); }
   /// The offsets of a cell's 8 corners from its first voxel (corner n: x offset n & 1,
   /// y (n >> 1) & 1, z (n >> 2) & 1).
   PARC_HOT_INLINE void CornerOffsets(std::ptrdiff_t corner[8]) const
@@ -376,16 +384,7 @@ private:
   Vec3 GradientLinear(
     const Vec3& p, CellDifferences& differences, const SampleLocation* located) const
   {
-    SampleLocation w;
-    if (located)
-    {
-      w = *located;
-    }
-    else
-    {
-      this->Locate(p, w.Cell, w.Fractions);
-      w.Offset = w.Cell[0] * this->Step[0] + w.Cell[1] * this->Step[1] + w.Cell[2] * this->Step[2];
-    }
+    const SampleLocation w = located ? *located : this->LocationOf(p);
     if (!this->IsInteriorCell(w.Cell))
     {
       return this->GradientNearFaces(p, w.Cell, w.Fractions);
