@@ -18,6 +18,10 @@ struct CastStatistics
   /// Cells whose voxel differences were loaded for gradients (the rest were cached).
   std::uint64_t DifferenceLoads = 0;
   std::uint64_t Cells = 0; ///< cells crossed by the cast lattice ranges (paper, Table 2)
+  /// Shadow rays: one per shaded contribution and shadow-casting light that lights it.
+  std::uint64_t ShadowRays = 0;
+  std::uint64_t ShadowSamples = 0; ///< lattice samples taken along shadow rays
+  std::uint64_t ShadowCells = 0;   ///< cells crossed by them (paper, Table 3)
 
   CastStatistics& operator+=(const CastStatistics& o)
   {
@@ -28,6 +32,9 @@ struct CastStatistics
     this->GradientEvaluations += o.GradientEvaluations;
     this->DifferenceLoads += o.DifferenceLoads;
     this->Cells += o.Cells;
+    this->ShadowRays += o.ShadowRays;
+    this->ShadowSamples += o.ShadowSamples;
+    this->ShadowCells += o.ShadowCells;
     return *this;
   }
 };

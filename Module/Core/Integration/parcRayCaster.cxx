@@ -84,17 +84,20 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
     : -1;
   k.DirectionalLights.clear();
   k.PositionalLights.clear();
-  for (const Light& light : parameters->Lights)
+  for (std::size_t i = 0; i < parameters->Lights.size(); ++i)
   {
+    const Light& light = parameters->Lights[i];
     if (light.Positional)
     {
       k.PositionalLights.push_back({ &light, Normalized(light.FocalPoint - light.Position),
-        std::cos(light.ConeAngle * (M_PI / 180.0)) });
+        std::cos(light.ConeAngle * (M_PI / 180.0)), i });
     }
     else
     {
-      k.DirectionalLights.push_back({ Vec3f(Normalized(light.Position - light.FocalPoint)),
-        Vec3f(parameters->Diffuse * light.Color), Vec3f(parameters->Specular * light.Color) });
+      const Vec3 toLight = Normalized(light.Position - light.FocalPoint);
+      k.DirectionalLights.push_back({ Vec3f(toLight), Vec3f(parameters->Diffuse * light.Color),
+        Vec3f(parameters->Specular * light.Color), i, toLight,
+        static_cast<float>(light.ShadowAttenuation) });
     }
   }
   k.SortedIsoValues = UsedIsoValues(*parameters);
@@ -172,9 +175,15 @@ struct RayContext
   Vec3f ToEye;
   /// Half vectors of the first directional lights for this ray (Blinn-Phong).
   std::array<Vec3f, MaxHoistedLights> HalfVectors;
+  /// What shadows the shaded contributions (null: nothing), and the thread's scratch for
+  /// shadow rays.
+  const Occluders* Shadows = nullptr;
+  ShadowScratch* ShadowSpace = nullptr;
 
+  /// shading: whether the ray's contributions are shaded (a shadow ray's are not).
   RayContext(const View& field, const CastParameters& p, const RayCaster::RenderConstants& k,
-    const Ray& ray, const Vec3& indexOrigin, const Vec3& indexDirection, CastStatistics& stats)
+    const Ray& ray, const Vec3& indexOrigin, const Vec3& indexDirection, CastStatistics& stats,
+    bool shading)
     : Field(field)
     , P(p)
     , K(k)
@@ -186,7 +195,7 @@ struct RayContext
     , ToEye(-ray.Direction)
   {
     const std::size_t n = std::min(k.DirectionalLights.size(), MaxHoistedLights);
-    for (std::size_t i = 0; p.Shade && i < n; ++i)
+    for (std::size_t i = 0; shading && p.Shade && i < n; ++i)
     {
       this->HalfVectors[i] = this->HalfVector(k.DirectionalLights[i].ToLight);
     }
@@ -323,6 +332,12 @@ struct RayContext
       ? IntegerPower(ndh, this->K.IntegerSpecularPower)
       : std::pow(ndh, static_cast<float>(this->P.SpecularPower));
   }
+  Vec3 WorldPosition(double t) const { return this->WorldRay.Origin + t * this->WorldRay.Direction; }
+  /// The factor of the terms of light `index` at world point x, for a light whose shadow
+  /// attenuation is attenuation: 1 - attenuation (1 - T), T the transmittance from x
+  /// towards the light along direction toLight, up to tLight. 1 without occluders.
+  float Visibility(const Vec3& x, const Vec3& toLight, double tLight, std::size_t index,
+    float attenuation) const;
   /// Shades rgb in place at ray parameter t with world gradient g (Blinn-Phong, two-sided,
   /// in float).
   PARC_HOT_INLINE void Shade(float rgb[3], double t, const Vec3f& g) const;
@@ -344,12 +359,19 @@ PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f
     for (std::size_t i = 0; i < lights.size(); ++i)
     {
       const RayCaster::DirectionalLight& light = lights[i];
-      const float ndl = Dot(n, light.ToLight);
+      float ndl = Dot(n, light.ToLight);
       if (ndl > 0.f)
       {
         const float ndh =
           Dot(n, i < MaxHoistedLights ? this->HalfVectors[i] : this->HalfVector(light.ToLight));
-        const float spec = ndh > 0.f ? this->SpecularTerm(ndh) : 0.f;
+        float spec = ndh > 0.f ? this->SpecularTerm(ndh) : 0.f;
+        if (light.ShadowAttenuation > 0.f && this->Shadows)
+        {
+          const float v = this->Visibility(this->WorldPosition(t), light.ShadowDirection,
+            std::numeric_limits<double>::infinity(), light.Index, light.ShadowAttenuation);
+          ndl *= v;
+          spec *= v;
+        }
         for (int c = 0; c < 3; ++c)
         {
           diffuse[c] += ndl * (&light.Diffuse.X)[c];
@@ -393,6 +415,11 @@ void RayContext<View>::AddPositionalLights(
     const double ndl = Dot(normal, l);
     if (ndl > 0.0 && attenuation != 0.0)
     {
+      if (light->ShadowAttenuation > 0.0 && this->Shadows)
+      {
+        attenuation *= this->Visibility(
+          x, l, dist, positional.Index, static_cast<float>(light->ShadowAttenuation));
+      }
       const double ndh = Dot(normal, Normalized(l - this->WorldRay.Direction));
       const double spec = ndh > 0.0 ? this->SpecularTerm(static_cast<float>(ndh)) : 0.0;
       for (int c = 0; c < 3; ++c)
@@ -403,6 +430,15 @@ void RayContext<View>::AddPositionalLights(
       }
     }
   }
+}
+
+template <class View>
+float RayContext<View>::Visibility(const Vec3& x, const Vec3& toLight, double tLight,
+  std::size_t index, float attenuation) const
+{
+  const Ray shadowRay{ x, toLight, 0.0, tLight };
+  const float t = this->Shadows->Transmittance(shadowRay, index, *this->ShadowSpace, this->Stats);
+  return 1.f - attenuation * (1.f - t);
 }
 
 /// Writes colour * opacity, or exact zeros when the opacity is zero.
@@ -587,7 +623,9 @@ struct AdditiveFunction
   double Position() const { return this->C.FirstHit; }
 };
 
-template <class Context>
+/// Isosurfaces; with Shadow, along a shadow ray: each crossing of a value v multiplies
+/// Transmittance by 1 - opacity(v), and the ray stops once it is below ShadowFloor.
+template <class Context, bool Shadow = false>
 struct IsoSurfaceFunction
 {
   static constexpr bool WholeRay = false;
@@ -595,6 +633,8 @@ struct IsoSurfaceFunction
   const std::vector<double>& IsoValues; // sorted
   EventCompositor Out;
   float Previous = 0.f;
+  float Transmittance = 1.f;
+  float ShadowFloor = 0.f;
 
   /// The ray parameter in [t0, t1] where the field crosses v, given s0 = f(t0), s1 = f(t1).
   double Refine(double t0, double s0, double t1, double s1, double v) const
@@ -640,6 +680,13 @@ struct IsoSurfaceFunction
     return this->C.Over(this->Out, t, rgb, a);
   }
 
+  /// A shadow ray crosses v; false once it may stop.
+  bool Block(double v)
+  {
+    this->Transmittance *= 1.f - this->C.P.Opacity.Evaluate(v);
+    return this->Transmittance >= this->ShadowFloor;
+  }
+
   bool operator()(long k0, int n, bool follows, int& visited)
   {
     this->C.SampleBlock(k0, n);
@@ -677,7 +724,8 @@ struct IsoSurfaceFunction
       {
         continue;
       }
-      if (!this->Composite(this->Refine(t0, s0, t1, s1, v), v))
+      const bool more = Shadow ? this->Block(v) : this->Composite(this->Refine(t0, s0, t1, s1, v), v);
+      if (!more)
       {
         return false;
       }
@@ -685,6 +733,44 @@ struct IsoSurfaceFunction
     return true;
   }
   void Finish(float rgba[4]) const { this->Out.Finish(rgba); }
+};
+
+/// A composite volume along a shadow ray: Transmittance is the product of 1 - a' over the
+/// contributing samples; the ray stops once it is below Floor.
+template <class Context>
+struct AbsorptionFunction
+{
+  static constexpr bool WholeRay = false;
+  Context& C;
+  float Floor;
+  float Transmittance = 1.f;
+
+  bool operator()(long k0, int n, bool, int& visited)
+  {
+    this->C.SampleBlock(k0, n);
+    for (int j = 0; j < n; ++j)
+    {
+      float a;
+      Vec3f g;
+      bool haveGradient = false;
+      if (!this->C.ContributingOpacity(j, (k0 + j) * this->C.Dt, a, g, haveGradient))
+      {
+        continue;
+      }
+      this->Transmittance *= 1.f - a;
+      if (!(this->Transmittance >= this->Floor))
+      {
+        visited = j + 1;
+        return false;
+      }
+    }
+    return true;
+  }
+  void Finish(float rgba[4]) const
+  {
+    rgba[0] = rgba[1] = rgba[2] = 0.f;
+    rgba[3] = 1.f - this->Transmittance;
+  }
 };
 
 /// The number of unit cells the segment from a to b (voxel-index coordinates) passes.
@@ -754,21 +840,121 @@ void Run(Function&& fn, const std::vector<LatticeRange>& ranges, float rgba[4])
 
 void RayCaster::CastRay(const RayQuery& query, const SegmentSource& source,
   std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
-  CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events) const
+  CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events,
+  ShadowScratch* shadows) const
 {
   this->Field->Dispatch([&](const auto& field) {
     this->CastRayIn(
-      field, query, source, segments, ranges, rgba, stats, firstHit, events, nullptr);
+      field, query, source, segments, ranges, rgba, stats, firstHit, events, nullptr, shadows);
   });
+}
+
+bool RayCaster::RangesOf(const RayQuery& query, const SegmentSource& source,
+  std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, Vec3& indexOrigin,
+  Vec3& indexDirection, std::size_t& sourceSegments) const
+{
+  const Ray& ray = query.Path;
+  const Matrix4& w2i = this->Params->WorldToIndex;
+  indexOrigin = w2i.TransformPoint(ray.Origin);
+  indexDirection = w2i.TransformVector(ray.Direction);
+  double tEnter, tExit;
+  if (!ClipToField(*this->Field, *this->Params, indexOrigin, indexDirection, ray, tEnter, tExit))
+  {
+    return false;
+  }
+  segments.clear();
+  source.Segments(query, segments);
+  sourceSegments = segments.size();
+  const double dt = this->Params->SampleDistance;
+  SegmentsToLatticeRanges(segments, tEnter, tExit, dt, ranges);
+  if (this->Params->Crop.Enabled)
+  {
+    // The segments are spent: their storage takes the cropping's intervals.
+    CroppedIntervals(indexOrigin, indexDirection, this->Params->Crop, tEnter, tExit, segments);
+    IntersectLatticeRanges(ranges, segments, dt);
+  }
+  return true;
+}
+
+float RayCaster::Transmittance(const RayQuery& query, const SegmentSource& source,
+  ShadowScratch& scratch, CastStatistics& stats) const
+{
+  return this->Field->Dispatch([&](const auto& field) {
+    return this->TransmittanceIn(field, query, source, scratch, stats);
+  });
+}
+
+template <class View>
+float RayCaster::TransmittanceIn(const View& field, const RayQuery& query,
+  const SegmentSource& source, ShadowScratch& scratch, CastStatistics& stats) const
+{
+  const CastParameters& p = *this->Params;
+  if (p.Blend != BlendMode::Composite && p.Blend != BlendMode::IsoSurface)
+  {
+    return 1.f;
+  }
+  RayQuery shadow = query;
+  shadow.Path.TMin = std::max(shadow.Path.TMin, 0.5 * p.SampleDistance); // from k = 1
+  Vec3 indexOrigin, indexDirection;
+  std::size_t sourceSegments = 0;
+  if (!this->RangesOf(shadow, source, scratch.Segments, scratch.Ranges, indexOrigin,
+        indexDirection, sourceSegments) ||
+    scratch.Ranges.empty())
+  {
+    return 1.f;
+  }
+  using Context = RayContext<View>;
+  CastStatistics own;
+  Context context(field, p, this->Constants, shadow.Path, indexOrigin, indexDirection, own, false);
+  const float floor = static_cast<float>(1.0 - p.TerminationOpacity);
+  float rgba[4];
+  float transmittance;
+  if (p.Blend == BlendMode::Composite)
+  {
+    AbsorptionFunction<Context> fn{ context, floor };
+    Run(fn, scratch.Ranges, rgba);
+    transmittance = fn.Transmittance;
+  }
+  else
+  {
+    IsoSurfaceFunction<Context, true> fn{ context, this->Constants.SortedIsoValues, {} };
+    fn.ShadowFloor = floor;
+    Run(fn, scratch.Ranges, rgba);
+    transmittance = fn.Transmittance;
+  }
+  stats.ShadowSamples += own.Samples;
+  stats.ShadowCells += own.Cells;
+  stats.GradientEvaluations += own.GradientEvaluations;
+  stats.DifferenceLoads += own.DifferenceLoads;
+  return transmittance;
+}
+
+float Occluders::Transmittance(const Ray& shadowRay, std::size_t light, ShadowScratch& scratch,
+  CastStatistics& stats) const
+{
+  ++stats.ShadowRays;
+  const RayQuery query = RayQuery::Anywhere(shadowRay);
+  float transmittance = 1.f;
+  for (const Member& m : this->Members)
+  {
+    const SegmentSource* source =
+      light < m.LightSources.size() ? m.LightSources[light] : nullptr;
+    transmittance *= m.Caster->Transmittance(
+      query, source ? *source : this->WholeRay, scratch, stats);
+    if (transmittance == 0.f)
+    {
+      break;
+    }
+  }
+  return transmittance;
 }
 
 template <class View>
 void RayCaster::CastRayIn(const View& field, const RayQuery& query, const SegmentSource& source,
   std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
   CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events,
-  std::vector<CellDifferences>* differences) const
+  std::vector<CellDifferences>* differences, ShadowScratch* shadows) const
 {
-  const Ray& ray = query.Path;
   rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0.f;
   if (events)
   {
@@ -778,33 +964,26 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
   {
     *firstHit = std::numeric_limits<double>::infinity();
   }
-  const Matrix4& w2i = this->Params->WorldToIndex;
-  const Vec3 indexOrigin = w2i.TransformPoint(ray.Origin);
-  const Vec3 indexDirection = w2i.TransformVector(ray.Direction);
-  double tEnter, tExit;
-  if (!ClipToField(*this->Field, *this->Params, indexOrigin, indexDirection, ray, tEnter, tExit))
+  Vec3 indexOrigin, indexDirection;
+  std::size_t sourceSegments = 0;
+  if (!this->RangesOf(
+        query, source, segments, ranges, indexOrigin, indexDirection, sourceSegments))
   {
     return;
   }
   ++stats.Rays;
-  segments.clear();
-  source.Segments(query, segments);
-  stats.Segments += segments.size();
-  const double dt = this->Params->SampleDistance;
-  SegmentsToLatticeRanges(segments, tEnter, tExit, dt, ranges);
-  if (this->Params->Crop.Enabled)
-  {
-    // The segments are spent: their storage takes the cropping's intervals.
-    CroppedIntervals(indexOrigin, indexDirection, this->Params->Crop, tEnter, tExit, segments);
-    IntersectLatticeRanges(ranges, segments, dt);
-  }
+  stats.Segments += sourceSegments;
   if (ranges.empty())
   {
     return;
   }
   using Context = RayContext<View>;
-  Context context(field, *this->Params, this->Constants, ray, indexOrigin, indexDirection, stats);
+  Context context(
+    field, *this->Params, this->Constants, query.Path, indexOrigin, indexDirection, stats, true);
   context.Events = events;
+  ShadowScratch ownShadowScratch;
+  context.Shadows = this->Shadows;
+  context.ShadowSpace = shadows ? shadows : &ownShadowScratch;
   if (differences && !differences->empty())
   {
     context.DifferenceSlots = differences->data();
@@ -848,6 +1027,7 @@ struct RayScratch
   CastStatistics Stats;
   std::vector<CastStatistics> MemberStats; ///< per volume (SceneCaster)
   std::vector<CellDifferences> Differences; ///< of one volume's cells (RayCaster)
+  ShadowScratch Shadows;
 };
 
 /// Casts the tiles of one band of rows; vtkSMPTools functor.
@@ -951,7 +1131,7 @@ bool RayCaster::CastImageIn(const View& field, const Camera& view, const float* 
       scratch.Differences.resize(DifferenceCacheCells);
     }
     this->CastRayIn(field, query, source, scratch.Segments, scratch.Ranges, pixel,
-      scratch.Stats, nullptr, nullptr, &scratch.Differences);
+      scratch.Stats, nullptr, nullptr, &scratch.Differences, &scratch.Shadows);
   };
   auto mayHave = [&](int px, int py) { return source.MayHaveSegments(px, py); };
   auto reduce = [&stats](const RayScratch& scratch) { stats += scratch.Stats; };
@@ -972,7 +1152,7 @@ bool SceneCaster::SetMembers(std::vector<Member> members, double terminationOpac
 
 void SceneCaster::CastRay(const RayQuery& query, std::vector<Segment>& segments,
   std::vector<LatticeRange>& ranges, std::vector<std::vector<RayEvent>>& events, float rgba[4],
-  CastStatistics* stats) const
+  CastStatistics* stats, ShadowScratch* shadows) const
 {
   const std::size_t n = this->Members.size();
   events.resize(n);
@@ -983,7 +1163,8 @@ void SceneCaster::CastRay(const RayQuery& query, std::vector<Segment>& segments,
     events[v].clear();
     if (!query.HasPixel || m.Source->MayHaveSegments(query.Pixel[0], query.Pixel[1]))
     {
-      m.Caster->CastRay(query, *m.Source, segments, ranges, own, stats[v], nullptr, &events[v]);
+      m.Caster->CastRay(
+        query, *m.Source, segments, ranges, own, stats[v], nullptr, &events[v], shadows);
     }
   }
   // Merge by (ray parameter, volume index): each volume's events are in ray order.
@@ -1020,7 +1201,7 @@ bool SceneCaster::CastImage(const Camera& view, const float* depth, float* rgba,
   auto castOne = [&](const RayQuery& query, RayScratch& scratch, float* pixel) {
     scratch.MemberStats.resize(n);
     this->CastRay(query, scratch.Segments, scratch.Ranges, scratch.Events, pixel,
-      scratch.MemberStats.data());
+      scratch.MemberStats.data(), &scratch.Shadows);
   };
   auto mayHave = [&](int px, int py) {
     return std::any_of(this->Members.begin(), this->Members.end(),

@@ -28,6 +28,18 @@
 // average intensity or additive volume gives its whole-ray result as one event, placed at
 // its first sample with the extreme value, its first averaged sample or its first
 // contributing sample. One volume alone gives the same bits as its own caster.
+// Shadows (paper section 5, DESIGN.md section 5): with Occluders set, each shaded
+// contribution at world point x is lit by each light with ShadowAttenuation > 0 only as far
+// as the light gets through: its diffuse and specular terms (when not zero) are scaled by
+// 1 - ShadowAttenuation (1 - T). T is the product over the occluding volumes of their
+// transmittance along the shadow ray from x towards the light (up to the light, for a
+// positional light). Each volume samples the shadow ray on its own lattice t_k = k dt from
+// x, k >= 1 (x itself is left out): a composite volume multiplies T by 1 - a' at each
+// sample (a' its corrected opacity, gradient opacity included), an isosurface volume by
+// 1 - opacity(v) at each crossing of an iso value v; maximum, minimum, average and
+// additive volumes cast no shadow. A shadow ray stops once T < 1 - the volume's
+// termination opacity. The lattice depends only on x and the light, so every segment
+// source of the shadow rays gives the same T.
 // Thread safety: Cast* are const and may run concurrently once Prepare has been called.
 #ifndef parcRayCaster_h
 #define parcRayCaster_h
@@ -51,6 +63,15 @@ namespace parc
 /// The most volumes a SceneCaster casts together.
 constexpr std::size_t MaxSceneVolumes = 16;
 
+class Occluders;
+
+/// Scratch storage of one thread's shadow rays (reused from ray to ray).
+struct ShadowScratch
+{
+  std::vector<Segment> Segments;
+  std::vector<LatticeRange> Ranges;
+};
+
 /// Casts rays through one scalar field.
 class RayCaster
 {
@@ -65,10 +86,22 @@ public:
   /// events (optional) receives the ray's events in ray order (see the file comment); a
   /// composite or isosurface ray still stops where its own opacity reaches the
   /// termination opacity, which the merged opacity has reached by then.
+  /// shadows (optional) is the thread's scratch for shadow rays (a ray without one makes
+  /// its own when it casts shadow rays).
   void CastRay(const RayQuery& query, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
     CastStatistics& stats, double* firstHit = nullptr,
-    std::vector<RayEvent>* events = nullptr) const;
+    std::vector<RayEvent>* events = nullptr, ShadowScratch* shadows = nullptr) const;
+
+  /// What shades this volume's contributions in shadow (see the file comment); null (the
+  /// default) casts no shadow ray. It must outlive the casts.
+  void SetOccluders(const Occluders* occluders) { this->Shadows = occluders; }
+  const Occluders* GetOccluders() const { return this->Shadows; }
+  /// This volume's transmittance along a shadow ray (query.Path from the shaded point
+  /// towards the light, TMax at the light or +inf), sampled where source says light may
+  /// be blocked; samples and cells are counted as shadow samples and cells in stats.
+  float Transmittance(const RayQuery& query, const SegmentSource& source,
+    ShadowScratch& scratch, CastStatistics& stats) const;
 
   /// A whole image into rgba (4 floats a pixel, rows bottom to top), in parallel over
   /// tiles with vtkSMPTools; depth (may be null) holds each pixel's window depth of the
@@ -95,6 +128,9 @@ public:
     Vec3f ToLight;  ///< unit vector towards the light
     Vec3f Diffuse;  ///< diffuse coefficient times the light's colour
     Vec3f Specular; ///< specular coefficient times the light's colour
+    std::size_t Index;       ///< in CastParameters::Lights
+    Vec3 ShadowDirection;    ///< ToLight in double: the direction of shadow rays
+    float ShadowAttenuation; ///< > 0 when the light casts shadows (with Occluders)
   };
   /// A positional light with what does not change during a render.
   struct PositionalLight
@@ -102,6 +138,7 @@ public:
     const Light* Source;
     Vec3 SpotDirection;   ///< unit vector from the light to its focal point
     double CosCone = -1.; ///< cosine of the spot cone (spots only)
+    std::size_t Index;    ///< in CastParameters::Lights
   };
   /// What Prepare derives from the parameters once per render for every ray.
   struct RenderConstants
@@ -120,13 +157,22 @@ public:
   };
 
 private:
+  /// The lattice ranges of query.Path to cast: its part inside the field, the clipping
+  /// planes and the cropping where source gives segments (sourceSegments of them). False
+  /// when the ray misses the field (source is not asked).
+  bool RangesOf(const RayQuery& query, const SegmentSource& source,
+    std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, Vec3& indexOrigin,
+    Vec3& indexDirection, std::size_t& sourceSegments) const;
   /// differences (optional): a thread's cache of cell differences for gradients, a power
   /// of two of them, shared by the rays of one image.
   template <class View>
   void CastRayIn(const View& field, const RayQuery& query, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
     CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events,
-    std::vector<CellDifferences>* differences) const;
+    std::vector<CellDifferences>* differences, ShadowScratch* shadows) const;
+  template <class View>
+  float TransmittanceIn(const View& field, const RayQuery& query, const SegmentSource& source,
+    ShadowScratch& scratch, CastStatistics& stats) const;
   template <class View>
   bool CastImageIn(const View& field, const Camera& view, const float* depth,
     const SegmentSource& source, float* rgba, CastStatistics& stats,
@@ -135,6 +181,32 @@ private:
   const ScalarField* Field = nullptr;
   const CastParameters* Params = nullptr;
   RenderConstants Constants;
+  const Occluders* Shadows = nullptr;
+};
+
+/// The volumes that shadow a scene's shaded contributions, each with a segment source per
+/// light for its shadow rays (PARC buffers rendered from the light, or the whole ray).
+class Occluders
+{
+public:
+  struct Member
+  {
+    const RayCaster* Caster; ///< prepared
+    /// Per light (the index into CastParameters::Lights): where this volume may block the
+    /// light; null for the whole ray.
+    std::vector<const SegmentSource*> LightSources;
+  };
+  void SetMembers(std::vector<Member> members) { this->Members = std::move(members); }
+  const std::vector<Member>& GetMembers() const { return this->Members; }
+
+  /// The transmittance along shadowRay (from a shaded point towards light `light`; see the
+  /// file comment), the product over the members in their order; counts one shadow ray.
+  float Transmittance(const Ray& shadowRay, std::size_t light, ShadowScratch& scratch,
+    CastStatistics& stats) const;
+
+private:
+  std::vector<Member> Members;
+  WholeRaySource WholeRay;
 };
 
 /// Several volumes cast together into one image (see the file comment): every ray meets
@@ -153,10 +225,10 @@ public:
   bool SetMembers(std::vector<Member> members, double terminationOpacity);
 
   /// One ray's premultiplied RGBA; events holds one scratch vector per member, stats one
-  /// entry per member.
+  /// entry per member; shadows (optional) like RayCaster::CastRay's.
   void CastRay(const RayQuery& query, std::vector<Segment>& segments,
     std::vector<LatticeRange>& ranges, std::vector<std::vector<RayEvent>>& events,
-    float rgba[4], CastStatistics* stats) const;
+    float rgba[4], CastStatistics* stats, ShadowScratch* shadows = nullptr) const;
   /// A whole image, like RayCaster::CastImage; stats receives one entry per member.
   bool CastImage(const Camera& view, const float* depth, float* rgba,
     std::vector<CastStatistics>& stats,

@@ -39,6 +39,11 @@ struct Light
   Vec3 Attenuation{ 1.0, 0.0, 0.0 }; ///< constant, linear, quadratic (positional only)
   double ConeAngle = 180.0;          ///< degrees; >= 90 means no spot
   double Exponent = 1.0;             ///< spot exponent
+  /// How much a shadow darkens what this light gives (vtkLight::ShadowAttenuation): the
+  /// light's diffuse and specular terms are scaled by 1 - ShadowAttenuation (1 - T), T the
+  /// transmittance towards the light. 0: the light casts no shadow and no shadow ray is
+  /// cast for it.
+  double ShadowAttenuation = 0.0;
 };
 
 /// Everything that decides what a ray returns, except the ray and the field.
