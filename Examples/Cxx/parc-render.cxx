@@ -11,6 +11,7 @@
 #include <vtkFixedPointVolumeRayCastMapper.h>
 #include <vtkFloatArray.h>
 #include <vtkImageData.h>
+#include <vtkLight.h>
 #include <vtkNew.h>
 #include <vtkPNGWriter.h>
 #include <vtkPointData.h>
@@ -25,6 +26,7 @@
 #include <vtkWindowToImageFilter.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -78,6 +80,9 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
                         port 1), its centre on the first's; with --second-blend MODE
                         (default composite), --second-tf NAME|FILE and --second-iso VALUE
                         like --blend, --tf and --iso (not with the FixedPoint options)
+  --light X,Y,Z         a positional light at world point X,Y,Z (repeatable; replaces the
+                        headlight; its cone is wide open and it does not fade with distance)
+  --shadows             the renderer uses shadows: every light casts them (attenuation 1)
   --json                print statistics as JSON
   --help
 )";
@@ -96,6 +101,8 @@ struct Options
   std::vector<double> Sweep;
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
   int Width = 300, Height = 300, Repeat = 1;
+  std::vector<std::array<double, 3>> Lights;
+  bool Shadows = false;
 };
 
 [[noreturn]] void Fail(const std::string& message)
@@ -180,6 +187,8 @@ Options Parse(int argc, char* argv[])
       }
     }
     else if (a == "--json") { o.Json = true; }
+    else if (a == "--light") { o.Lights.emplace_back(); ToTriple(a, value(), o.Lights.back().data()); }
+    else if (a == "--shadows") { o.Shadows = true; }
     else if (a == "--second") { o.Second = value(); }
     else if (a == "--second-blend") { o.SecondBlend = value(); }
     else if (a == "--second-tf") { o.SecondTF = value(); }
@@ -283,6 +292,7 @@ struct Measurement
 {
   std::string Mode;
   long long Samples = 0, Cells = 0, Polygons = 0, Supercells = 0, Contributing = 0;
+  long long ShadowRays = 0, ShadowCells = 0;
   int Planes = 0, Passes = 0;
   double Projection = 0.0, Casting = 0.0, Total = 0.0, Wall = 0.0;
   std::vector<float> Image;
@@ -302,6 +312,8 @@ Measurement Measure(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, int re
   m.Mode = vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode());
   m.Samples = mapper->GetLastSampleCount();
   m.Cells = mapper->GetLastCellCount();
+  m.ShadowRays = mapper->GetLastShadowRayCount();
+  m.ShadowCells = mapper->GetLastShadowCellCount();
   m.Polygons = mapper->GetLastPolygonCount();
   m.Supercells = mapper->GetLastSupercellCount();
   m.Contributing = mapper->GetLastContributingSupercellCount();
@@ -330,14 +342,15 @@ void CompareAccelerationModes(vtkRenderWindow* window, vtkPARCVolumeMapper* mapp
       rows.back().Mode = "Auto: " + rows.back().Mode;
     }
   }
-  std::printf("| mode | samples | cells | polygons | planes/passes | projection (s) | casting (s) "
-              "| total (s) | speedup | identical |\n|---|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| mode | samples | cells | shadow rays | shadow cells | polygons | planes/passes "
+              "| projection (s) | casting (s) | total (s) | speedup | identical |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Measurement& m : rows)
   {
     const bool same = m.Image == rows[0].Image;
-    std::printf("| %s | %lld | %lld | %lld | %d/%d | %.4f | %.4f | %.4f | %.2fx | %s |\n",
-      m.Mode.c_str(), m.Samples, m.Cells, m.Polygons, m.Planes, m.Passes, m.Projection,
-      m.Casting, m.Total, rows[0].Total / m.Total, same ? "yes" : "NO");
+    std::printf("| %s | %lld | %lld | %lld | %lld | %lld | %d/%d | %.4f | %.4f | %.4f | %.2fx | %s |\n",
+      m.Mode.c_str(), m.Samples, m.Cells, m.ShadowRays, m.ShadowCells, m.Polygons, m.Planes,
+      m.Passes, m.Projection, m.Casting, m.Total, rows[0].Total / m.Total, same ? "yes" : "NO");
   }
   std::printf("PC supercells: %lld of %lld (%.2f%%); classification took %.4f s\n",
     rows[1].Contributing, rows[1].Supercells,
@@ -715,6 +728,17 @@ int main(int argc, char* argv[])
     renderer->AddVolume(volume);
   }
   renderer->SetBackground(0.0, 0.0, 0.0);
+  renderer->SetUseShadows(o.Shadows ? 1 : 0);
+  for (const auto& position : o.Lights)
+  {
+    vtkNew<vtkLight> light;
+    light->SetLightTypeToSceneLight();
+    light->SetPositional(1);
+    light->SetConeAngle(180.0);
+    light->SetPosition(position.data());
+    light->SetFocalPoint(image->GetCenter());
+    renderer->AddLight(light);
+  }
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
   window->SetSize(o.Width, o.Height);

@@ -48,9 +48,11 @@ constexpr float DisplayDepth = 1e-6f; ///< window depth of the displayed image q
 /// A sample distance must leave at most this many samples along the volume's diagonal.
 constexpr double MaxSamplesPerDiagonal = 1e7;
 
-/// The renderer's lights that are on, in the render frame (origin at frame).
+/// The renderer's lights that are on, in the render frame (origin at frame). A light casts
+/// shadows (its ShadowAttenuation) only when the renderer uses shadows.
 void ConvertLights(vtkRenderer* ren, const parc::Vec3& frame, std::vector<parc::Light>& lights)
 {
+  const bool shadows = ren->GetUseShadows() != 0;
   lights.clear();
   vtkLightCollection* collection = ren->GetLights();
   vtkCollectionSimpleIterator it;
@@ -75,6 +77,9 @@ void ConvertLights(vtkRenderer* ren, const parc::Vec3& frame, std::vector<parc::
     l.Attenuation = { a[0], a[1], a[2] };
     l.ConeAngle = light->GetConeAngle();
     l.Exponent = light->GetExponent();
+    l.ShadowAttenuation =
+      shadows ? std::min(std::max(static_cast<double>(light->GetShadowAttenuation()), 0.0), 1.0)
+              : 0.0;
     lights.push_back(l);
   }
 }
@@ -300,6 +305,8 @@ public:
   /// The volumes of the current render with their props, in port order.
   std::vector<std::pair<vtkVolumeState*, vtkVolume*>> Rendered;
   parc::SceneCaster Scene;
+  /// What shadows the rendered volumes when a light casts shadows (see ShadowMembers).
+  parc::Occluders Shadows;
   std::vector<parc::CastStatistics> MemberStats;
   std::vector<float> Image;
   int ImageSize[2] = { 0, 0 };
@@ -330,6 +337,9 @@ public:
   /// Runs each volume's PARC passes: the volumes with the segment source each casts with.
   std::vector<parc::SceneCaster::Member> RunPasses(
     vtkPARCVolumeMapper* self, vtkRenderer* ren, const vtkPARCRasterizer::View& view);
+  /// Every rendered volume shadows every shaded one when a shaded volume has a light that
+  /// casts shadows (each caster's occluders are set, or cleared).
+  void SetUpShadows();
   /// Casts the ray image; false when aborted.
   bool Cast(vtkPARCVolumeMapper* self, vtkRenderer* ren, const parc::Camera& rays,
     const float* depth, const std::vector<parc::SceneCaster::Member>& members);
@@ -628,6 +638,7 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
     : nullptr;
   const std::vector<vtkInternals::SetUpWork> before = in.CountSetUpWork();
   const std::vector<parc::SceneCaster::Member> members = in.RunPasses(this, ren, view);
+  in.SetUpShadows();
   const bool completed = in.Cast(this, ren, view.Camera, depth, members);
   in.RecordAuto(before, completed);
 }
@@ -703,6 +714,27 @@ std::vector<parc::SceneCaster::Member> vtkPARCVolumeMapper::vtkInternals::RunPas
     members.push_back({ &volume.Caster, &source });
   }
   return members;
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCVolumeMapper::vtkInternals::SetUpShadows()
+{
+  const auto castsShadows = [](const parc::Light& light) { return light.ShadowAttenuation > 0.0; };
+  const bool shadows = std::any_of(this->Rendered.begin(), this->Rendered.end(),
+    [&](const std::pair<vtkVolumeState*, vtkVolume*>& entry) {
+      const std::vector<parc::Light>& lights = entry.first->Parameters.Lights;
+      return std::any_of(lights.begin(), lights.end(), castsShadows);
+    });
+  std::vector<parc::Occluders::Member> occluders;
+  for (const auto& entry : this->Rendered)
+  {
+    occluders.push_back({ &entry.first->Caster, {} });
+  }
+  this->Shadows.SetMembers(shadows ? std::move(occluders) : std::vector<parc::Occluders::Member>());
+  for (const auto& entry : this->Rendered)
+  {
+    entry.first->Caster.SetOccluders(shadows ? &this->Shadows : nullptr);
+  }
 }
 
 //------------------------------------------------------------------------------
@@ -984,6 +1016,18 @@ vtkIdType vtkPARCVolumeMapper::GetLastGradientCount()
 {
   return static_cast<vtkIdType>(this->Internals->Stats.GradientEvaluations);
 }
+vtkIdType vtkPARCVolumeMapper::GetLastShadowRayCount()
+{
+  return static_cast<vtkIdType>(this->Internals->Stats.ShadowRays);
+}
+vtkIdType vtkPARCVolumeMapper::GetLastShadowSampleCount()
+{
+  return static_cast<vtkIdType>(this->Internals->Stats.ShadowSamples);
+}
+vtkIdType vtkPARCVolumeMapper::GetLastShadowCellCount()
+{
+  return static_cast<vtkIdType>(this->Internals->Stats.ShadowCells);
+}
 int vtkPARCVolumeMapper::GetAutoTrialsRemaining()
 {
   return this->Internals->Sum<int>([](const vtkVolumeState& v) { return v.Plan.Auto.Remaining(); });
@@ -1143,6 +1187,8 @@ void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
      << "Gradients: " << in.Stats.GradientEvaluations << " (cell differences loaded "
      << in.Stats.DifferenceLoads << ")\n"
      << "Cells considered: " << in.Stats.Cells << "\n"
+     << "Shadow rays: " << in.Stats.ShadowRays << " (samples " << in.Stats.ShadowSamples
+     << ", cells " << in.Stats.ShadowCells << ")\n"
      << "Casting time (s): " << in.CastingTime << "\n"
      << "Projection time (s): " << in.ProjectionTime << "\n"
      << "Render time (s): " << in.RenderTime << "\n";

@@ -46,6 +46,19 @@
  *   uniformly, with a warning.
  * - Positional lights use their attenuation and spot cone; shading is Blinn-Phong, two-sided.
  *
+ * Shadows (paper section 5): when the renderer uses shadows (vtkRenderer::UseShadowsOn) and
+ * a light has a ShadowAttenuation > 0 (vtkLight's default is 1), every shaded contribution
+ * (a composite sample with non-zero opacity, an isosurface crossing) that the light lights
+ * is lit only as far as the light gets through the volumes: the light's diffuse and
+ * specular terms are scaled by 1 - ShadowAttenuation (1 - T), where T is the
+ * transmittance towards the light along a shadow ray through all the rendered volumes
+ * (composite volumes absorb with their corrected opacity, isosurfaces block with the
+ * opacity of their iso value; maximum, minimum, average and additive volumes cast no
+ * shadow). Each volume samples a shadow ray on its own lattice from the shaded point
+ * (k dt, k >= 1), whatever the acceleration, so the shadowed image is as exact as the
+ * unshadowed one. Opaque geometry of the renderer casts no shadow on the volumes. Without
+ * both switches no shadow ray is cast (GetLastShadowRayCount is 0).
+ *
  * Several volumes: with a vtkPARCMultiVolume prop, the mapper renders one volume per
  * input port (SetInputConnection(port, ...), ports 0 to MaxInputPorts - 1), each with the
  * property and transform of the vtkVolume the prop holds for that port
@@ -201,6 +214,14 @@ public:
   vtkIdType GetLastPolygonCount();
   /** Cells the cast ray segments crossed (the paper's "cells considered"). */
   vtkIdType GetLastCellCount();
+  /**
+   * Shadows (paper section 5, Table 3): shadow rays cast (one per shaded contribution and
+   * shadow-casting light that lights it), the lattice samples they took and the cells
+   * they crossed.
+   */
+  vtkIdType GetLastShadowRayCount();
+  vtkIdType GetLastShadowSampleCount();
+  vtkIdType GetLastShadowCellCount();
   /** Supercells and PC supercells of the last classification. */
   vtkIdType GetLastSupercellCount();
   vtkIdType GetLastContributingSupercellCount();
