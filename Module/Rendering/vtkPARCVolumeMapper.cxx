@@ -1,7 +1,10 @@
 #include "vtkPARCVolumeMapper.h"
 
+#include "parcLightFrusta.h"
+
 #include "parcAccelerationPlan.h"
 #include "parcBufferSources.h"
+#include "parcLightFrusta.h"
 #include "parcPolygonModel.h"
 #include "parcRayCaster.h"
 #include "parcVTKConversion.h"
@@ -44,6 +47,9 @@ namespace
 /// tight on a large face as on a small one (it tests each pixel's ray against the face).
 
 constexpr float DisplayDepth = 1e-6f; ///< window depth of the displayed image quad
+
+/// Pixels along each edge of a light's PARC buffers (shadow rays).
+constexpr int LightBufferSize = 256;
 
 /// A sample distance must leave at most this many samples along the volume's diagonal.
 constexpr double MaxSamplesPerDiagonal = 1e7;
@@ -261,6 +267,15 @@ public:
   const parc::WholeRaySource WholeRays;
   const parc::EmptySource NoRays;
   bool FallbackWarned = false;
+  // PARC for shadow rays: per light (index into Parameters.Lights), the depth passes of the
+  // light's cameras, remade only when what they were made from changes (not the camera).
+  vtkNew<vtkPARCRasterizer> LightRasterizer;
+  struct LightPasses
+  {
+    std::vector<double> Key; ///< light and volume in world coordinates, model version
+    parc::LightBufferSource Source;
+  };
+  std::vector<LightPasses> LightBuffers;
   vtkIdType PolygonCount = 0;
   int PlaneCount = 0;
   int PassCount = 0;
@@ -291,6 +306,13 @@ public:
 
   /// The mode Auto resolves to for the current classification, ray function and view.
   int ChooseMode(int requested, const parc::Camera& camera);
+  /// The segment source of shadow rays towards light `index` (lit from lights, in the
+  /// render frame whose world origin is frame): the light's depth passes, run again only
+  /// when the light, the volume's transform or its model changed; null when they cannot
+  /// run (the whole ray is cast).
+  const parc::SegmentSource* LightSource(vtkRenderWindow* window,
+    const std::vector<parc::Light>& lights, std::size_t index, const parc::Vec3& frame,
+    double& projectionTime);
   /// Runs the PARC passes of the requested mode; the segment source the caster uses.
   const parc::SegmentSource& RunPasses(vtkPARCVolumeMapper* self, vtkRenderer* ren,
     vtkVolume* vol, const vtkPARCRasterizer::View& view);
@@ -315,6 +337,7 @@ public:
   parc::CastStatistics Stats; ///< summed over the rendered volumes
   double CastingTime = 0.0;
   double ProjectionTime = 0.0;
+  double LightProjectionTime = 0.0; ///< the shadow rays' light passes (part of the render)
   double RenderTime = 0.0;
   vtkNew<vtkOpenGLRayCastImageDisplayHelper> DisplayHelper;
 
@@ -339,7 +362,7 @@ public:
     vtkPARCVolumeMapper* self, vtkRenderer* ren, const vtkPARCRasterizer::View& view);
   /// Every rendered volume shadows every shaded one when a shaded volume has a light that
   /// casts shadows (each caster's occluders are set, or cleared).
-  void SetUpShadows();
+  void SetUpShadows(vtkPARCVolumeMapper* self, vtkRenderer* ren);
   /// Casts the ray image; false when aborted.
   bool Cast(vtkPARCVolumeMapper* self, vtkRenderer* ren, const parc::Camera& rays,
     const float* depth, const std::vector<parc::SceneCaster::Member>& members);
@@ -638,7 +661,7 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
     : nullptr;
   const std::vector<vtkInternals::SetUpWork> before = in.CountSetUpWork();
   const std::vector<parc::SceneCaster::Member> members = in.RunPasses(this, ren, view);
-  in.SetUpShadows();
+  in.SetUpShadows(this, ren);
   const bool completed = in.Cast(this, ren, view.Camera, depth, members);
   in.RecordAuto(before, completed);
 }
@@ -717,18 +740,36 @@ std::vector<parc::SceneCaster::Member> vtkPARCVolumeMapper::vtkInternals::RunPas
 }
 
 //------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::vtkInternals::SetUpShadows()
+void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, vtkRenderer* ren)
 {
   const auto castsShadows = [](const parc::Light& light) { return light.ShadowAttenuation > 0.0; };
-  const bool shadows = std::any_of(this->Rendered.begin(), this->Rendered.end(),
-    [&](const std::pair<vtkVolumeState*, vtkVolume*>& entry) {
-      const std::vector<parc::Light>& lights = entry.first->Parameters.Lights;
-      return std::any_of(lights.begin(), lights.end(), castsShadows);
-    });
-  std::vector<parc::Occluders::Member> occluders;
+  // The lights of the shaded volumes (every shaded volume has all of the renderer's).
+  const std::vector<parc::Light>* lights = nullptr;
   for (const auto& entry : this->Rendered)
   {
-    occluders.push_back({ &entry.first->Caster, {} });
+    const std::vector<parc::Light>& own = entry.first->Parameters.Lights;
+    if (std::any_of(own.begin(), own.end(), castsShadows))
+    {
+      lights = &own;
+    }
+  }
+  const bool shadows = lights != nullptr;
+  this->LightProjectionTime = 0.0;
+  std::vector<parc::Occluders::Member> occluders;
+  const parc::Vec3 frame = vtkPARCRasterizer::FrameOrigin(ren);
+  for (const auto& entry : this->Rendered)
+  {
+    vtkVolumeState& volume = *entry.first;
+    parc::Occluders::Member member{ &volume.Caster, {} };
+    for (std::size_t i = 0; shadows && self->AccelerationMode != ACCELERATION_NONE &&
+         volume.Plan.GetGrid().GetNumberOfSupercells() > 0 && i < lights->size();
+         ++i)
+    {
+      member.LightSources.push_back(castsShadows((*lights)[i])
+          ? volume.LightSource(ren->GetRenderWindow(), *lights, i, frame, this->LightProjectionTime)
+          : nullptr);
+    }
+    occluders.push_back(std::move(member));
   }
   this->Shadows.SetMembers(shadows ? std::move(occluders) : std::vector<parc::Occluders::Member>());
   for (const auto& entry : this->Rendered)
@@ -908,6 +949,92 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
 }
 
 //------------------------------------------------------------------------------
+const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
+  vtkRenderWindow* window, const std::vector<parc::Light>& lights, std::size_t index,
+  const parc::Vec3& frame, double& projectionTime)
+{
+  vtkVolumeState& in = *this;
+  const parc::SupercellGrid& grid = in.Plan.GetGrid();
+  if (grid.GetNumberOfContributing() == 0)
+  {
+    return &in.NoRays; // nothing in this volume can block a light
+  }
+  const parc::Light& light = lights[index];
+  const int* dims = in.Field.GetDimensions();
+  std::vector<parc::Vec3> corners; // of the volume's box, in the render frame
+  for (int c = 0; c < 8; ++c)
+  {
+    corners.push_back(in.IndexToFrame.TransformPoint({ (c & 1) ? dims[0] - 1.0 : 0.0,
+      (c & 2) ? dims[1] - 1.0 : 0.0, (c & 4) ? dims[2] - 1.0 : 0.0 }));
+  }
+  const parc::Vec3 eye = parc::LightEye(light, corners); // render frame
+  // What the passes depend on, in world coordinates.
+  const std::uint64_t version = in.Plan.GetModelVersion();
+  std::vector<double> key = { light.Positional ? 1.0 : 0.0, static_cast<double>(version),
+    static_cast<double>(LightBufferSize) };
+  for (const parc::Vec3& x : { light.Position + frame, light.FocalPoint + frame, eye + frame })
+  {
+    key.insert(key.end(), { x.X, x.Y, x.Z });
+  }
+  for (int r = 0; r < 3; ++r)
+  {
+    for (int c = 0; c < 4; ++c)
+    {
+      key.push_back(in.IndexToFrame(r, c) + (c == 3 ? frame[r] : 0.0));
+    }
+  }
+  if (in.LightBuffers.size() < lights.size())
+  {
+    in.LightBuffers.resize(lights.size());
+  }
+  LightPasses& passes = in.LightBuffers[index];
+  passes.Source.Offset = -1.0 * eye; // render frame -> the light's frame (eye at 0)
+  if (passes.Key == key)
+  {
+    return &passes.Source;
+  }
+  const double start = vtkTimerLog::GetUniversalTime();
+  passes.Key.clear();
+  passes.Source.Buffers.clear();
+  parc::Light relative = light;
+  relative.Position = light.Position - eye;
+  relative.FocalPoint = light.FocalPoint - eye;
+  for (parc::Vec3& x : corners)
+  {
+    x = x - eye;
+  }
+  const parc::Matrix4 indexToLight = parc::Translated(in.IndexToFrame, -1.0 * eye);
+  parc::Matrix4 lightToIndex;
+  bool ok = parc::Invert(indexToLight, lightToIndex);
+  for (const parc::Camera& camera : parc::LightCameras(relative, corners, LightBufferSize))
+  {
+    vtkPARCRasterizer::View view;
+    view.Camera = camera;
+    view.FrameOrigin = eye + frame;
+    vtkPARCRasterizer::SetRayCoefficients(view);
+    view.AffineRays = false; // every face keeps its whole depth range: any line is covered
+    const parc::PolygonModel& model =
+      in.Plan.GetDepthModel(in.LightRasterizer->HasModel(window, false, version));
+    std::vector<float> nearFar;
+    ok = ok && in.LightRasterizer->RenderDepth(window, model, version, indexToLight, view, nearFar);
+    if (!ok)
+    {
+      break;
+    }
+    passes.Source.Buffers.emplace_back();
+    passes.Source.Buffers.back().Set(camera, std::move(nearFar), &grid, lightToIndex);
+  }
+  projectionTime += vtkTimerLog::GetUniversalTime() - start;
+  if (!ok || passes.Source.Buffers.empty())
+  {
+    passes.Source.Buffers.clear();
+    return nullptr;
+  }
+  passes.Key = std::move(key);
+  return &passes.Source;
+}
+
+//------------------------------------------------------------------------------
 bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
 {
   ClassificationKey key;
@@ -1041,6 +1168,10 @@ double vtkPARCVolumeMapper::GetLastCastingTime()
 double vtkPARCVolumeMapper::GetLastProjectionTime()
 {
   return this->Internals->ProjectionTime;
+}
+double vtkPARCVolumeMapper::GetLastLightProjectionTime()
+{
+  return this->Internals->LightProjectionTime;
 }
 double vtkPARCVolumeMapper::GetLastRenderTime()
 {
@@ -1191,6 +1322,7 @@ void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
      << ", cells " << in.Stats.ShadowCells << ")\n"
      << "Casting time (s): " << in.CastingTime << "\n"
      << "Projection time (s): " << in.ProjectionTime << "\n"
+     << "Light projection time (s): " << in.LightProjectionTime << "\n"
      << "Render time (s): " << in.RenderTime << "\n";
 }
 

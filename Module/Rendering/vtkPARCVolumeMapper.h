@@ -222,6 +222,13 @@ public:
   vtkIdType GetLastShadowRayCount();
   vtkIdType GetLastShadowSampleCount();
   vtkIdType GetLastShadowCellCount();
+  /**
+   * Seconds the last render spent in the PARC passes of the lights (shadow rays; 0 when
+   * they were cached). The shadow rays of a volume use depth-buffer PARC from each light
+   * unless the acceleration mode is ACCELERATION_NONE; the buffers are remade only when a
+   * light, the volume's transform or its classification changes.
+   */
+  double GetLastLightProjectionTime();
   /** Supercells and PC supercells of the last classification. */
   vtkIdType GetLastSupercellCount();
   vtkIdType GetLastContributingSupercellCount();

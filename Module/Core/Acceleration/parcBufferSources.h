@@ -43,6 +43,7 @@ public:
   std::vector<float> ReleaseBuffer() { return std::move(this->NearFar); }
   /// Memory held by the buffer, in bytes.
   std::size_t GetMemorySize() const { return this->NearFar.capacity() * sizeof(float); }
+  const Camera& GetView() const { return this->View; }
 
   void Segments(const RayQuery& query, std::vector<Segment>& out) const override;
   bool MayHaveSegments(int px, int py) const override;
