@@ -5,6 +5,7 @@
 // reversed from behind the volume towards the eye, must get segments that hold every PC
 // interval the oracle finds on it.
 #include "parcBufferSources.h"
+#include "parcLightFrusta.h"
 #include "parcSegmentOracle.h"
 #include "parcTestScene.h"
 #include "vtkPARCRasterizer.h"
@@ -25,6 +26,8 @@ struct Tally
   double IdealLength = 0.0, ExtraLength = 0.0;
   std::size_t Lines = 0;      ///< pixel-less queries checked
   std::size_t TightLines = 0; ///< pixel-less depth answers that left part of the line out
+  std::size_t ShadowLines = 0;      ///< shadow rays checked against the light passes
+  std::size_t TightShadowLines = 0; ///< light answers that left part of the ray out
 };
 
 /// Whether the union of segments holds every interval of ideal.
@@ -75,6 +78,105 @@ bool CheckLine(const parc::Ray& ray, double t0, double t1, const parc::SegmentOr
   }
   ++tally.Lines;
   tally.TightLines += kept < 0.999 * (t1 - t0) ? 1 : 0;
+  return true;
+}
+
+/// The depth passes of lights (shadow rays, parcLightFrusta.h) on adversarial lights: on a
+/// face, on an edge, inside, far away, grazing a face, and directional (also grazing). For
+/// random points in the volume the shadow ray towards the light must get segments holding
+/// every PC interval the oracle finds on it; returns false on the first miss.
+bool CheckLights(vtkRenderWindow* window, vtkPARCRasterizer* rasterizer,
+  const parc::SupercellGrid& grid, const parc::PolygonModel& depthModel,
+  const parc::Matrix4& indexToWorld, std::mt19937& rng, Tally& tally)
+{
+  parc::Matrix4 worldToIndex;
+  parc::Invert(indexToWorld, worldToIndex);
+  const parc::SegmentOracle oracle(grid, worldToIndex);
+  std::vector<parc::Vec3> box;
+  for (int c = 0; c < 8; ++c)
+  {
+    box.push_back(indexToWorld.TransformPoint(
+      { (c & 1) ? 32.0 : 0.0, (c & 2) ? 32.0 : 0.0, (c & 4) ? 32.0 : 0.0 }));
+  }
+  struct TestLight
+  {
+    bool Positional;
+    parc::Vec3 Index; ///< position (positional) or direction towards the light (index frame)
+  };
+  const TestLight lights[] = { { true, { 16, 16, 0 } }, { true, { 0, 0, 16 } },
+    { true, { 16, 15, 17 } }, { true, { 16, 16, 600 } }, { true, { -40, 16, 0 } },
+    { false, { 1, 0, 0 } }, { false, { 1, 2, -2 } }, { false, { 1, 0, 1e-3 } } };
+  std::uniform_real_distribution<double> u(0.0, 32.0);
+  for (const TestLight& test : lights)
+  {
+    parc::Light light;
+    light.Positional = test.Positional;
+    light.Position = test.Positional ? indexToWorld.TransformPoint(test.Index)
+                                     : indexToWorld.TransformVector(test.Index);
+    const parc::Vec3 eye = parc::LightEye(light, box);
+    parc::Light relative = light;
+    relative.Position = light.Position - eye;
+    relative.FocalPoint = light.FocalPoint - eye;
+    std::vector<parc::Vec3> corners;
+    for (const parc::Vec3& x : box)
+    {
+      corners.push_back(x - eye);
+    }
+    const parc::Matrix4 indexToLight = parc::Translated(indexToWorld, -1.0 * eye);
+    parc::Matrix4 lightToIndex;
+    parc::Invert(indexToLight, lightToIndex);
+    parc::LightBufferSource source;
+    source.Offset = -1.0 * eye;
+    for (const parc::Camera& camera : parc::LightCameras(relative, corners, 128))
+    {
+      vtkPARCRasterizer::View view;
+      view.Camera = camera;
+      vtkPARCRasterizer::SetRayCoefficients(view);
+      view.AffineRays = false;
+      std::vector<float> nearFar;
+      if (!rasterizer->RenderDepth(window, depthModel, 1, indexToLight, view, nearFar))
+      {
+        std::cerr << "Light pass failed: " << rasterizer->GetLastError() << "\n";
+        return false;
+      }
+      source.Buffers.emplace_back();
+      source.Buffers.back().Set(camera, std::move(nearFar), &grid, lightToIndex);
+    }
+    for (int i = 0; i < 2000; ++i)
+    {
+      const parc::Vec3 x = indexToWorld.TransformPoint({ u(rng), u(rng), u(rng) });
+      parc::Ray ray{ x, parc::Normalized(light.Position), 0.0, 1e30 };
+      if (test.Positional)
+      {
+        ray.Direction = parc::Normalized(light.Position - x);
+        ray.TMax = parc::Length(light.Position - x);
+      }
+      std::vector<parc::Segment> ideal, got;
+      oracle.Intervals(ray, ray.TMin, ray.TMax, ideal);
+      source.Segments(parc::RayQuery::Anywhere(ray), got);
+      if (!Covers(got, ideal))
+      {
+        std::cerr << "Light at index " << test.Index.X << ", " << test.Index.Y << ", "
+                  << test.Index.Z << (test.Positional ? " (positional)" : " (directional)")
+                  << ": the shadow ray from " << x.X << ", " << x.Y << ", " << x.Z
+                  << " misses a PC interval.\n";
+        return false;
+      }
+      double kept = 0.0, length = 0.0;
+      double t0 = ray.TMin, t1 = ray.TMax;
+      if (parc::ClipToBox(worldToIndex.TransformPoint(ray.Origin),
+            worldToIndex.TransformVector(ray.Direction), { 0, 0, 0 }, { 32, 32, 32 }, t0, t1))
+      {
+        length = t1 - t0;
+        for (const parc::Segment& g : got)
+        {
+          kept += std::max(0.0, std::min(g.TFar, t1) - std::max(g.TNear, t0));
+        }
+      }
+      ++tally.ShadowLines;
+      tally.TightShadowLines += kept < 0.999 * length ? 1 : 0;
+    }
+  }
   return true;
 }
 
@@ -286,6 +388,11 @@ int TestPARCRasterizer(int argc, char* argv[])
     {
       parc::BuildColorModel(grid, a, merge, colorModels[a]);
     }
+    if ((run == 0 || run == 6) &&
+      !CheckLights(window, rasterizer, grid, depthModel, placement, rng, tally))
+    {
+      return EXIT_FAILURE;
+    }
     auto check = [&](const char* name) {
       ren->ResetCameraClippingRange();
       ++cameras;
@@ -378,6 +485,14 @@ int TestPARCRasterizer(int argc, char* argv[])
             << "%); " << tally.FrontOnly << " cameras drew only the faces towards the eye.\n";
   std::cout << "Queries without a pixel: " << tally.Lines << " lines, no miss; "
             << tally.TightLines << " depth answers left part of the line out.\n";
+  std::cout << "Shadow rays against the light passes: " << tally.ShadowLines
+            << " rays, no miss; " << tally.TightShadowLines
+            << " answers left part of the ray in the volume out.\n";
+  if (tally.TightShadowLines < tally.ShadowLines / 2)
+  {
+    std::cerr << "Fewer than half of the shadow rays were narrowed by the light passes.\n";
+    return EXIT_FAILURE;
+  }
   if (tally.TightLines < tally.Lines / 2)
   {
     std::cerr << "Fewer than half of the queries without a pixel were narrowed.\n";
