@@ -50,6 +50,8 @@ constexpr float DisplayDepth = 1e-6f; ///< window depth of the displayed image q
 
 /// Pixels along each edge of a light's PARC buffers (shadow rays).
 constexpr int LightBufferSize = 256;
+/// Relative difference under which what a light's passes were made from counts as unchanged.
+constexpr double LightKeyTolerance = 1e-9;
 
 /// A sample distance must leave at most this many samples along the volume's diagonal.
 constexpr double MaxSamplesPerDiagonal = 1e7;
@@ -989,7 +991,12 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   }
   LightPasses& passes = in.LightBuffers[index];
   passes.Source.Offset = -1.0 * eye; // render frame -> the light's frame (eye at 0)
-  if (passes.Key == key)
+  // The same world quantities come back through the render frame with rounding.
+  const auto same = [](double a, double b) {
+    return std::fabs(a - b) <= LightKeyTolerance * std::max({ 1.0, std::fabs(a), std::fabs(b) });
+  };
+  if (passes.Key.size() == key.size() &&
+    std::equal(key.begin(), key.end(), passes.Key.begin(), same))
   {
     return &passes.Source;
   }

@@ -3,6 +3,8 @@
 // and takes fewer samples.
 #include "parcTestScene.h"
 
+#include <vtkLight.h>
+
 #include <vtkActor.h>
 #include <vtkPolyDataMapper.h>
 #include <vtkRendererCollection.h>
@@ -240,5 +242,93 @@ int TestPARCAccelerationExact(int argc, char* argv[])
     }
   }
   std::cout << cases << " accelerated renders compared, " << failures << " failures\n";
+  // Shadows: shadowed images are bit-identical in every mode, for a light inside the
+  // volume, one on a face, a directional one and two at once; only with the renderer's
+  // shadows on; the light passes are cached across camera moves.
+  {
+    window->GetRenderers()->RemoveAllItems();
+    vtkSmartPointer<vtkPARCVolumeMapper> mapper =
+      parctest::AddVolume(window, vp, blobs, property, vtkVolumeMapper::ISOSURFACE_BLEND);
+    vtkRenderer* ren = window->GetRenderers()->GetFirstRenderer();
+    const double* bounds = mapper->GetBounds();
+    int narrowed = 0; ///< light sets whose shadow rays took fewer samples with depth PARC
+    const double lightSets[][2][4] = { // x, y, z, positional (0: direction towards the light)
+      { { 3, 2, 1, 1 }, { 0, 0, 0, -1 } },
+      { { 0.5, 0.25, bounds[4], 1 }, { 0, 0, 0, -1 } },
+      { { 1, 2, 0.5, 0 }, { 0, 0, 0, -1 } },
+      { { -2, 3, 30, 1 }, { 1, -1, 0.2, 0 } } };
+    for (int blend : { vtkVolumeMapper::ISOSURFACE_BLEND, vtkVolumeMapper::COMPOSITE_BLEND })
+    {
+      mapper->SetBlendMode(blend);
+      for (const auto& set : lightSets)
+      {
+        ren->RemoveAllLights();
+        for (const auto& l : set)
+        {
+          if (l[3] < 0)
+          {
+            continue;
+          }
+          vtkNew<vtkLight> light;
+          light->SetLightTypeToSceneLight();
+          light->SetPositional(l[3] > 0);
+          light->SetConeAngle(180);
+          light->SetPosition(l[0], l[1], l[2]);
+          light->SetFocalPoint(0, 0, 0);
+          ren->AddLight(light);
+        }
+        ren->SetUseShadows(0);
+        mapper->SetAccelerationModeToNone();
+        window->Render();
+        const std::vector<float> unshadowed = parctest::RayImage(mapper);
+        const bool off = mapper->GetLastShadowRayCount() == 0;
+        ren->SetUseShadows(1);
+        window->Render();
+        const std::vector<float> reference = parctest::RayImage(mapper);
+        const vtkIdType shadowRays = mapper->GetLastShadowRayCount();
+        const vtkIdType shadowSamples = mapper->GetLastShadowSampleCount();
+        ++cases;
+        if (!off || shadowRays == 0 || reference == unshadowed)
+        {
+          std::cerr << "FAIL shadows (blend " << blend << ", light " << set[0][0]
+                    << "): shadow rays without shadows on, or none with them\n";
+          ++failures;
+        }
+        for (int mode : modes)
+        {
+          mapper->SetAccelerationMode(mode);
+          window->Render();
+          ++cases;
+          const std::vector<float> fast = parctest::RayImage(mapper);
+          narrowed += mode == vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER &&
+            mapper->GetLastShadowSampleCount() < shadowSamples;
+          if (fast != reference || mapper->GetLastShadowRayCount() != shadowRays ||
+            (mode == vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER &&
+              mapper->GetLastShadowSampleCount() > shadowSamples))
+          {
+            std::cerr << "FAIL shadows (blend " << blend << ", light " << set[0][0] << ", "
+                      << vtkPARCVolumeMapper::GetAccelerationModeAsString(mode)
+                      << "): not bit-identical or shadow samples not fewer ("
+                      << mapper->GetLastShadowSampleCount() << " vs " << shadowSamples << ")\n";
+            ++failures;
+          }
+        }
+        ren->GetActiveCamera()->Azimuth(10);
+        window->Render();
+        ren->GetActiveCamera()->Azimuth(-10);
+        if (mapper->GetLastLightProjectionTime() != 0.0)
+        {
+          std::cerr << "FAIL shadows: a camera move ran the light passes again\n";
+          ++failures;
+        }
+      }
+    }
+    if (narrowed < 4)
+    {
+      std::cerr << "FAIL shadows: the light passes narrowed the shadow rays of only "
+                << narrowed << " of 8 scenes\n";
+      ++failures;
+    }
+  }
   return failures == 0 ? EXIT_SUCCESS : EXIT_FAILURE;
 }
