@@ -657,6 +657,31 @@ void vtkPARCRasterizer::SetRayCoefficients(View& pass)
 }
 
 //------------------------------------------------------------------------------
+bool vtkPARCRasterizer::RenderLightDepth(vtkRenderWindow* window,
+  const parc::PolygonModel& model, std::uint64_t modelVersion, const parc::LightFrame& light,
+  int resolution, const parc::SupercellGrid* grid, parc::LightBufferSource& source)
+{
+  source.Offset = -1.0 * light.Eye;
+  source.Buffers.clear();
+  for (const parc::Camera& camera : parc::LightCameras(light.Relative, light.Corners, resolution))
+  {
+    View view;
+    view.Camera = camera;
+    SetRayCoefficients(view);
+    view.AffineRays = false; // every face keeps its whole depth range: any line is covered
+    std::vector<float> nearFar;
+    if (!this->RenderDepth(window, model, modelVersion, light.IndexToLight, view, nearFar))
+    {
+      source.Buffers.clear();
+      return false;
+    }
+    source.Buffers.emplace_back();
+    source.Buffers.back().Set(camera, std::move(nearFar), grid, light.LightToIndex);
+  }
+  return true;
+}
+
+//------------------------------------------------------------------------------
 bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::PolygonModel& model,
   std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view,
   std::vector<float>& nearFar)

@@ -44,6 +44,7 @@
 #include "vtkObject.h"
 
 #include "parcCamera.h"       // For Camera
+#include "parcLightFrusta.h"  // For LightFrame, LightBufferSource
 #include "parcPolygonModel.h"  // For PolygonModel
 
 #include <cstdint> // For std::uint32_t
@@ -92,6 +93,16 @@ public:
   bool RenderDepth(vtkRenderWindow* window, const parc::PolygonModel& model,
     std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view,
     std::vector<float>& nearFar);
+
+  /// The depth passes of a light over a volume for its shadow rays (parcLightFrusta.h):
+  /// one per camera of parc::LightCameras at resolution x resolution pixels, drawn in the
+  /// light's frame with every face's whole depth range (conservative for any line), into
+  /// source's buffers (grid locates rays that start in the model); source.Offset takes a
+  /// ray from the frame of light.Eye's caller into the light's. False (source left
+  /// without buffers) when a pass fails.
+  bool RenderLightDepth(vtkRenderWindow* window, const parc::PolygonModel& model,
+    std::uint64_t modelVersion, const parc::LightFrame& light, int resolution,
+    const parc::SupercellGrid* grid, parc::LightBufferSource& source);
 
   /// Plane bit sets of the colour model (wordsPerPixel 32-bit words per pixel). raySign is
   /// parc::RayAxisSign for the view: when not 0, the faces across the axis that face along

@@ -962,14 +962,12 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
     return &in.NoRays; // nothing in this volume can block a light
   }
   const parc::Light& light = lights[index];
-  const int* dims = in.Field.GetDimensions();
-  std::vector<parc::Vec3> corners; // of the volume's box, in the render frame
-  for (int c = 0; c < 8; ++c)
+  parc::LightFrame frameOfLight;
+  if (!parc::MakeLightFrame(light, in.IndexToFrame, in.Field.GetDimensions(), frameOfLight))
   {
-    corners.push_back(in.IndexToFrame.TransformPoint({ (c & 1) ? dims[0] - 1.0 : 0.0,
-      (c & 2) ? dims[1] - 1.0 : 0.0, (c & 4) ? dims[2] - 1.0 : 0.0 }));
+    return nullptr;
   }
-  const parc::Vec3 eye = parc::LightEye(light, corners); // render frame
+  const parc::Vec3& eye = frameOfLight.Eye; // render frame
   // What the passes depend on, in world coordinates.
   const std::uint64_t version = in.Plan.GetModelVersion();
   std::vector<double> key = { light.Positional ? 1.0 : 0.0, static_cast<double>(version),
@@ -1002,39 +1000,13 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   }
   const double start = vtkTimerLog::GetUniversalTime();
   passes.Key.clear();
-  passes.Source.Buffers.clear();
-  parc::Light relative = light;
-  relative.Position = light.Position - eye;
-  relative.FocalPoint = light.FocalPoint - eye;
-  for (parc::Vec3& x : corners)
-  {
-    x = x - eye;
-  }
-  const parc::Matrix4 indexToLight = parc::Translated(in.IndexToFrame, -1.0 * eye);
-  parc::Matrix4 lightToIndex;
-  bool ok = parc::Invert(indexToLight, lightToIndex);
-  for (const parc::Camera& camera : parc::LightCameras(relative, corners, LightBufferSize))
-  {
-    vtkPARCRasterizer::View view;
-    view.Camera = camera;
-    view.FrameOrigin = eye + frame;
-    vtkPARCRasterizer::SetRayCoefficients(view);
-    view.AffineRays = false; // every face keeps its whole depth range: any line is covered
-    const parc::PolygonModel& model =
-      in.Plan.GetDepthModel(in.LightRasterizer->HasModel(window, false, version));
-    std::vector<float> nearFar;
-    ok = ok && in.LightRasterizer->RenderDepth(window, model, version, indexToLight, view, nearFar);
-    if (!ok)
-    {
-      break;
-    }
-    passes.Source.Buffers.emplace_back();
-    passes.Source.Buffers.back().Set(camera, std::move(nearFar), &grid, lightToIndex);
-  }
+  const parc::PolygonModel& model =
+    in.Plan.GetDepthModel(in.LightRasterizer->HasModel(window, false, version));
+  const bool ok = in.LightRasterizer->RenderLightDepth(
+    window, model, version, frameOfLight, LightBufferSize, &grid, passes.Source);
   projectionTime += vtkTimerLog::GetUniversalTime() - start;
   if (!ok || passes.Source.Buffers.empty())
   {
-    passes.Source.Buffers.clear();
     return nullptr;
   }
   passes.Key = std::move(key);

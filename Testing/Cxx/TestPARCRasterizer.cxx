@@ -92,12 +92,6 @@ bool CheckLights(vtkRenderWindow* window, vtkPARCRasterizer* rasterizer,
   parc::Matrix4 worldToIndex;
   parc::Invert(indexToWorld, worldToIndex);
   const parc::SegmentOracle oracle(grid, worldToIndex);
-  std::vector<parc::Vec3> box;
-  for (int c = 0; c < 8; ++c)
-  {
-    box.push_back(indexToWorld.TransformPoint(
-      { (c & 1) ? 32.0 : 0.0, (c & 2) ? 32.0 : 0.0, (c & 4) ? 32.0 : 0.0 }));
-  }
   struct TestLight
   {
     bool Positional;
@@ -113,34 +107,14 @@ bool CheckLights(vtkRenderWindow* window, vtkPARCRasterizer* rasterizer,
     light.Positional = test.Positional;
     light.Position = test.Positional ? indexToWorld.TransformPoint(test.Index)
                                      : indexToWorld.TransformVector(test.Index);
-    const parc::Vec3 eye = parc::LightEye(light, box);
-    parc::Light relative = light;
-    relative.Position = light.Position - eye;
-    relative.FocalPoint = light.FocalPoint - eye;
-    std::vector<parc::Vec3> corners;
-    for (const parc::Vec3& x : box)
-    {
-      corners.push_back(x - eye);
-    }
-    const parc::Matrix4 indexToLight = parc::Translated(indexToWorld, -1.0 * eye);
-    parc::Matrix4 lightToIndex;
-    parc::Invert(indexToLight, lightToIndex);
+    const int dims[3] = { 33, 33, 33 };
+    parc::LightFrame frame;
     parc::LightBufferSource source;
-    source.Offset = -1.0 * eye;
-    for (const parc::Camera& camera : parc::LightCameras(relative, corners, 128))
+    if (!parc::MakeLightFrame(light, indexToWorld, dims, frame) ||
+      !rasterizer->RenderLightDepth(window, depthModel, 1, frame, 128, &grid, source))
     {
-      vtkPARCRasterizer::View view;
-      view.Camera = camera;
-      vtkPARCRasterizer::SetRayCoefficients(view);
-      view.AffineRays = false;
-      std::vector<float> nearFar;
-      if (!rasterizer->RenderDepth(window, depthModel, 1, indexToLight, view, nearFar))
-      {
-        std::cerr << "Light pass failed: " << rasterizer->GetLastError() << "\n";
-        return false;
-      }
-      source.Buffers.emplace_back();
-      source.Buffers.back().Set(camera, std::move(nearFar), &grid, lightToIndex);
+      std::cerr << "Light pass failed: " << rasterizer->GetLastError() << "\n";
+      return false;
     }
     for (int i = 0; i < 2000; ++i)
     {

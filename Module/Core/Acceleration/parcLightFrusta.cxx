@@ -163,6 +163,28 @@ std::vector<Camera> LightCameras(const Light& light, const std::vector<Vec3>& co
   return cameras;
 }
 
+bool MakeLightFrame(
+  const Light& light, const Matrix4& indexToWorld, const int dims[3], LightFrame& frame)
+{
+  std::vector<Vec3> corners;
+  for (int c = 0; c < 8; ++c)
+  {
+    corners.push_back(indexToWorld.TransformPoint({ (c & 1) ? dims[0] - 1.0 : 0.0,
+      (c & 2) ? dims[1] - 1.0 : 0.0, (c & 4) ? dims[2] - 1.0 : 0.0 }));
+  }
+  frame.Eye = LightEye(light, corners);
+  frame.Relative = light;
+  frame.Relative.Position = light.Position - frame.Eye;
+  frame.Relative.FocalPoint = light.FocalPoint - frame.Eye;
+  frame.Corners.clear();
+  for (const Vec3& x : corners)
+  {
+    frame.Corners.push_back(x - frame.Eye);
+  }
+  frame.IndexToLight = Translated(indexToWorld, -1.0 * frame.Eye);
+  return Invert(frame.IndexToLight, frame.LightToIndex);
+}
+
 void LightBufferSource::Segments(const RayQuery& query, std::vector<Segment>& out) const
 {
   RayQuery moved = RayQuery::Anywhere(query.Path);

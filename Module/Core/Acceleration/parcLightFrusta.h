@@ -36,6 +36,20 @@ Vec3 LightEye(const Light& light, const std::vector<Vec3>& corners);
 /// origin is the eye: corners and the light are given relative to LightEye.
 std::vector<Camera> LightCameras(const Light& light, const std::vector<Vec3>& corners, int resolution);
 
+/// A volume's box as a light's passes see it: in the light's frame, whose origin is the eye.
+struct LightFrame
+{
+  Vec3 Eye;                  ///< LightEye, in the caller's frame
+  Light Relative;            ///< the light, relative to Eye
+  std::vector<Vec3> Corners; ///< the corners of the volume's box, relative to Eye
+  Matrix4 IndexToLight;      ///< voxel index -> the light's frame
+  Matrix4 LightToIndex;
+};
+/// The light frame of a volume of dims voxels placed by indexToWorld (the caller's frame);
+/// false when indexToWorld is singular.
+bool MakeLightFrame(
+  const Light& light, const Matrix4& indexToWorld, const int dims[3], LightFrame& frame);
+
 /// The segment source of one volume's shadow rays towards one light: a ray (in the render's
 /// frame) is moved by Offset into the cameras' frame, and the first camera whose image holds
 /// the ray's start point, one pixel inside the border, answers it from its buffer; any
