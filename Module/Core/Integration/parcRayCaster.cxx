@@ -307,6 +307,28 @@ struct RayContext
     this->RecordHit(t);
     return true;
   }
+  /// Takes lattice samples k0 .. k0 + n - 1 into the block and calls
+  /// visit(j, t, a, g, haveGradient) for each contributing one in order (a its corrected
+  /// opacity; g its gradient when haveGradient); when visit returns false the walk stops
+  /// after sample j (visited = j + 1) and false is returned.
+  template <class Visit>
+  PARC_HOT_INLINE bool ContributingSamples(long k0, int n, int& visited, Visit&& visit)
+  {
+    this->SampleBlock(k0, n);
+    for (int j = 0; j < n; ++j)
+    {
+      const double t = (k0 + j) * this->Dt;
+      float a;
+      Vec3f g;
+      bool haveGradient = false;
+      if (this->ContributingOpacity(j, t, a, g, haveGradient) && !visit(j, t, a, g, haveGradient))
+      {
+        visited = j + 1;
+        return false;
+      }
+    }
+    return true;
+  }
   float CorrectOpacity(float a) const
   {
     const float exponent = this->K.OpacityExponent;
@@ -470,30 +492,16 @@ struct CompositeFunction
 
   bool operator()(long k0, int n, bool, int& visited)
   {
-    this->C.SampleBlock(k0, n);
-    for (int j = 0; j < n; ++j)
-    {
-      const double t = (k0 + j) * this->C.Dt;
-      float a;
-      Vec3f g;
-      bool haveGradient = false;
-      if (!this->C.ContributingOpacity(j, t, a, g, haveGradient))
-      {
-        continue;
-      }
-      float rgb[3];
-      this->C.P.Color.Lookup(this->C.Value(j), rgb);
-      if (this->C.P.Shade)
-      {
-        this->C.Shade(rgb, t, haveGradient ? g : this->C.WorldGradient(t, j));
-      }
-      if (!this->C.Over(this->Out, t, rgb, a))
-      {
-        visited = j + 1;
-        return false;
-      }
-    }
-    return true;
+    return this->C.ContributingSamples(k0, n, visited,
+      [this](int j, double t, float a, const Vec3f& g, bool haveGradient) {
+        float rgb[3];
+        this->C.P.Color.Lookup(this->C.Value(j), rgb);
+        if (this->C.P.Shade)
+        {
+          this->C.Shade(rgb, t, haveGradient ? g : this->C.WorldGradient(t, j));
+        }
+        return this->C.Over(this->Out, t, rgb, a);
+      });
   }
   void Finish(float rgba[4]) const { this->Out.Finish(rgba); }
 };
@@ -589,27 +597,19 @@ struct AdditiveFunction
   float Rgb[3] = { 0.f, 0.f, 0.f };
   float Alpha = 0.f;
 
-  bool operator()(long k0, int n, bool, int&)
+  bool operator()(long k0, int n, bool, int& visited)
   {
-    this->C.SampleBlock(k0, n);
-    for (int j = 0; j < n; ++j)
-    {
-      float a;
-      Vec3f g;
-      bool haveGradient = false;
-      if (!this->C.ContributingOpacity(j, (k0 + j) * this->C.Dt, a, g, haveGradient))
-      {
-        continue;
-      }
-      float rgb[3];
-      this->C.P.Color.Lookup(this->C.Value(j), rgb);
-      for (int c = 0; c < 3; ++c)
-      {
-        this->Rgb[c] += a * rgb[c];
-      }
-      this->Alpha += a;
-    }
-    return true;
+    return this->C.ContributingSamples(
+      k0, n, visited, [this](int j, double, float a, const Vec3f&, bool) {
+        float rgb[3];
+        this->C.P.Color.Lookup(this->C.Value(j), rgb);
+        for (int c = 0; c < 3; ++c)
+        {
+          this->Rgb[c] += a * rgb[c];
+        }
+        this->Alpha += a;
+        return true;
+      });
   }
   void Finish(float rgba[4]) const
   {
@@ -747,24 +747,11 @@ struct AbsorptionFunction
 
   bool operator()(long k0, int n, bool, int& visited)
   {
-    this->C.SampleBlock(k0, n);
-    for (int j = 0; j < n; ++j)
-    {
-      float a;
-      Vec3f g;
-      bool haveGradient = false;
-      if (!this->C.ContributingOpacity(j, (k0 + j) * this->C.Dt, a, g, haveGradient))
-      {
-        continue;
-      }
-      this->Transmittance *= 1.f - a;
-      if (!(this->Transmittance >= this->Floor))
-      {
-        visited = j + 1;
-        return false;
-      }
-    }
-    return true;
+    return this->C.ContributingSamples(
+      k0, n, visited, [this](int, double, float a, const Vec3f&, bool) {
+        this->Transmittance *= 1.f - a;
+        return this->Transmittance >= this->Floor;
+      });
   }
   void Finish(float rgba[4]) const
   {
