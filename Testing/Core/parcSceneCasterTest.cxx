@@ -26,14 +26,6 @@ parc::Camera ParallelView(double angle)
   return parctest::ParallelView(Width, Height, angle, 22.0);
 }
 
-/// The distance from centre c, sampled on an n^3 grid.
-parc::ScalarField DistanceField(int n, const Vec3& c)
-{
-  const int dims[3] = { n, n, n };
-  return parctest::MakeField(
-    dims, [&](int i, int j, int k) { return static_cast<float>(Length(Vec3(i, j, k) - c)); });
-}
-
 /// A translucent, shaded cloud over Blobs with a light.
 CastParameters CloudParameters()
 {
@@ -65,31 +57,6 @@ parc::Matrix4 Shifted(const Vec3& offset)
   return parc::Translated(parc::Matrix4(), -offset);
 }
 
-struct Image
-{
-  std::vector<float> RGBA = std::vector<float>(4 * Width * Height);
-  parc::CastStatistics Stats; ///< summed over the members
-};
-
-Image CastScene(const std::vector<parc::SceneCaster::Member>& members, const parc::Camera& view)
-{
-  parc::SceneCaster scene;
-  EXPECT_TRUE(scene.SetMembers(members, 0.99));
-  Image image;
-  std::vector<parc::CastStatistics> stats;
-  scene.CastImage(view, nullptr, image.RGBA.data(), stats);
-  EXPECT_EQ(stats.size(), members.size());
-  for (const parc::CastStatistics& s : stats)
-  {
-    image.Stats += s;
-  }
-  return image;
-}
-
-bool Identical(const Image& a, const Image& b)
-{
-  return std::memcmp(a.RGBA.data(), b.RGBA.data(), a.RGBA.size() * sizeof(float)) == 0;
-}
 }
 
 // A scene of one volume gives the bits of the volume's own caster, for every ray function.
@@ -109,11 +76,11 @@ TEST(SceneCaster, OneVolumeIsItsOwnImage)
     parc::RayCaster caster;
     ASSERT_TRUE(caster.Prepare(&field, &p));
     const parc::Camera view = ParallelView(0.4);
-    Image own;
+    parctest::SceneImage own(view);
     caster.CastImage(view, nullptr, parc::WholeRaySource(), own.RGBA.data(), own.Stats);
     const parc::WholeRaySource whole;
-    const Image scene = CastScene({ { &caster, &whole } }, view);
-    EXPECT_TRUE(Identical(own, scene)) << "mode " << static_cast<int>(mode);
+    const parctest::SceneImage scene = parctest::CastScene({ { &caster, &whole } }, view);
+    EXPECT_TRUE(parctest::Identical(own, scene)) << "mode " << static_cast<int>(mode);
     EXPECT_EQ(own.Stats.Samples, scene.Stats.Samples) << "mode " << static_cast<int>(mode);
     EXPECT_GT(own.Stats.ContributingSamples, 0u);
   }
@@ -171,7 +138,7 @@ TEST(SceneCaster, DisjointVolumesMergeInDepthOrder)
 // in front of the surface, over the surface's colour.
 TEST(SceneCaster, SurfaceInsideACloudFromBothSides)
 {
-  const parc::ScalarField sphere = DistanceField(33, { 16, 16, 16 });
+  const parc::ScalarField sphere = parctest::DistanceField(33, { 16, 16, 16 });
   const parc::ScalarField cloud = Blobs();
   CastParameters surfaceParams = SurfaceParameters(6.0);
   surfaceParams.Shade = false;
@@ -218,7 +185,7 @@ TEST(SceneCaster, SurfaceInsideACloudFromBothSides)
 // its own transform), in overlapping scenes: bit-identical to unaccelerated casting.
 TEST(SceneCaster, PerVolumeSourcesGiveBitIdenticalImages)
 {
-  const parc::ScalarField sphere = DistanceField(25, { 12, 12, 12 });
+  const parc::ScalarField sphere = parctest::DistanceField(25, { 12, 12, 12 });
   const parc::ScalarField cloud = Blobs();
   struct Volume
   {
@@ -252,14 +219,14 @@ TEST(SceneCaster, PerVolumeSourcesGiveBitIdenticalImages)
     for (const double angle : { 0.0, 0.7, 2.5 })
     {
       const parc::Camera view = ParallelView(angle);
-      const Image reference =
-        CastScene({ { &volumes[0].Caster, &whole }, { &volumes[1].Caster, &whole } }, view);
-      const Image accelerated =
-        CastScene({ { &volumes[0].Caster, &oracle0 }, { &volumes[1].Caster, &oracle1 } }, view);
-      const Image mixed =
-        CastScene({ { &volumes[0].Caster, &whole }, { &volumes[1].Caster, &oracle1 } }, view);
-      EXPECT_TRUE(Identical(reference, accelerated)) << "angle " << angle;
-      EXPECT_TRUE(Identical(reference, mixed)) << "angle " << angle;
+      const parctest::SceneImage reference =
+        parctest::CastScene({ { &volumes[0].Caster, &whole }, { &volumes[1].Caster, &whole } }, view);
+      const parctest::SceneImage accelerated =
+        parctest::CastScene({ { &volumes[0].Caster, &oracle0 }, { &volumes[1].Caster, &oracle1 } }, view);
+      const parctest::SceneImage mixed =
+        parctest::CastScene({ { &volumes[0].Caster, &whole }, { &volumes[1].Caster, &oracle1 } }, view);
+      EXPECT_TRUE(parctest::Identical(reference, accelerated)) << "angle " << angle;
+      EXPECT_TRUE(parctest::Identical(reference, mixed)) << "angle " << angle;
       EXPECT_LT(accelerated.Stats.Samples, reference.Stats.Samples);
       EXPECT_GT(reference.Stats.ContributingSamples, 0u);
     }

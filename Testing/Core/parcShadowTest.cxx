@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-#include <cstring>
 #include <limits>
 
 using parc::BlendMode;
@@ -18,14 +17,6 @@ namespace
 {
 constexpr int Width = 40, Height = 36;
 constexpr double Infinity = std::numeric_limits<double>::infinity();
-
-/// The distance from centre c, sampled on an n^3 grid.
-parc::ScalarField DistanceField(int n, const Vec3& c)
-{
-  const int dims[3] = { n, n, n };
-  return parctest::MakeField(
-    dims, [&](int i, int j, int k) { return static_cast<float>(Length(Vec3(i, j, k) - c)); });
-}
 
 /// An opaque, shaded red sphere of radius r (an isosurface of a distance field).
 CastParameters SphereParameters(double r)
@@ -66,31 +57,6 @@ parc::Light Positional(const Vec3& position, double shadowAttenuation = 1.0)
   light.Positional = true;
   light.FocalPoint = { 16, 16, 16 };
   return light;
-}
-
-struct Image
-{
-  std::vector<float> RGBA = std::vector<float>(4 * Width * Height);
-  parc::CastStatistics Stats; ///< summed over the members
-};
-
-Image CastScene(const std::vector<parc::SceneCaster::Member>& members, const parc::Camera& view)
-{
-  parc::SceneCaster scene;
-  EXPECT_TRUE(scene.SetMembers(members, 0.99));
-  Image image;
-  std::vector<parc::CastStatistics> stats;
-  scene.CastImage(view, nullptr, image.RGBA.data(), stats);
-  for (const parc::CastStatistics& s : stats)
-  {
-    image.Stats += s;
-  }
-  return image;
-}
-
-bool Identical(const Image& a, const Image& b)
-{
-  return std::memcmp(a.RGBA.data(), b.RGBA.data(), a.RGBA.size() * sizeof(float)) == 0;
 }
 
 /// A volume of a scene with its own supercell classification (for the oracle).
@@ -163,7 +129,7 @@ TEST(Shadows, ConstantSlabTransmittance)
 // surface outwards from a point on it.
 TEST(Shadows, OpaqueSurfaceBlocks)
 {
-  const parc::ScalarField sphere = DistanceField(33, { 16, 16, 16 });
+  const parc::ScalarField sphere = parctest::DistanceField(33, { 16, 16, 16 });
   const CastParameters p = SphereParameters(6.0);
   parc::RayCaster caster;
   ASSERT_TRUE(caster.Prepare(&sphere, &p));
@@ -193,12 +159,12 @@ TEST(Shadows, OpaqueSurfaceBlocks)
 // occluders at all; with it, shaded contributions behind the sphere lose the light's terms.
 TEST(Shadows, OnlyLightsThatCastShadowsCastShadowRays)
 {
-  Volume sphere{ DistanceField(33, { 16, 16, 16 }), SphereParameters(5.0) };
+  Volume sphere{ parctest::DistanceField(33, { 16, 16, 16 }), SphereParameters(5.0) };
   Volume cloud{ parctest::Blobs(), CloudParameters() };
   const parc::Camera view = parctest::ParallelView(Width, Height, 0.3, 22.0);
   const parc::WholeRaySource whole;
-  Image plain, off, on;
-  for (Image* image : { &plain, &off, &on })
+  parctest::SceneImage plain(view), off(view), on(view);
+  for (parctest::SceneImage* image : { &plain, &off, &on })
   {
     const double attenuation = image == &on ? 1.0 : 0.0;
     for (Volume* v : { &sphere, &cloud })
@@ -213,11 +179,11 @@ TEST(Shadows, OnlyLightsThatCastShadowsCastShadowRays)
       sphere.Caster.SetOccluders(&occluders);
       cloud.Caster.SetOccluders(&occluders);
     }
-    *image = CastScene({ { &sphere.Caster, &whole }, { &cloud.Caster, &whole } }, view);
+    *image = parctest::CastScene({ { &sphere.Caster, &whole }, { &cloud.Caster, &whole } }, view);
     sphere.Caster.SetOccluders(nullptr);
     cloud.Caster.SetOccluders(nullptr);
   }
-  EXPECT_TRUE(Identical(plain, off));
+  EXPECT_TRUE(parctest::Identical(plain, off));
   EXPECT_EQ(off.Stats.ShadowRays, 0u);
   EXPECT_EQ(off.Stats.ShadowSamples, 0u);
   EXPECT_EQ(plain.Stats.Samples, on.Stats.Samples) << "shadows do not change primary rays";
@@ -239,7 +205,7 @@ TEST(Shadows, OnlyLightsThatCastShadowsCastShadowRays)
 // outside, on a face of and inside the volumes, one and two at a time.
 TEST(Shadows, SegmentSourcesGiveBitIdenticalShadowedImages)
 {
-  Volume sphere{ DistanceField(25, { 12, 12, 12 }), SphereParameters(6.0) };
+  Volume sphere{ parctest::DistanceField(25, { 12, 12, 12 }), SphereParameters(6.0) };
   Volume cloud{ parctest::Blobs(), CloudParameters() };
   const std::vector<std::vector<parc::Light>> lightSets = {
     { Directional({ 1.0, 0.5, 0.2 }) },
@@ -266,19 +232,19 @@ TEST(Shadows, SegmentSourcesGiveBitIdenticalShadowedImages)
     for (const double angle : { 0.2, 2.0 })
     {
       const parc::Camera view = parctest::ParallelView(Width, Height, angle, 22.0);
-      const Image reference = [&] {
+      const parctest::SceneImage reference = [&] {
         sphere.Caster.SetOccluders(&wholeShadows);
         cloud.Caster.SetOccluders(&wholeShadows);
-        return CastScene({ { &sphere.Caster, &whole }, { &cloud.Caster, &whole } }, view);
+        return parctest::CastScene({ { &sphere.Caster, &whole }, { &cloud.Caster, &whole } }, view);
       }();
       sphere.Caster.SetOccluders(&oracleShadows);
       cloud.Caster.SetOccluders(&oracleShadows);
-      const Image shadowsOnly =
-        CastScene({ { &sphere.Caster, &whole }, { &cloud.Caster, &whole } }, view);
-      const Image both =
-        CastScene({ { &sphere.Caster, &sphereOracle }, { &cloud.Caster, &cloudOracle } }, view);
-      EXPECT_TRUE(Identical(reference, shadowsOnly)) << "lights " << set << " angle " << angle;
-      EXPECT_TRUE(Identical(reference, both)) << "lights " << set << " angle " << angle;
+      const parctest::SceneImage shadowsOnly =
+        parctest::CastScene({ { &sphere.Caster, &whole }, { &cloud.Caster, &whole } }, view);
+      const parctest::SceneImage both =
+        parctest::CastScene({ { &sphere.Caster, &sphereOracle }, { &cloud.Caster, &cloudOracle } }, view);
+      EXPECT_TRUE(parctest::Identical(reference, shadowsOnly)) << "lights " << set << " angle " << angle;
+      EXPECT_TRUE(parctest::Identical(reference, both)) << "lights " << set << " angle " << angle;
       EXPECT_EQ(reference.Stats.ShadowRays, both.Stats.ShadowRays);
       EXPECT_GT(reference.Stats.ShadowRays, 0u);
       EXPECT_LT(shadowsOnly.Stats.ShadowSamples, reference.Stats.ShadowSamples);

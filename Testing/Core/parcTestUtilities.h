@@ -4,8 +4,11 @@
 
 #include "parcRayCaster.h"
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <vector>
 
@@ -84,6 +87,49 @@ inline parc::Ray MakeRay(const parc::Vec3& origin, const parc::Vec3& direction)
   r.TMin = 0.0;
   r.TMax = 1e6;
   return r;
+}
+
+/// The distance from centre c, sampled on an n^3 grid.
+inline parc::ScalarField DistanceField(int n, const parc::Vec3& c)
+{
+  const int dims[3] = { n, n, n };
+  return MakeField(dims,
+    [&](int i, int j, int k) { return static_cast<float>(Length(parc::Vec3(i, j, k) - c)); });
+}
+
+/// A ray-cast image of a camera, with the statistics of its cast.
+struct SceneImage
+{
+  std::vector<float> RGBA;
+  parc::CastStatistics Stats; ///< summed over the members of a scene
+  explicit SceneImage(const parc::Camera& view)
+    : RGBA(4 * static_cast<std::size_t>(view.Width) * view.Height)
+  {
+  }
+};
+
+/// The image of several volumes cast together (termination opacity 0.99).
+inline SceneImage CastScene(
+  const std::vector<parc::SceneCaster::Member>& members, const parc::Camera& view)
+{
+  parc::SceneCaster scene;
+  EXPECT_TRUE(scene.SetMembers(members, 0.99));
+  SceneImage image(view);
+  std::vector<parc::CastStatistics> stats;
+  scene.CastImage(view, nullptr, image.RGBA.data(), stats);
+  EXPECT_EQ(stats.size(), members.size());
+  for (const parc::CastStatistics& s : stats)
+  {
+    image.Stats += s;
+  }
+  return image;
+}
+
+/// Whether two images are the same bits.
+inline bool Identical(const SceneImage& a, const SceneImage& b)
+{
+  return a.RGBA.size() == b.RGBA.size() &&
+    std::memcmp(a.RGBA.data(), b.RGBA.data(), a.RGBA.size() * sizeof(float)) == 0;
 }
 
 /// Casts one ray through the whole volume; returns its RGBA.
