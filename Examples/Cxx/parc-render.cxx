@@ -6,6 +6,7 @@
 #include "vtkPARCVolumeMapper.h"
 
 #include <vtkCamera.h>
+#include <vtkColorTransferFunction.h>
 #include <vtkContourValues.h>
 #include <vtkPiecewiseFunction.h>
 #include <vtkFixedPointVolumeRayCastMapper.h>
@@ -80,9 +81,16 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
                         port 1), its centre on the first's; with --second-blend MODE
                         (default composite), --second-tf NAME|FILE and --second-iso VALUE
                         like --blend, --tf and --iso (not with the FixedPoint options)
+  --floor               a second volume: the paper's Figure 13 floor, a voxelized slab of
+                        57x12x57 samples under the first volume (y up), as an isosurface
   --light X,Y,Z         a positional light at world point X,Y,Z (repeatable; replaces the
-                        headlight; its cone is wide open and it does not fade with distance)
+                        headlight; its cone is wide open and it does not fade with distance;
+                        the lights share an intensity of 1)
   --shadows             the renderer uses shadows: every light casts them (attenuation 1)
+  --shadow-table R      the paper's Table 3: R interleaved rounds of frames without and
+                        with shadows for acceleration none, depth buffers and Auto (each
+                        on primary and shadow rays): cells, casting and total times,
+                        light-pass time, ratios beside the paper's (needs --light)
   --json                print statistics as JSON
   --help
 )";
@@ -96,13 +104,13 @@ struct Options
   double Iso = 0.0, Azimuth = 30.0, Elevation = 20.0, Zoom = 1.0, SampleDistance = 0.0;
   bool HasIso = false, Shade = false, Parallel = false, Compare = false, Json = false;
   bool HasPosition = false, HasFocal = false, CompareAcceleration = false, Memory = false;
-  int Versus = 0, SampleCost = 0, Threads = 0, Accuracy = 0, EditCost = 0, ThreadScaling = 0;
+  int ShadowTableRounds = 0, Versus = 0, SampleCost = 0, Threads = 0, Accuracy = 0, EditCost = 0, ThreadScaling = 0;
   double Supercell[3] = { 2, 2, 2 };
   std::vector<double> Sweep;
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
   int Width = 300, Height = 300, Repeat = 1;
   std::vector<std::array<double, 3>> Lights;
-  bool Shadows = false;
+  bool Shadows = false, Floor = false;
 };
 
 [[noreturn]] void Fail(const std::string& message)
@@ -190,6 +198,8 @@ Options Parse(int argc, char* argv[])
     else if (a == "--light") { o.Lights.emplace_back(); ToTriple(a, value(), o.Lights.back().data()); }
     else if (a == "--shadows") { o.Shadows = true; }
     else if (a == "--second") { o.Second = value(); }
+    else if (a == "--floor") { o.Floor = true; }
+    else if (a == "--shadow-table") { o.ShadowTableRounds = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--second-blend") { o.SecondBlend = value(); }
     else if (a == "--second-tf") { o.SecondTF = value(); }
     else if (a == "--second-iso") { o.SecondIso = ToNumber(a, value()); o.HasSecondIso = true; }
@@ -220,6 +230,10 @@ Options Parse(int argc, char* argv[])
   if (!folder.empty() && !std::filesystem::is_directory(folder))
   {
     Fail("cannot write " + o.Output + ": no such folder " + folder.string());
+  }
+  if (o.ShadowTableRounds < 0 || o.ShadowTableRounds > 0 && o.Lights.empty())
+  {
+    Fail("--shadow-table takes a positive number and needs --light");
   }
   if (o.Versus < 0 || o.SampleCost < 0 || o.Threads < 0 || o.Accuracy < 0 || o.EditCost < 0 ||
     o.ThreadScaling < 0)
@@ -365,22 +379,154 @@ std::pair<double, double> MinMedian(std::vector<double> times)
   return { times.front(), times[times.size() / 2] };
 }
 
+/// A mapper like parc (the inputs and ray functions of every port, the sample distance
+/// and supercell size) in acceleration mode.
+vtkSmartPointer<vtkPARCVolumeMapper> CopyMapper(vtkPARCVolumeMapper* parc, int mode)
+{
+  auto m = vtkSmartPointer<vtkPARCVolumeMapper>::New();
+  for (int port = 0; port < parc->GetNumberOfInputPorts(); ++port)
+  {
+    if (parc->GetNumberOfInputConnections(port) > 0)
+    {
+      m->SetInputDataObject(port, parc->GetInputDataObject(port, 0));
+      m->SetInputBlendMode(port, parc->GetInputBlendMode(port));
+    }
+  }
+  m->SetBlendMode(parc->GetBlendMode());
+  m->SetSampleDistance(parc->GetLastSampleDistance());
+  m->SetSupercellSize(parc->GetSupercellSize());
+  m->SetAccelerationMode(mode);
+  return m;
+}
+
+/// The paper's Table 3: rounds interleaved frames without and with shadows, for
+/// acceleration none and PARC (depth buffers, and Auto) on primary and shadow rays, each
+/// with its own mapper (markdown tables: the paper's columns, then the ratios beside the
+/// paper's). "Total with shadows" is a shadowed frame plus its light passes, as when the
+/// lights move every frame (the passes are otherwise cached).
+void ShadowTable(vtkRenderWindow* window, vtkRenderer* renderer, vtkVolume* prop,
+  vtkPARCVolumeMapper* parc, int rounds)
+{
+  const int modes[] = { vtkPARCVolumeMapper::ACCELERATION_NONE,
+    vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER, vtkPARCVolumeMapper::ACCELERATION_AUTO };
+  constexpr int Modes = 3;
+  struct Row
+  {
+    vtkSmartPointer<vtkPARCVolumeMapper> Mapper;
+    std::string Name;
+    std::vector<double> Casting, Total[2]; ///< primary casting; totals without and with shadows
+    long long Cells = 0, ShadowCells = 0, ShadowRays = 0;
+    double LightPasses = 0.0;
+    std::vector<float> Image[2];
+  };
+  std::vector<Row> rows(Modes);
+  const auto render = [&](Row& row, int shadows) {
+    renderer->SetUseShadows(shadows);
+    prop->SetMapper(row.Mapper);
+    window->Render();
+  };
+  for (int i = 0; i < Modes; ++i)
+  {
+    rows[i].Mapper = CopyMapper(parc, modes[i]);
+    for (int shadows = 1; shadows >= 0; --shadows) // the first shadowed frame builds the light passes
+    {
+      render(rows[i], shadows);
+      rows[i].LightPasses = std::max(rows[i].LightPasses, rows[i].Mapper->GetLastLightProjectionTime());
+      WarmUp(window, rows[i].Mapper);
+    }
+  }
+  for (int r = 0; r < rounds; ++r)
+  {
+    for (Row& row : rows)
+    {
+      for (int shadows = 0; shadows < 2; ++shadows)
+      {
+        render(row, shadows);
+        vtkPARCVolumeMapper* m = row.Mapper;
+        row.Total[shadows].push_back(m->GetLastRenderTime());
+        if (shadows == 0)
+        {
+          row.Casting.push_back(m->GetLastCastingTime());
+          row.Cells = m->GetLastCellCount();
+        }
+        else
+        {
+          row.ShadowCells = m->GetLastShadowCellCount();
+          row.ShadowRays = m->GetLastShadowRayCount();
+        }
+        if (r == 0)
+        {
+          vtkNew<vtkImageData> image;
+          m->GetLastRayCastImage(image);
+          auto* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
+          row.Image[shadows].assign(rgba->GetPointer(0), rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples());
+        }
+      }
+      row.Name = vtkPARCVolumeMapper::GetAccelerationModeAsString(row.Mapper->GetLastAccelerationMode());
+    }
+  }
+  rows[2].Name = "Auto: " + rows[2].Name;
+  prop->SetMapper(parc);
+  renderer->SetUseShadows(1);
+  struct Medians
+  {
+    double Casting, Primary, Shadowed;
+  };
+  const auto medians = [](const Row& row) {
+    return Medians{ MinMedian(row.Casting).second, MinMedian(row.Total[0]).second,
+      MinMedian(row.Total[1]).second + row.LightPasses };
+  };
+  std::printf("| PARC | primary cells (10^3) | primary casting (s) | primary total (s) | shadow "
+              "rays | shadow cells (10^3) | light passes (s) | total with shadows (s) | identical "
+              "|\n|---|---|---|---|---|---|---|---|---|\n");
+  for (const Row& row : rows)
+  {
+    const Medians m = medians(row);
+    const bool same = row.Image[0] == rows[0].Image[0] && row.Image[1] == rows[0].Image[1];
+    std::printf("| %s | %.0f | %.4f | %.4f | %lld | %.0f | %.4f | %.4f | %s |\n", row.Name.c_str(),
+      1e-3 * row.Cells, m.Casting, m.Primary, row.ShadowRays, 1e-3 * row.ShadowCells,
+      row.LightPasses, m.Shadowed, same ? "yes" : "NO");
+  }
+  // The paper's Table 3 (depth PARC against none, 300^2 and 600^2), seconds.
+  constexpr double Paper[2][2][3] = { { { 33.38, 35.61, 66.04 }, { 7.72, 10.06, 26.31 } },
+    { { 132.04, 141.29, 260.45 }, { 29.72, 40.29, 99.74 } } };
+  const auto paperRatio = [&](int size, int column) {
+    if (column == 3) // the shadows' share: total with shadows minus primary total
+    {
+      return (Paper[size][0][2] - Paper[size][0][1]) / (Paper[size][1][2] - Paper[size][1][1]);
+    }
+    return Paper[size][0][column] / Paper[size][1][column];
+  };
+  const Medians none = medians(rows[0]);
+  std::printf("\n| none / PARC (medians) | DepthBuffer | %s | paper, 300^2 | paper, 600^2 | goal "
+              "(1.5x the paper's 600^2) |\n|---|---|---|---|---|---|\n", rows[2].Name.c_str());
+  const char* names[4] = { "primary casting", "primary total", "total with shadows",
+    "the shadows' share (with shadows minus primary)" };
+  for (int c : { 0, 1, 3, 2 })
+  {
+    const auto ratio = [&](const Medians& m) {
+      switch (c)
+      {
+        case 0: return none.Casting / m.Casting;
+        case 1: return none.Primary / m.Primary;
+        case 2: return none.Shadowed / m.Shadowed;
+        default: return (none.Shadowed - none.Primary) / (m.Shadowed - m.Primary);
+      }
+    };
+    std::printf("| %s | %.2fx | %.2fx | %.2fx | %.2fx | %.2fx |\n", names[c], ratio(medians(rows[1])),
+      ratio(medians(rows[2])), paperRatio(0, c), paperRatio(1, c), 1.5 * paperRatio(1, c));
+  }
+  std::printf("%d interleaved rounds (each mode without, then with shadows) after warm-up; "
+              "light passes: the first shadowed frame's\n", rounds);
+}
+
 /// rounds x (this mapper without acceleration, with Auto, vtkFixedPointVolumeRayCastMapper),
 /// interleaved after a warm-up of each (markdown table of wall times per frame).
 void VersusFixedPoint(vtkRenderWindow* window, vtkVolume* volume, vtkPARCVolumeMapper* parc,
   vtkImageData* image, int rounds)
 {
-  auto copyOf = [&](int mode) {
-    vtkSmartPointer<vtkPARCVolumeMapper> m = vtkSmartPointer<vtkPARCVolumeMapper>::New();
-    m->SetInputData(image);
-    m->SetBlendMode(parc->GetBlendMode());
-    m->SetSampleDistance(parc->GetLastSampleDistance());
-    m->SetSupercellSize(parc->GetSupercellSize());
-    m->SetAccelerationMode(mode);
-    return m;
-  };
-  const auto none = copyOf(vtkPARCVolumeMapper::ACCELERATION_NONE);
-  const auto automatic = copyOf(vtkPARCVolumeMapper::ACCELERATION_AUTO);
+  const auto none = CopyMapper(parc, vtkPARCVolumeMapper::ACCELERATION_NONE);
+  const auto automatic = CopyMapper(parc, vtkPARCVolumeMapper::ACCELERATION_AUTO);
   vtkNew<vtkFixedPointVolumeRayCastMapper> fixed;
   fixed->SetInputData(image);
   fixed->SetBlendMode(parc->GetBlendMode());
@@ -670,6 +816,23 @@ void SetUpProperty(vtkImageData* image, int blend, const std::string& tf, bool h
   property->SetShade(shade || blend == vtkVolumeMapper::ISOSURFACE_BLEND);
 }
 
+/// The floor's isosurface: opaque, light grey, shaded.
+void SetUpFloorProperty(vtkVolumeProperty* property)
+{
+  constexpr double Grey[3] = { 0.85, 0.85, 0.8 };
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.0, 1.0);
+  opacity->AddPoint(255.0, 1.0);
+  vtkNew<vtkColorTransferFunction> color;
+  color->AddRGBPoint(0.0, Grey[0], Grey[1], Grey[2]);
+  color->AddRGBPoint(255.0, Grey[0], Grey[1], Grey[2]);
+  property->SetScalarOpacity(opacity);
+  property->SetColor(color);
+  property->SetInterpolationTypeToLinear();
+  property->GetIsoSurfaceValues()->SetValue(0, parcio::FloorIsoValue);
+  property->ShadeOn();
+}
+
 int main(int argc, char* argv[])
 {
   const Options o = Parse(argc, argv);
@@ -679,10 +842,14 @@ int main(int argc, char* argv[])
   }
   const int blend = BlendMode(o.Blend);
   const int acceleration = AccelerationMode(o.Acceleration);
-  if (!o.Second.empty() && (o.Compare || o.Versus > 0 || o.SampleCost > 0 || o.Accuracy > 0 ||
+  if (o.Floor && !o.Second.empty())
+  {
+    Fail("--floor and --second both name the second volume");
+  }
+  if ((o.Floor || !o.Second.empty()) && (o.Compare || o.Versus > 0 || o.SampleCost > 0 || o.Accuracy > 0 ||
                              o.EditCost > 0))
   {
-    Fail("--second does not go with --compare-fixed-point, --versus-fixed-point, "
+    Fail("--second and --floor do not go with --compare-fixed-point, --versus-fixed-point, "
          "--sample-cost, --accuracy-curve or --edit-cost");
   }
   vtkNew<vtkImageData> image;
@@ -701,32 +868,39 @@ int main(int argc, char* argv[])
   volume->SetProperty(property);
 
   vtkNew<vtkRenderer> renderer;
-  // A second volume: both through one vtkPARCMultiVolume, the second's centre on the first's.
+  // A second volume: both through one vtkPARCMultiVolume; a file's centre on the first's,
+  // the floor under the first.
   vtkNew<vtkImageData> secondImage;
   vtkNew<vtkVolumeProperty> secondProperty;
   vtkNew<vtkVolume> secondVolume;
   vtkNew<vtkPARCMultiVolume> multiVolume;
-  if (!o.Second.empty())
+  if (!o.Second.empty() || o.Floor)
   {
-    Read(o.Second, secondImage);
-    const int secondBlend = BlendMode(o.SecondBlend);
-    SetUpProperty(secondImage, secondBlend, o.SecondTF, o.HasSecondIso, o.SecondIso, o.Shade,
-      secondProperty);
+    int secondBlend = vtkVolumeMapper::ISOSURFACE_BLEND;
+    if (o.Floor)
+    {
+      parcio::MakeFloor(image->GetBounds(), secondImage);
+      SetUpFloorProperty(secondProperty);
+    }
+    else
+    {
+      Read(o.Second, secondImage);
+      secondBlend = BlendMode(o.SecondBlend);
+      SetUpProperty(secondImage, secondBlend, o.SecondTF, o.HasSecondIso, o.SecondIso, o.Shade,
+        secondProperty);
+      const double* a = image->GetCenter();
+      const double* b = secondImage->GetCenter();
+      secondVolume->SetPosition(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+    }
     mapper->SetInputDataObject(1, secondImage);
     mapper->SetInputBlendMode(1, secondBlend);
     secondVolume->SetProperty(secondProperty);
-    const double* a = image->GetCenter();
-    const double* b = secondImage->GetCenter();
-    secondVolume->SetPosition(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
     multiVolume->SetMapper(mapper);
     multiVolume->SetVolume(volume, 0);
     multiVolume->SetVolume(secondVolume, 1);
-    renderer->AddVolume(multiVolume);
   }
-  else
-  {
-    renderer->AddVolume(volume);
-  }
+  vtkVolume* shown = o.Floor || !o.Second.empty() ? multiVolume.Get() : volume.Get();
+  renderer->AddVolume(shown);
   renderer->SetBackground(0.0, 0.0, 0.0);
   renderer->SetUseShadows(o.Shadows ? 1 : 0);
   for (const auto& position : o.Lights)
@@ -737,6 +911,7 @@ int main(int argc, char* argv[])
     light->SetConeAngle(180.0);
     light->SetPosition(position.data());
     light->SetFocalPoint(image->GetCenter());
+    light->SetIntensity(1.0 / o.Lights.size());
     renderer->AddLight(light);
   }
   vtkNew<vtkRenderWindow> window;
@@ -844,6 +1019,10 @@ int main(int argc, char* argv[])
   if (o.ThreadScaling > 0)
   {
     ThreadScaling(window, mapper, o.ThreadScaling);
+  }
+  if (o.ShadowTableRounds > 0)
+  {
+    ShadowTable(window, renderer, shown, mapper, o.ShadowTableRounds);
   }
   if (o.CompareAcceleration)
   {

@@ -18,6 +18,7 @@
 #include <vtkXMLImageDataReader.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cctype>
 #include <fstream>
 #include <regex>
@@ -270,5 +271,45 @@ bool LoadTransferFunction(const std::string& nameOrFile, const double range[2],
   property->SetScalarOpacity(opacity);
   property->SetColor(color);
   return true;
+}
+
+//------------------------------------------------------------------------------
+void MakeFloor(const double objectBounds[6], vtkImageData* out)
+{
+  constexpr double WidthPerObjectWidth = 1.2; // the paper's: 228 units under a 306-unit cell
+  constexpr double RampSamples = 2.0;        // the density's fall across a face
+  constexpr double SlabSamples = 6.0;        // the slab's thickness below its top surface
+  const int* n = FloorSamples;
+  const double width = WidthPerObjectWidth *
+    std::max(objectBounds[1] - objectBounds[0], objectBounds[5] - objectBounds[4]);
+  const double spacing = width / (n[0] - 1);
+  // The slab in sample units: x and z inside the box by RampSamples, y from the bottom
+  // (kept RampSamples inside) up to the top surface.
+  const double top = (n[1] - 1) - RampSamples - 1.0;
+  const double bottom = top - SlabSamples;
+  out->SetDimensions(n[0], n[1], n[2]);
+  out->SetSpacing(spacing, spacing, spacing);
+  out->SetOrigin(0.5 * (objectBounds[0] + objectBounds[1]) - 0.5 * width,
+    objectBounds[2] - top * spacing, 0.5 * (objectBounds[4] + objectBounds[5]) - 0.5 * width);
+  out->AllocateScalars(VTK_UNSIGNED_CHAR, 1);
+  auto* density = static_cast<unsigned char*>(out->GetScalarPointer());
+  // Signed distance in samples inside the slab (positive inside), by the nearest face.
+  const auto inside = [&](int i, int j, int k) {
+    const double x = std::min(i - RampSamples, (n[0] - 1) - RampSamples - i);
+    const double z = std::min(k - RampSamples, (n[2] - 1) - RampSamples - k);
+    const double y = std::min(j - bottom, top - j);
+    return std::min({ x, y, z });
+  };
+  for (int k = 0; k < n[2]; ++k)
+  {
+    for (int j = 0; j < n[1]; ++j)
+    {
+      for (int i = 0; i < n[0]; ++i)
+      {
+        const double d = std::clamp(0.5 + inside(i, j, k) / RampSamples, 0.0, 1.0);
+        *density++ = static_cast<unsigned char>(std::lround(255.0 * d));
+      }
+    }
+  }
 }
 }

@@ -1,4 +1,5 @@
-// PARC for VTK examples: reading volume files and building transfer functions by name.
+// PARC for VTK examples: reading volume files, building transfer functions by name, and
+// the voxelized floor of the paper's Figure 13.
 #ifndef parcVolumeIO_h
 #define parcVolumeIO_h
 
@@ -19,6 +20,20 @@ bool ReadVolume(const std::string& path, vtkImageData* out, std::string& error);
 /// "scalar opacity red green blue" ('#' starts a comment).
 bool LoadTransferFunction(const std::string& nameOrFile, const double range[2],
   vtkVolumeProperty* property, std::string& error);
+
+/// Samples of the paper's Figure 13 floor along x, y (up) and z: 57 x 12 x 57.
+constexpr int FloorSamples[3] = { 57, 12, 57 };
+
+/// A voxelized floor slab (the paper's Figure 13 floor, 57 x 12 x 57 unsigned char samples,
+/// y up) for an object with the given world bounds to stand on: centred under the object
+/// in x and z and 1.2 times its larger width there, its top surface (value FloorIsoValue)
+/// at the object's lowest y. The density falls linearly from 255 inside to 0 outside over
+/// two samples across every face of the slab, like a volume-sampled box; the samples are
+/// cubes.
+void MakeFloor(const double objectBounds[6], vtkImageData* out);
+
+/// The value of the floor's surface in MakeFloor's density.
+constexpr double FloorIsoValue = 127.5;
 }
 
 #endif
