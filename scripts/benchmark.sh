@@ -45,6 +45,18 @@ scene() { # title, file, options...
     --second "$data/neghip_64x64x64_uint8.raw" --second-tf "$tf/iron-protein-cloud.txt"
   scene "MRI head ch2, isosurface 60, supercell 2" "$head" --blend iso --iso 60 --elevation -80 --azimuth 30
   echo
+  echo "## Shadows: the paper's Table 3 (issue 14; paper: 3.5x primary, about 2x for the shadow rays, 2.5x total; goal: 1.5x each)"
+  echo
+  echo "The paper's Figure 13 scene: the embryo (3.5% of its 64^3 supercells of 4^3 cells possibly contributing; the paper's neuron: 3.22% of 64^3) as an isosurface (80) over the generated 57x12x57 floor slab (parc-render --floor), two point lights casting shadows; depth PARC and Auto on primary and shadow rays against none, each its own mapper, frames interleaved (medians of 7). Cells are summed over both volumes. Total with shadows counts the light passes (256^2 buffers) as if the lights moved every frame; they are otherwise cached."
+  for size in 300 600; do
+    if [ ! -f "$data/embryo_256x256x256_uint8.raw" ]; then echo "(embryo not found, skipped)"; break; fi
+    echo; echo "### embryo over the floor, two lights, ${size}x${size}"; echo
+    xrun "$here/build/bin/parc-render" "$data/embryo_256x256x256_uint8.raw" --blend iso --iso 80 \
+      --floor --supercell 4,4,4 --light -250,500,350 --light 550,450,250 --elevation 55 --azimuth 20 \
+      --zoom 1.3 --size "$size" --sample-distance 0.25 --output "$here/out/benchmark.png" \
+      --shadow-table 7 | sed -n '/^| PARC/,/^7 interleaved/p'
+  done
+  echo
   echo "## Colour-buffer PARC: composite (issue 6; paper Table 1: 8.8x)"
   echo
   echo "No CT foot is available; the CT tooth stands in for it. Both transfer functions render a translucent surface and something opaque inside, like the paper's skin and bone (files in Data/TransferFunctions)."
