@@ -235,6 +235,13 @@ struct ClassificationKey
       std::equal(Average, Average + 2, o.Average) && std::equal(Size, Size + 3, o.Size);
   }
 };
+
+/// The lights' passes of one render: their time and the frusta rendered.
+struct LightPassWork
+{
+  double Time = 0.0;
+  int Frusta = 0;
+};
 }
 
 //------------------------------------------------------------------------------
@@ -314,7 +321,7 @@ public:
   /// run (the whole ray is cast).
   const parc::SegmentSource* LightSource(vtkRenderWindow* window,
     const std::vector<parc::Light>& lights, std::size_t index, const parc::Vec3& frame,
-    double& projectionTime);
+    LightPassWork& work);
   /// Runs the PARC passes of the requested mode; the segment source the caster uses.
   const parc::SegmentSource& RunPasses(vtkPARCVolumeMapper* self, vtkRenderer* ren,
     vtkVolume* vol, const vtkPARCRasterizer::View& view);
@@ -339,7 +346,7 @@ public:
   parc::CastStatistics Stats; ///< summed over the rendered volumes
   double CastingTime = 0.0;
   double ProjectionTime = 0.0;
-  double LightProjectionTime = 0.0; ///< the shadow rays' light passes (part of the render)
+  LightPassWork LightPasses; ///< the shadow rays' light passes (part of the render)
   double RenderTime = 0.0;
   vtkNew<vtkOpenGLRayCastImageDisplayHelper> DisplayHelper;
 
@@ -756,7 +763,7 @@ void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, 
     }
   }
   const bool shadows = lights != nullptr;
-  this->LightProjectionTime = 0.0;
+  this->LightPasses = LightPassWork();
   std::vector<parc::Occluders::Member> occluders;
   const parc::Vec3 frame = vtkPARCRasterizer::FrameOrigin(ren);
   for (const auto& entry : this->Rendered)
@@ -768,7 +775,7 @@ void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, 
          ++i)
     {
       member.LightSources.push_back(castsShadows((*lights)[i])
-          ? volume.LightSource(ren->GetRenderWindow(), *lights, i, frame, this->LightProjectionTime)
+          ? volume.LightSource(ren->GetRenderWindow(), *lights, i, frame, this->LightPasses)
           : nullptr);
     }
     occluders.push_back(std::move(member));
@@ -884,6 +891,13 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     in.ReleaseUnusedPasses(window, false, false);
     return in.NoRays; // nothing can show: no pass, no sample
   }
+  const int* dims = in.Field.GetDimensions();
+  if (!passView.Camera.MayMeetBox(
+        in.IndexToFrame, parc::Vec3{ 0, 0, 0 }, parc::Vec3(dims[0] - 1, dims[1] - 1, dims[2] - 1)))
+  {
+    in.LastMode = requested;
+    return in.NoRays; // outside the view (another volume of the scene is not): no pass
+  }
   const int mode = in.ChooseMode(requested, passView.Camera);
   if (mode == ACCELERATION_NONE)
   {
@@ -953,7 +967,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
 //------------------------------------------------------------------------------
 const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   vtkRenderWindow* window, const std::vector<parc::Light>& lights, std::size_t index,
-  const parc::Vec3& frame, double& projectionTime)
+  const parc::Vec3& frame, LightPassWork& work)
 {
   vtkVolumeState& in = *this;
   const parc::SupercellGrid& grid = in.Plan.GetGrid();
@@ -1004,7 +1018,8 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
     in.Plan.GetDepthModel(in.LightRasterizer->HasModel(window, false, version));
   const bool ok = in.LightRasterizer->RenderLightDepth(
     window, model, version, frameOfLight, LightBufferSize, &grid, passes.Source);
-  projectionTime += vtkTimerLog::GetUniversalTime() - start;
+  work.Time += vtkTimerLog::GetUniversalTime() - start;
+  work.Frusta += static_cast<int>(passes.Source.Buffers.size());
   if (!ok || passes.Source.Buffers.empty())
   {
     return nullptr;
@@ -1150,7 +1165,11 @@ double vtkPARCVolumeMapper::GetLastProjectionTime()
 }
 double vtkPARCVolumeMapper::GetLastLightProjectionTime()
 {
-  return this->Internals->LightProjectionTime;
+  return this->Internals->LightPasses.Time;
+}
+int vtkPARCVolumeMapper::GetLastLightFrustumCount()
+{
+  return this->Internals->LightPasses.Frusta;
 }
 double vtkPARCVolumeMapper::GetLastRenderTime()
 {
@@ -1301,7 +1320,8 @@ void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
      << ", cells " << in.Stats.ShadowCells << ")\n"
      << "Casting time (s): " << in.CastingTime << "\n"
      << "Projection time (s): " << in.ProjectionTime << "\n"
-     << "Light projection time (s): " << in.LightProjectionTime << "\n"
+     << "Light projection time (s): " << in.LightPasses.Time << " (" << in.LightPasses.Frusta
+     << " light frusta)\n"
      << "Render time (s): " << in.RenderTime << "\n";
 }
 

@@ -229,6 +229,11 @@ public:
    * light, the volume's transform or its classification changes.
    */
   double GetLastLightProjectionTime();
+  /**
+   * Light frusta (each a near and a far depth pass) the last render drew for shadow rays:
+   * 0 when the lights' buffers were cached or no light casts shadows.
+   */
+  int GetLastLightFrustumCount();
   /** Supercells and PC supercells of the last classification. */
   vtkIdType GetLastSupercellCount();
   vtkIdType GetLastContributingSupercellCount();

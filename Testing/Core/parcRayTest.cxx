@@ -1,7 +1,9 @@
 // Ray-box clipping, clipping planes, cropping and the conversion of segments to lattice
 // ranges.
+#include "parcLightFrusta.h"
 #include "parcRay.h"
 #include "parcSegmentSource.h"
+#include "parcTestUtilities.h"
 
 #include <gtest/gtest.h>
 
@@ -174,4 +176,90 @@ TEST(Cropping, IntervalsHoldExactlyTheSamplesOfRenderedRegions)
       }
     }
   }
+}
+
+namespace
+{
+/// Whether any pixel ray of view, within its [TMin, TMax], meets the box [lo, hi].
+bool AnyRayMeets(const parc::Camera& view, const Vec3& lo, const Vec3& hi)
+{
+  for (int py = 0; py < view.Height; ++py)
+  {
+    for (int px = 0; px < view.Width; ++px)
+    {
+      const parc::Ray ray = view.MakeRay(px, py);
+      double t0 = ray.TMin, t1 = ray.TMax;
+      if (parc::ClipToBox(ray.Origin, ray.Direction, lo, hi, t0, t1))
+      {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+/// Random boxes around and across the view; a box MayMeetBox rejects meets no ray, and
+/// boxes that rays meet are never rejected (the test fails if it rejects nothing).
+void CheckMayMeetBox(const parc::Camera& view, const Vec3& centre, double spread)
+{
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> position(-spread, spread), size(0.1, 0.3 * spread);
+  int rejected = 0, met = 0;
+  for (int trial = 0; trial < 400; ++trial)
+  {
+    const Vec3 lo = centre + Vec3{ position(random), position(random), position(random) };
+    const Vec3 hi = lo + Vec3{ size(random), size(random), size(random) };
+    // The box as index space of a scaled and shifted transform, to test the mapping too.
+    parc::Matrix4 toWorld;
+    toWorld(0, 0) = toWorld(1, 1) = toWorld(2, 2) = 2.0;
+    toWorld(0, 3) = lo.X;
+    toWorld(1, 3) = lo.Y;
+    toWorld(2, 3) = lo.Z;
+    const bool may = view.MayMeetBox(toWorld, Vec3{ 0, 0, 0 }, 0.5 * (hi - lo));
+    const bool meets = AnyRayMeets(view, lo, hi);
+    EXPECT_TRUE(may || !meets) << "trial " << trial;
+    rejected += !may;
+    met += meets;
+  }
+  EXPECT_GT(rejected, 40);
+  EXPECT_GT(met, 40);
+}
+}
+
+TEST(Camera, MayMeetBoxRejectsOnlyBoxesNoRayMeetsParallel)
+{
+  const parc::Camera view = parctest::ParallelView(24, 20, 0.4, 10.0);
+  CheckMayMeetBox(view, Vec3{ 16, 16, 16 }, 30.0);
+  // In front of the camera, inside the window: seen; behind the eye plane and beyond the
+  // far plane: not.
+  parc::Matrix4 identity;
+  EXPECT_TRUE(view.MayMeetBox(identity, Vec3{ 15, 15, 15 }, Vec3{ 17, 17, 17 }));
+  const Vec3 behind = view.Eye - 100.0 * view.Direction;
+  EXPECT_FALSE(view.MayMeetBox(identity, behind - Vec3{ 1, 1, 1 }, behind + Vec3{ 1, 1, 1 }));
+  const Vec3 beyond = view.Eye + (view.FarDistance + 200.0) * view.Direction;
+  EXPECT_FALSE(view.MayMeetBox(identity, beyond - Vec3{ 1, 1, 1 }, beyond + Vec3{ 1, 1, 1 }));
+}
+
+TEST(Camera, MayMeetBoxRejectsOnlyBoxesNoRayMeetsPerspective)
+{
+  // A light's frustum: a perspective camera from the light over a box.
+  parc::Light light;
+  light.Positional = true;
+  light.Position = Vec3{ -30, 10, 5 };
+  light.FocalPoint = Vec3{ 10, 10, 10 };
+  std::vector<Vec3> corners;
+  for (int c = 0; c < 8; ++c)
+  {
+    corners.push_back(Vec3{ c & 1 ? 20.0 : 0.0, c & 2 ? 20.0 : 0.0, c & 4 ? 20.0 : 0.0 } - light.Position);
+  }
+  parc::Light relative = light;
+  relative.Position = Vec3{ 0, 0, 0 };
+  relative.FocalPoint = light.FocalPoint - light.Position;
+  const std::vector<parc::Camera> cameras = parc::LightCameras(relative, corners, 24);
+  ASSERT_EQ(cameras.size(), 1u);
+  CheckMayMeetBox(cameras[0], Vec3{ 35, 0, 5 }, 40.0);
+  // Behind the eye (the light) the side planes reject a box.
+  parc::Matrix4 identity;
+  EXPECT_FALSE(cameras[0].MayMeetBox(identity, Vec3{ -30, -2, -2 }, Vec3{ -20, 2, 2 }));
+  EXPECT_TRUE(cameras[0].MayMeetBox(identity, corners[0], corners[7]));
 }

@@ -1,5 +1,7 @@
 #include "parcCamera.h"
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 
 namespace parc
@@ -9,6 +11,10 @@ namespace
 {
 /// Relative tolerance of IsAlongRays: about a thousand double roundings.
 constexpr double AlongRaysTolerance = 1e-12;
+
+/// Relative margin of MayMeetBox: a box must be this far outside a plane, relative to the
+/// size of the clip coordinates, to be outside.
+constexpr double OutsideMargin = 1e-9;
 
 /// The NDC x, y of the centre of pixel (px, py).
 void PixelToNDC(const Camera& camera, int px, int py, double& x, double& y)
@@ -104,6 +110,28 @@ void Camera::RayBounds(
       directions.push_back(transform.TransformVector(farPoint - nearPoint));
     }
   }
+}
+
+bool Camera::MayMeetBox(const Matrix4& toWorld, const Vec3& lo, const Vec3& hi) const
+{
+  const Matrix4 toClip = Multiply(this->WorldToNDC, toWorld);
+  // Each frustum plane is linear in homogeneous clip coordinates (x <= w, -w <= x, ...), so
+  // the box is outside a plane when all its corners are.
+  std::array<int, 6> outside{};
+  for (int corner = 0; corner < 8; ++corner)
+  {
+    const Vec3 p{ corner & 1 ? hi.X : lo.X, corner & 2 ? hi.Y : lo.Y, corner & 4 ? hi.Z : lo.Z };
+    const Vec3 c = toClip.TransformPoint(p);
+    const double w = toClip(3, 0) * p.X + toClip(3, 1) * p.Y + toClip(3, 2) * p.Z + toClip(3, 3);
+    const double clip[3] = { c.X, c.Y, c.Z };
+    for (int axis = 0; axis < 3; ++axis)
+    {
+      const double margin = OutsideMargin * (std::fabs(clip[axis]) + std::fabs(w));
+      outside[2 * axis] += clip[axis] - w > margin;
+      outside[2 * axis + 1] += -clip[axis] - w > margin;
+    }
+  }
+  return std::none_of(outside.begin(), outside.end(), [](int n) { return n == 8; });
 }
 
 } // namespace parc

@@ -51,6 +51,10 @@ public:
   /// the directions whose positive combinations hold every ray's (at the image corners).
   void RayBounds(const Matrix4& transform, std::vector<Vec3>& starts,
     std::vector<Vec3>& directions) const;
+  /// False when the box [lo, hi], in coordinates that toWorld (affine) maps to world, lies
+  /// wholly outside one of the six planes of the view frustum (by more than a relative
+  /// rounding margin): then no ray of the camera meets it. True otherwise.
+  bool MayMeetBox(const Matrix4& toWorld, const Vec3& lo, const Vec3& hi) const;
 };
 
 } // namespace parc
