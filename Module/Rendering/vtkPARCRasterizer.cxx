@@ -657,26 +657,42 @@ void vtkPARCRasterizer::SetRayCoefficients(View& pass)
 }
 
 //------------------------------------------------------------------------------
-bool vtkPARCRasterizer::RenderLightDepth(vtkRenderWindow* window,
-  const parc::PolygonModel& model, std::uint64_t modelVersion, const parc::LightFrame& light,
-  int resolution, const parc::SupercellGrid* grid, parc::LightBufferSource& source)
+bool vtkPARCRasterizer::RenderLight(vtkRenderWindow* window, const parc::PolygonModel& model,
+  std::uint64_t modelVersion, const parc::LightFrame& light, int resolution,
+  const parc::SupercellGrid* grid, parc::LightBufferSource& source)
 {
   source.Offset = -1.0 * light.Eye;
-  source.Buffers.clear();
+  source.Clear();
   for (const parc::Camera& camera : parc::LightCameras(light.Relative, light.Corners, resolution))
   {
     View view;
     view.Camera = camera;
     SetRayCoefficients(view);
     view.AffineRays = false; // every face keeps its whole depth range: any line is covered
-    std::vector<float> nearFar;
-    if (!this->RenderDepth(window, model, modelVersion, light.IndexToLight, view, nearFar))
+    bool ok;
+    if (model.MajorAxis < 0)
     {
-      source.Buffers.clear();
+      std::vector<float> nearFar;
+      ok = this->RenderDepth(window, model, modelVersion, light.IndexToLight, view, nearFar);
+      source.Depth.emplace_back();
+      source.Depth.back().Set(camera, std::move(nearFar), grid, light.LightToIndex);
+    }
+    else
+    {
+      std::vector<std::uint32_t> bits;
+      int words = 0, passes = 0;
+      constexpr int EveryFace = 0; // rays in both directions along the axis
+      ok = this->RenderPlanes(
+        window, model, modelVersion, light.IndexToLight, view, EveryFace, bits, words, passes);
+      source.Planes.emplace_back();
+      source.Planes.back().Set(camera, std::move(bits), words, grid, model.MajorAxis,
+        model.FirstPlane, light.LightToIndex);
+    }
+    if (!ok)
+    {
+      source.Clear();
       return false;
     }
-    source.Buffers.emplace_back();
-    source.Buffers.back().Set(camera, std::move(nearFar), grid, light.LightToIndex);
   }
   return true;
 }

@@ -94,13 +94,14 @@ public:
     std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view,
     std::vector<float>& nearFar);
 
-  /// The depth passes of a light over a volume for its shadow rays (parcLightFrusta.h):
-  /// one per camera of parc::LightCameras at resolution x resolution pixels, drawn in the
-  /// light's frame with every face's whole depth range (conservative for any line), into
-  /// source's buffers (grid locates rays that start in the model); source.Offset takes a
-  /// ray from the frame of light.Eye's caller into the light's. False (source left
+  /// The passes of a light over a volume for its shadow rays (parcLightFrusta.h): for each
+  /// camera of parc::LightCameras at resolution x resolution pixels, a depth pass (model
+  /// a depth model) or the plane passes (model a colour model), drawn in the light's frame
+  /// with every face's whole depth range and every face of the planes (conservative for any
+  /// line), into source's buffers (grid locates rays that start in the model); source.Offset
+  /// takes a ray from the frame of light.Eye's caller into the light's. False (source left
   /// without buffers) when a pass fails.
-  bool RenderLightDepth(vtkRenderWindow* window, const parc::PolygonModel& model,
+  bool RenderLight(vtkRenderWindow* window, const parc::PolygonModel& model,
     std::uint64_t modelVersion, const parc::LightFrame& light, int resolution,
     const parc::SupercellGrid* grid, parc::LightBufferSource& source);
 

@@ -149,7 +149,7 @@ double VolumeDiagonal(const parc::Matrix4& indexToWorld, const int dims[3])
 
 /// The volume axis whose world direction is closest to the viewing direction (towards the
 /// volume's centre for perspective): its planes are crossed in order by every ray.
-int MajorAxis(const parc::Matrix4& indexToWorld, const vtkPARCRasterizer::View& view)
+int MajorAxis(const parc::Matrix4& indexToWorld, const parc::Vec3& direction)
 {
   int best = 2;
   double bestCosine = -1.0;
@@ -157,7 +157,7 @@ int MajorAxis(const parc::Matrix4& indexToWorld, const vtkPARCRasterizer::View& 
   {
     const parc::Vec3 axis =
       parc::Normalized({ indexToWorld(0, a), indexToWorld(1, a), indexToWorld(2, a) });
-    const double c = std::fabs(parc::Dot(axis, view.Camera.Direction));
+    const double c = std::fabs(parc::Dot(axis, direction));
     if (c > bestCosine)
     {
       bestCosine = c;
@@ -276,8 +276,9 @@ public:
   const parc::WholeRaySource WholeRays;
   const parc::EmptySource NoRays;
   bool FallbackWarned = false;
-  // PARC for shadow rays: per light (index into Parameters.Lights), the depth passes of the
-  // light's cameras, remade only when what they were made from changes (not the camera).
+  // PARC for shadow rays: per light (index into Parameters.Lights), the depth or plane
+  // passes of the light's cameras, remade only when what they were made from changes (not
+  // the camera).
   vtkNew<vtkPARCRasterizer> LightRasterizer;
   struct LightPasses
   {
@@ -316,12 +317,12 @@ public:
   /// The mode Auto resolves to for the current classification, ray function and view.
   int ChooseMode(int requested, const parc::Camera& camera);
   /// The segment source of shadow rays towards light `index` (lit from lights, in the
-  /// render frame whose world origin is frame): the light's depth passes, run again only
-  /// when the light, the volume's transform or its model changed; null when they cannot
-  /// run (the whole ray is cast).
+  /// render frame whose world origin is frame): the light's plane passes (planes) or depth
+  /// passes, run again only when the light, the volume's transform, its model or that kind
+  /// changed; null when they cannot run (the whole ray is cast).
   const parc::SegmentSource* LightSource(vtkRenderWindow* window,
     const std::vector<parc::Light>& lights, std::size_t index, const parc::Vec3& frame,
-    LightPassWork& work);
+    bool planes, LightPassWork& work);
   /// Runs the PARC passes of the requested mode; the segment source the caster uses.
   const parc::SegmentSource& RunPasses(vtkPARCVolumeMapper* self, vtkRenderer* ren,
     vtkVolume* vol, const vtkPARCRasterizer::View& view);
@@ -775,7 +776,8 @@ void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, 
          ++i)
     {
       member.LightSources.push_back(castsShadows((*lights)[i])
-          ? volume.LightSource(ren->GetRenderWindow(), *lights, i, frame, this->LightPasses)
+          ? volume.LightSource(ren->GetRenderWindow(), *lights, i, frame,
+              self->AccelerationMode == ACCELERATION_COLOR_BUFFER, this->LightPasses)
           : nullptr);
     }
     occluders.push_back(std::move(member));
@@ -924,7 +926,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   }
   if (ok && color)
   {
-    const int axis = MajorAxis(indexToWorld, passView);
+    const int axis = MajorAxis(indexToWorld, passView.Camera.Direction);
     const std::uint64_t version = in.Plan.GetColorModelVersion(axis);
     const parc::PolygonModel& model =
       in.Plan.GetColorModel(axis, in.Rasterizer->HasModel(window, true, version));
@@ -967,7 +969,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
 //------------------------------------------------------------------------------
 const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   vtkRenderWindow* window, const std::vector<parc::Light>& lights, std::size_t index,
-  const parc::Vec3& frame, LightPassWork& work)
+  const parc::Vec3& frame, bool planes, LightPassWork& work)
 {
   vtkVolumeState& in = *this;
   const parc::SupercellGrid& grid = in.Plan.GetGrid();
@@ -982,10 +984,18 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
     return nullptr;
   }
   const parc::Vec3& eye = frameOfLight.Eye; // render frame
+  // Colour planes along the axis nearest the light's view of the box, or depth.
+  parc::Vec3 centre;
+  for (const parc::Vec3& corner : frameOfLight.Corners)
+  {
+    centre = centre + 0.125 * corner;
+  }
+  const int axis = planes ? MajorAxis(frameOfLight.IndexToLight, centre) : -1;
+  const std::uint64_t version =
+    axis < 0 ? in.Plan.GetModelVersion() : in.Plan.GetColorModelVersion(axis);
   // What the passes depend on, in world coordinates.
-  const std::uint64_t version = in.Plan.GetModelVersion();
   std::vector<double> key = { light.Positional ? 1.0 : 0.0, static_cast<double>(version),
-    static_cast<double>(LightBufferSize) };
+    static_cast<double>(LightBufferSize), static_cast<double>(axis) };
   for (const parc::Vec3& x : { light.Position + frame, light.FocalPoint + frame, eye + frame })
   {
     key.insert(key.end(), { x.X, x.Y, x.Z });
@@ -1014,13 +1024,14 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   }
   const double start = vtkTimerLog::GetUniversalTime();
   passes.Key.clear();
+  const bool uploaded = in.LightRasterizer->HasModel(window, planes, version);
   const parc::PolygonModel& model =
-    in.Plan.GetDepthModel(in.LightRasterizer->HasModel(window, false, version));
-  const bool ok = in.LightRasterizer->RenderLightDepth(
+    planes ? in.Plan.GetColorModel(axis, uploaded) : in.Plan.GetDepthModel(uploaded);
+  const bool ok = in.LightRasterizer->RenderLight(
     window, model, version, frameOfLight, LightBufferSize, &grid, passes.Source);
   work.Time += vtkTimerLog::GetUniversalTime() - start;
-  work.Frusta += static_cast<int>(passes.Source.Buffers.size());
-  if (!ok || passes.Source.Buffers.empty())
+  work.Frusta += static_cast<int>(passes.Source.GetFrustumCount());
+  if (!ok || passes.Source.GetFrustumCount() == 0)
   {
     return nullptr;
   }

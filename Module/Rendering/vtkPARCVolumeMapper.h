@@ -224,9 +224,12 @@ public:
   vtkIdType GetLastShadowCellCount();
   /**
    * Seconds the last render spent in the PARC passes of the lights (shadow rays; 0 when
-   * they were cached). The shadow rays of a volume use depth-buffer PARC from each light
-   * unless the acceleration mode is ACCELERATION_NONE; the buffers are remade only when a
-   * light, the volume's transform or its classification changes.
+   * they were cached). The shadow rays of a volume use PARC buffers from each light unless
+   * the acceleration mode is ACCELERATION_NONE: colour bit planes in
+   * ACCELERATION_COLOR_BUFFER, depth buffers in the other modes (Auto too, so that its
+   * choice of the view's pass never remakes them; the paper's Figure 13 uses depth). The
+   * buffers are remade only when a light, the volume's transform, its classification or
+   * the acceleration mode changes.
    */
   double GetLastLightProjectionTime();
   /**

@@ -81,14 +81,17 @@ bool CheckLine(const parc::Ray& ray, double t0, double t1, const parc::SegmentOr
   return true;
 }
 
-/// The depth passes of lights (shadow rays, parcLightFrusta.h) on adversarial lights: on a
-/// face, on an edge, inside, far away, grazing a face, and directional (also grazing). For
-/// random points in the volume the shadow ray towards the light must get segments holding
-/// every PC interval the oracle finds on it; returns false on the first miss.
+/// The passes of lights (shadow rays, parcLightFrusta.h) with model (depth or colour) on
+/// adversarial lights: on a face, on an edge, inside, far away, grazing a face, and
+/// directional (also grazing). For random points in the volume the shadow ray towards the
+/// light must get segments holding every PC interval the oracle finds on it; returns false
+/// on the first miss.
 bool CheckLights(vtkRenderWindow* window, vtkPARCRasterizer* rasterizer,
-  const parc::SupercellGrid& grid, const parc::PolygonModel& depthModel,
+  const parc::SupercellGrid& grid, const parc::PolygonModel& model,
   const parc::Matrix4& indexToWorld, std::mt19937& rng, Tally& tally)
 {
+  static std::uint64_t version = 1000; // a new upload for each model
+  ++version;
   parc::Matrix4 worldToIndex;
   parc::Invert(indexToWorld, worldToIndex);
   const parc::SegmentOracle oracle(grid, worldToIndex);
@@ -111,7 +114,8 @@ bool CheckLights(vtkRenderWindow* window, vtkPARCRasterizer* rasterizer,
     parc::LightFrame frame;
     parc::LightBufferSource source;
     if (!parc::MakeLightFrame(light, indexToWorld, dims, frame) ||
-      !rasterizer->RenderLightDepth(window, depthModel, 1, frame, 128, &grid, source))
+      !rasterizer->RenderLight(window, model, version, frame, 128, &grid, source) ||
+      source.GetFrustumCount() == 0 || source.Planes.empty() != (model.MajorAxis < 0))
     {
       std::cerr << "Light pass failed: " << rasterizer->GetLastError() << "\n";
       return false;
@@ -125,28 +129,31 @@ bool CheckLights(vtkRenderWindow* window, vtkPARCRasterizer* rasterizer,
         ray.Direction = parc::Normalized(light.Position - x);
         ray.TMax = parc::Length(light.Position - x);
       }
+      // The shadow ray inside the volume's box, as the caster clips it.
+      double t0 = ray.TMin, t1 = ray.TMax;
+      if (!parc::ClipToBox(worldToIndex.TransformPoint(ray.Origin),
+            worldToIndex.TransformVector(ray.Direction), { 0, 0, 0 }, { 32, 32, 32 }, t0, t1))
+      {
+        continue;
+      }
       std::vector<parc::Segment> ideal, got;
-      oracle.Intervals(ray, ray.TMin, ray.TMax, ideal);
+      oracle.Intervals(ray, t0, t1, ideal);
       source.Segments(parc::RayQuery::Anywhere(ray), got);
       if (!Covers(got, ideal))
       {
-        std::cerr << "Light at index " << test.Index.X << ", " << test.Index.Y << ", "
-                  << test.Index.Z << (test.Positional ? " (positional)" : " (directional)")
+        std::cerr << (model.MajorAxis < 0 ? "Depth light" : "Plane light") << " at index "
+                  << test.Index.X << ", " << test.Index.Y << ", " << test.Index.Z
+                  << (test.Positional ? " (positional)" : " (directional)")
                   << ": the shadow ray from " << x.X << ", " << x.Y << ", " << x.Z
                   << " misses a PC interval.\n";
         return false;
       }
-      double kept = 0.0, length = 0.0;
-      double t0 = ray.TMin, t1 = ray.TMax;
-      if (parc::ClipToBox(worldToIndex.TransformPoint(ray.Origin),
-            worldToIndex.TransformVector(ray.Direction), { 0, 0, 0 }, { 32, 32, 32 }, t0, t1))
+      double kept = 0.0;
+      for (const parc::Segment& g : got)
       {
-        length = t1 - t0;
-        for (const parc::Segment& g : got)
-        {
-          kept += std::max(0.0, std::min(g.TFar, t1) - std::max(g.TNear, t0));
-        }
+        kept += std::max(0.0, std::min(g.TFar, t1) - std::max(g.TNear, t0));
       }
+      const double length = t1 - t0;
       ++tally.ShadowLines;
       tally.TightShadowLines += kept < 0.999 * length ? 1 : 0;
     }
@@ -363,7 +370,8 @@ int TestPARCRasterizer(int argc, char* argv[])
       parc::BuildColorModel(grid, a, merge, colorModels[a]);
     }
     if ((run == 0 || run == 6) &&
-      !CheckLights(window, rasterizer, grid, depthModel, placement, rng, tally))
+      (!CheckLights(window, rasterizer, grid, depthModel, placement, rng, tally) ||
+        !CheckLights(window, rasterizer, grid, colorModels[run == 0 ? 0 : 2], placement, rng, tally)))
     {
       return EXIT_FAILURE;
     }

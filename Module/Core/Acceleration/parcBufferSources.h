@@ -73,6 +73,7 @@ public:
   std::vector<std::uint32_t> ReleaseBuffer() { return std::move(this->Bits); }
   /// Memory held by the buffer, in bytes.
   std::size_t GetMemorySize() const { return this->Bits.capacity() * sizeof(std::uint32_t); }
+  const Camera& GetView() const { return this->View; }
 
   void Segments(const RayQuery& query, std::vector<Segment>& out) const override;
   bool MayHaveSegments(int px, int py) const override;

@@ -185,11 +185,15 @@ bool MakeLightFrame(
   return Invert(frame.IndexToLight, frame.LightToIndex);
 }
 
-void LightBufferSource::Segments(const RayQuery& query, std::vector<Segment>& out) const
+namespace
 {
-  RayQuery moved = RayQuery::Anywhere(query.Path);
-  moved.Path.Origin = query.Path.Origin + this->Offset;
-  for (const DepthBufferSource& buffer : this->Buffers)
+/// Answers moved from the first buffer whose camera's image holds the ray's start, one
+/// pixel inside the border; false when none does.
+template <class Buffer>
+bool AnswerFromCamera(
+  const std::vector<Buffer>& buffers, const RayQuery& moved, std::vector<Segment>& out)
+{
+  for (const Buffer& buffer : buffers)
   {
     const Camera& camera = buffer.GetView();
     double u, v;
@@ -198,21 +202,38 @@ void LightBufferSource::Segments(const RayQuery& query, std::vector<Segment>& ou
       u <= camera.Width - BorderPixels && v >= BorderPixels && v <= camera.Height - BorderPixels)
     {
       buffer.Segments(moved, out);
-      return;
+      return true;
     }
   }
-  constexpr double inf = std::numeric_limits<double>::infinity();
-  out.push_back({ -inf, inf });
+  return false;
 }
 
-std::size_t LightBufferSource::GetMemorySize() const
+template <class Buffer>
+std::size_t MemoryOf(const std::vector<Buffer>& buffers)
 {
   std::size_t bytes = 0;
-  for (const DepthBufferSource& buffer : this->Buffers)
+  for (const Buffer& buffer : buffers)
   {
     bytes += buffer.GetMemorySize();
   }
   return bytes;
+}
+}
+
+void LightBufferSource::Segments(const RayQuery& query, std::vector<Segment>& out) const
+{
+  RayQuery moved = RayQuery::Anywhere(query.Path);
+  moved.Path.Origin = query.Path.Origin + this->Offset;
+  if (!AnswerFromCamera(this->Depth, moved, out) && !AnswerFromCamera(this->Planes, moved, out))
+  {
+    constexpr double inf = std::numeric_limits<double>::infinity();
+    out.push_back({ -inf, inf });
+  }
+}
+
+std::size_t LightBufferSource::GetMemorySize() const
+{
+  return MemoryOf(this->Depth) + MemoryOf(this->Planes);
 }
 
 } // namespace parc

@@ -52,13 +52,23 @@ bool MakeLightFrame(
 
 /// The segment source of one volume's shadow rays towards one light: a ray (in the render's
 /// frame) is moved by Offset into the cameras' frame, and the first camera whose image holds
-/// the ray's start point, one pixel inside the border, answers it from its buffer; any
-/// other ray gets the whole line.
+/// the ray's start point, one pixel inside the border, answers it from its buffer (depth
+/// or colour planes: a light uses one kind); any other ray gets the whole line.
 class LightBufferSource final : public SegmentSource
 {
 public:
   Vec3 Offset; ///< added to a query's ray origin: render frame -> the cameras' frame
-  std::vector<DepthBufferSource> Buffers; ///< one per camera, set from its pass
+  std::vector<DepthBufferSource> Depth;  ///< one per camera, set from its depth pass
+  std::vector<PlaneBufferSource> Planes; ///< or one per camera, set from its plane passes
+
+  /// The light's cameras (frusta) with a buffer.
+  std::size_t GetFrustumCount() const { return this->Depth.size() + this->Planes.size(); }
+  /// Drops every buffer.
+  void Clear()
+  {
+    this->Depth.clear();
+    this->Planes.clear();
+  }
 
   void Segments(const RayQuery& query, std::vector<Segment>& out) const override;
   /// Memory held by the buffers, in bytes.
