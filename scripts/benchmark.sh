@@ -47,7 +47,7 @@ scene() { # title, file, options...
   echo
   echo "## Shadows: the paper's Table 3 (issue 14; paper: 3.5x primary, about 2x for the shadow rays, 2.5x total; goal: 1.5x each)"
   echo
-  echo "The paper's Figure 13 scene: the embryo (3.5% of its 64^3 supercells of 4^3 cells possibly contributing; the paper's neuron: 3.22% of 64^3) as an isosurface (80) over the generated 57x12x57 floor slab (parc-render --floor), two point lights casting shadows; depth PARC and Auto on primary and shadow rays against none, each its own mapper, frames interleaved (medians of 7). Cells are summed over both volumes. Total with shadows counts the light passes (256^2 buffers) as if the lights moved every frame; they are otherwise cached."
+  echo "The paper's Figure 13 scene: the embryo (3.5% of its 64^3 supercells of 4^3 cells possibly contributing; the paper's neuron: 3.22% of 64^3) as an isosurface (80) over the generated 57x12x57 floor slab (parc-render --floor), two point lights casting shadows; depth PARC, colour PARC and Auto on primary and shadow rays against none, each its own mapper, frames interleaved (medians of 7). Cells are summed over both volumes. Total with shadows counts the light passes (256^2 buffers) as if the lights moved every frame; they are otherwise cached."
   for size in 300 600; do
     if [ ! -f "$data/embryo_256x256x256_uint8.raw" ]; then echo "(embryo not found, skipped)"; break; fi
     echo; echo "### embryo over the floor, two lights, ${size}x${size}"; echo
