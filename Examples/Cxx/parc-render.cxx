@@ -6,7 +6,6 @@
 #include "vtkPARCVolumeMapper.h"
 
 #include <vtkCamera.h>
-#include <vtkColorTransferFunction.h>
 #include <vtkContourValues.h>
 #include <vtkPiecewiseFunction.h>
 #include <vtkFixedPointVolumeRayCastMapper.h>
@@ -821,23 +820,6 @@ void SetUpProperty(vtkImageData* image, int blend, const std::string& tf, bool h
   property->SetShade(shade || blend == vtkVolumeMapper::ISOSURFACE_BLEND);
 }
 
-/// The floor's isosurface: opaque, light grey, shaded.
-void SetUpFloorProperty(vtkVolumeProperty* property)
-{
-  constexpr double Grey[3] = { 0.85, 0.85, 0.8 };
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(0.0, 1.0);
-  opacity->AddPoint(255.0, 1.0);
-  vtkNew<vtkColorTransferFunction> color;
-  color->AddRGBPoint(0.0, Grey[0], Grey[1], Grey[2]);
-  color->AddRGBPoint(255.0, Grey[0], Grey[1], Grey[2]);
-  property->SetScalarOpacity(opacity);
-  property->SetColor(color);
-  property->SetInterpolationTypeToLinear();
-  property->GetIsoSurfaceValues()->SetValue(0, parcio::FloorIsoValue);
-  property->ShadeOn();
-}
-
 int main(int argc, char* argv[])
 {
   const Options o = Parse(argc, argv);
@@ -885,7 +867,8 @@ int main(int argc, char* argv[])
     if (o.Floor)
     {
       parcio::MakeFloor(image->GetBounds(), secondImage);
-      SetUpFloorProperty(secondProperty);
+      constexpr double Grey[3] = { 0.85, 0.85, 0.8 };
+      parcio::SetUpSurfaceProperty(parcio::FloorIsoValue, Grey, secondProperty);
     }
     else
     {

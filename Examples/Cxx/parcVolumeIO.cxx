@@ -1,6 +1,7 @@
 #include "parcVolumeIO.h"
 
 #include <vtkColorTransferFunction.h>
+#include <vtkContourValues.h>
 #include <vtkImageData.h>
 #include <vtkImageReader2.h>
 #include <vtkMetaImageReader.h>
@@ -311,5 +312,21 @@ void MakeFloor(const double objectBounds[6], vtkImageData* out)
       }
     }
   }
+}
+
+//------------------------------------------------------------------------------
+void SetUpSurfaceProperty(double iso, const double rgb[3], vtkVolumeProperty* property)
+{
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0.0, 1.0);
+  opacity->AddPoint(255.0, 1.0);
+  vtkNew<vtkColorTransferFunction> color;
+  color->AddRGBPoint(0.0, rgb[0], rgb[1], rgb[2]);
+  color->AddRGBPoint(255.0, rgb[0], rgb[1], rgb[2]);
+  property->SetScalarOpacity(opacity);
+  property->SetColor(color);
+  property->SetInterpolationTypeToLinear();
+  property->GetIsoSurfaceValues()->SetValue(0, iso);
+  property->ShadeOn();
 }
 }

@@ -34,6 +34,10 @@ void MakeFloor(const double objectBounds[6], vtkImageData* out);
 
 /// The value of the floor's surface in MakeFloor's density.
 constexpr double FloorIsoValue = 127.5;
+
+/// An opaque, shaded isosurface at iso of one colour (rgb): the floor's, and the object's
+/// in the Figure 13 scene.
+void SetUpSurfaceProperty(double iso, const double rgb[3], vtkVolumeProperty* property);
 }
 
 #endif

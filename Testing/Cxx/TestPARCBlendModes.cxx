@@ -2,8 +2,6 @@
 // composite shaded, maximum, minimum and average intensity, additive and isosurface.
 #include "parcTestScene.h"
 
-#include <vtkRegressionTestImage.h>
-#include <vtkRenderWindowInteractor.h>
 #include <vtkRendererCollection.h>
 #include <vtkVolumeCollection.h>
 
@@ -55,12 +53,5 @@ int TestPARCBlendModes(int argc, char* argv[])
       return EXIT_FAILURE;
     }
   }
-  const int result = vtkRegressionTestImage(window);
-  if (result == vtkRegressionTester::DO_INTERACTOR)
-  {
-    vtkNew<vtkRenderWindowInteractor> interactor;
-    interactor->SetRenderWindow(window);
-    interactor->Start();
-  }
-  return result == vtkRegressionTester::PASSED ? EXIT_SUCCESS : EXIT_FAILURE;
+  return parctest::MatchesBaseline(window, argc, argv) ? EXIT_SUCCESS : EXIT_FAILURE;
 }

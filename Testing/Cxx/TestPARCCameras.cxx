@@ -9,7 +9,6 @@
 #include <vtkMatrix3x3.h>
 #include <vtkMatrix4x4.h>
 #include <vtkPolyDataMapper.h>
-#include <vtkRegressionTestImage.h>
 #include <vtkProperty.h>
 #include <vtkRendererCollection.h>
 #include <vtkSphereSource.h>
@@ -105,6 +104,5 @@ int TestPARCCameras(int argc, char* argv[])
               << withoutSphere << " without\n";
     return EXIT_FAILURE;
   }
-  const int result = vtkRegressionTestImage(window);
-  return result == vtkRegressionTester::PASSED ? EXIT_SUCCESS : EXIT_FAILURE;
+  return parctest::MatchesBaseline(window, argc, argv) ? EXIT_SUCCESS : EXIT_FAILURE;
 }

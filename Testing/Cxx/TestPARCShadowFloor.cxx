@@ -10,8 +10,6 @@
 #include "vtkPARCMultiVolume.h"
 
 #include <vtkLight.h>
-#include <vtkRegressionTestImage.h>
-#include <vtkRenderWindowInteractor.h>
 
 #include <cstring>
 #include <iostream>
@@ -21,28 +19,18 @@ namespace
 {
 constexpr double EmbryoIsoValue = 80.0;
 
-/// An isosurface property: opaque, one colour, shaded.
+/// The Figure 13 look: an opaque shaded surface with some ambient light.
 vtkSmartPointer<vtkVolumeProperty> SurfaceProperty(double iso, const double rgb[3])
 {
-  vtkNew<vtkPiecewiseFunction> opacity;
-  opacity->AddPoint(0.0, 1.0);
-  opacity->AddPoint(255.0, 1.0);
-  vtkNew<vtkColorTransferFunction> color;
-  color->AddRGBPoint(0.0, rgb[0], rgb[1], rgb[2]);
-  color->AddRGBPoint(255.0, rgb[0], rgb[1], rgb[2]);
   auto property = vtkSmartPointer<vtkVolumeProperty>::New();
-  property->SetScalarOpacity(opacity);
-  property->SetColor(color);
-  property->SetInterpolationTypeToLinear();
-  property->GetIsoSurfaceValues()->SetValue(0, iso);
+  parcio::SetUpSurfaceProperty(iso, rgb, property);
   property->SetAmbient(0.25);
   property->SetDiffuse(0.75);
   property->SetSpecular(0.2);
-  property->ShadeOn();
   return property;
 }
 
-/// Mean alpha-weighted brightness of the float image's red channel, over all pixels.
+/// The mean red of the float image (premultiplied by alpha), over all pixels.
 double MeanRed(const std::vector<float>& rgba)
 {
   double sum = 0.0;
@@ -171,12 +159,6 @@ int TestPARCShadowFloor(int argc, char* argv[])
   mapper->SetAccelerationModeToAuto();
   window->Render();
   mapper->PrintStatistics(std::cout);
-  const int result = vtkRegressionTestImage(window);
-  if (result == vtkRegressionTester::DO_INTERACTOR)
-  {
-    vtkNew<vtkRenderWindowInteractor> interactor;
-    interactor->SetRenderWindow(window);
-    interactor->Start();
-  }
-  return failures == 0 && result == vtkRegressionTester::PASSED ? EXIT_SUCCESS : EXIT_FAILURE;
+  const bool matches = parctest::MatchesBaseline(window, argc, argv);
+  return failures == 0 && matches ? EXIT_SUCCESS : EXIT_FAILURE;
 }

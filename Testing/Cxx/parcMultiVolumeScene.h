@@ -9,8 +9,6 @@
 #include "vtkPARCMultiVolume.h"
 
 #include <vtkImageReader2.h>
-#include <vtkRegressionTestImage.h>
-#include <vtkRenderWindowInteractor.h>
 #include <vtkRendererCollection.h>
 #include <vtkTransform.h>
 
@@ -242,14 +240,8 @@ inline int RunMultiVolumeTest(const MultiVolumeScene& scene, int argc, char* arg
   mapper->SetAccelerationModeToAuto();
   window->Render();
   mapper->PrintStatistics(std::cout);
-  const int result = vtkRegressionTestImage(window);
-  if (result == vtkRegressionTester::DO_INTERACTOR)
-  {
-    vtkNew<vtkRenderWindowInteractor> interactor;
-    interactor->SetRenderWindow(window);
-    interactor->Start();
-  }
-  return failures == 0 && result == vtkRegressionTester::PASSED ? EXIT_SUCCESS : EXIT_FAILURE;
+  const bool matches = MatchesBaseline(window, argc, argv);
+  return failures == 0 && matches ? EXIT_SUCCESS : EXIT_FAILURE;
 }
 }
 

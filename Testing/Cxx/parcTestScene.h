@@ -13,6 +13,8 @@
 #include <vtkNew.h>
 #include <vtkPiecewiseFunction.h>
 #include <vtkPointData.h>
+#include <vtkRegressionTestImage.h>
+#include <vtkRenderWindowInteractor.h>
 #include <vtkRenderWindow.h>
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
@@ -143,6 +145,20 @@ inline double MaxAlpha(vtkPARCVolumeMapper* mapper)
     hi = std::max(hi, static_cast<double>(rgba->GetComponent(i, 3)));
   }
   return hi;
+}
+
+/// Compares the window with the test's baseline (vtkRegressionTestImage, options in argv);
+/// with -I, lets the user interact first. True when the image passes.
+inline bool MatchesBaseline(vtkRenderWindow* window, int argc, char* argv[])
+{
+  const int result = vtkRegressionTestImage(window);
+  if (result == vtkRegressionTester::DO_INTERACTOR)
+  {
+    vtkNew<vtkRenderWindowInteractor> interactor;
+    interactor->SetRenderWindow(window);
+    interactor->Start();
+  }
+  return result == vtkRegressionTester::PASSED;
 }
 }
 
