@@ -147,8 +147,8 @@ double VolumeDiagonal(const parc::Matrix4& indexToWorld, const int dims[3])
     { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 }));
 }
 
-/// The volume axis whose world direction is closest to the viewing direction (towards the
-/// volume's centre for perspective): its planes are crossed in order by every ray.
+/// The volume axis whose direction (indexToWorld's column) is closest to direction, the
+/// view's (or a light's towards the volume): its planes are crossed in order by every ray.
 int MajorAxis(const parc::Matrix4& indexToWorld, const parc::Vec3& direction)
 {
   int best = 2;
