@@ -300,6 +300,15 @@ void WarmUp(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper)
   } while (mapper->GetAutoTrialsRemaining() > 0 && ++renders < MaxWarmUpRenders);
 }
 
+/// The mapper's last float ray-cast image (RGBA, 4 floats a pixel).
+std::vector<float> RayImage(vtkPARCVolumeMapper* mapper)
+{
+  vtkNew<vtkImageData> image;
+  mapper->GetLastRayCastImage(image);
+  auto* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
+  return std::vector<float>(rgba->GetPointer(0), rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples());
+}
+
 /// Averages of repeated renders of one configuration, and its float ray-cast image.
 struct Measurement
 {
@@ -332,10 +341,7 @@ Measurement Measure(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, int re
   m.Contributing = mapper->GetLastContributingSupercellCount();
   m.Planes = mapper->GetLastPlaneCount();
   m.Passes = mapper->GetLastPassCount();
-  vtkNew<vtkImageData> image;
-  mapper->GetLastRayCastImage(image);
-  auto* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
-  m.Image.assign(rgba->GetPointer(0), rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples());
+  m.Image = RayImage(mapper);
   return m;
 }
 
@@ -456,10 +462,7 @@ void ShadowTable(vtkRenderWindow* window, vtkRenderer* renderer, vtkVolume* prop
         }
         if (r == 0)
         {
-          vtkNew<vtkImageData> image;
-          m->GetLastRayCastImage(image);
-          auto* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
-          row.Image[shadows].assign(rgba->GetPointer(0), rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples());
+          row.Image[shadows] = RayImage(m);
         }
       }
       row.Name = vtkPARCVolumeMapper::GetAccelerationModeAsString(row.Mapper->GetLastAccelerationMode());

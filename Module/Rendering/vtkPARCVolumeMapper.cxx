@@ -984,13 +984,16 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
     return nullptr;
   }
   const parc::Vec3& eye = frameOfLight.Eye; // render frame
-  // Colour planes along the axis nearest the light's view of the box, or depth.
-  parc::Vec3 centre;
-  for (const parc::Vec3& corner : frameOfLight.Corners)
-  {
-    centre = centre + 0.125 * corner;
-  }
-  const int axis = planes ? MajorAxis(frameOfLight.IndexToLight, centre) : -1;
+  // Colour planes along the axis nearest the light's view of the box (its centre), or depth.
+  const auto towardsCentre = [&frameOfLight]() {
+    parc::Vec3 centre;
+    for (const parc::Vec3& corner : frameOfLight.Corners)
+    {
+      centre = centre + (1.0 / frameOfLight.Corners.size()) * corner;
+    }
+    return centre;
+  };
+  const int axis = planes ? MajorAxis(frameOfLight.IndexToLight, towardsCentre()) : -1;
   const std::uint64_t version =
     axis < 0 ? in.Plan.GetModelVersion() : in.Plan.GetColorModelVersion(axis);
   // What the passes depend on, in world coordinates.
