@@ -47,6 +47,17 @@ bool ClipToField(const ScalarField& field, const CastParameters& p, const Vec3& 
 }
 }
 
+namespace
+{
+/// The largest float not above x.
+float FloatAtMost(double x)
+{
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity())
+                                    : f;
+}
+}
+
 bool RayCaster::Prepare(const ScalarField* field, const CastParameters* parameters)
 {
   this->Field = field;
@@ -68,6 +79,8 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   k.GradientOpacityConstant =
     parameters->UseGradientOpacity && parameters->GradientOpacity.IsConstant(constant);
   k.GradientOpacityValue = static_cast<float>(constant);
+  k.ZeroOpacityBelow = FloatAtMost(parameters->Opacity.FirstNonZero());
+  k.ZeroOpacityAbove = -FloatAtMost(-parameters->Opacity.LastNonZero());
   k.GradientNeeded =
     parameters->Shade || (parameters->UseGradientOpacity && !k.GradientOpacityConstant);
   for (int r = 0; r < 3; ++r)
@@ -123,6 +136,21 @@ float FlipUnlessPositive(float x, float sign)
   bits ^= static_cast<std::uint32_t>(!(sign > 0.f)) << 31;
   std::memcpy(&x, &bits, sizeof(bits));
   return x;
+}
+
+/// The index of the lowest set bit of x != 0.
+int CountTrailingZeros(unsigned x)
+{
+#if defined(__GNUC__)
+  return __builtin_ctz(x);
+#else
+  int n = 0;
+  for (; !(x & 1u); x >>= 1)
+  {
+    ++n;
+  }
+  return n;
+#endif
 }
 
 /// x^n for a whole n >= 0 by repeated squaring.
@@ -315,8 +343,9 @@ struct RayContext
   PARC_HOT_INLINE bool ContributingSamples(long k0, int n, int& visited, Visit&& visit)
   {
     this->SampleBlock(k0, n);
-    for (int j = 0; j < n; ++j)
+    for (unsigned lanes = this->MayContribute(n); lanes != 0; lanes &= lanes - 1)
     {
+      const int j = CountTrailingZeros(lanes);
       const double t = (k0 + j) * this->Dt;
       float a;
       Vec3f g;
@@ -328,6 +357,19 @@ struct RayContext
       }
     }
     return true;
+  }
+  /// The lanes j < n of the block whose opacity may be non-zero, as bits 1 << j: the
+  /// others are 0 without evaluating the opacity function.
+  PARC_HOT_INLINE unsigned MayContribute(int n) const
+  {
+    const float below = this->K.ZeroOpacityBelow, above = this->K.ZeroOpacityAbove;
+    unsigned lanes = 0;
+    for (int j = 0; j < n; ++j)
+    {
+      const float s = this->Block.Values[j];
+      lanes |= static_cast<unsigned>(s > below && s < above) << j;
+    }
+    return lanes;
   }
   float CorrectOpacity(float a) const
   {

@@ -147,6 +147,10 @@ public:
     bool GradientNeeded = false;
     bool GradientOpacityConstant = false; ///< then every sample's factor is GradientOpacityValue
     float GradientOpacityValue = 1.f;
+    /// The opacity function is 0 at every sample value s <= ZeroOpacityBelow or s >=
+    /// ZeroOpacityAbove (floats on the safe side of its first and last non-zero value).
+    float ZeroOpacityBelow = 0.f;
+    float ZeroOpacityAbove = 0.f;
     /// World gradient = GradientToWorld (row-major 3x3) times the voxel-index gradient: the
     /// transpose of the world-to-index matrix's linear part.
     float GradientToWorld[9] = { 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f };

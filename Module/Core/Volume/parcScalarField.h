@@ -93,18 +93,24 @@ struct LatticeBlock
   }
 };
 
-/// The voxel differences v(c + e_a) - v(c - e_a) at the 8 corners of the cell a ray's
+/// The voxel differences v(c + e_a) - v(c - e_a) at the 8 corners c of the cell a ray's
 /// gradient was taken in last, per axis a: the next gradient in that cell reuses them.
 struct CellDifferences
 {
   std::ptrdiff_t Offset = -1; ///< the cell's first voxel, or -1
-  float Values[3][8];
+  /// Values[corner][axis]; the fourth entry is 0 (the axes are interpolated together).
+  alignas(16) float Values[8][4];
 };
 
 /// Typed, non-owning read access to a field's values (see the file comment).
 template <typename T>
 class FieldView
 {
+  /// How a block holds corner values before interpolating them: 8- and 16-bit integers
+  /// as 32-bit ones (converted to float 4 lanes at a time, exactly), others as floats.
+  using LaneValue =
+    std::conditional_t<std::is_integral<T>::value && sizeof(T) <= 2, std::int32_t, float>;
+
 public:
   FieldView(const T* data, const int dims[3], std::ptrdiff_t stride)
     : Data(data)
@@ -179,13 +185,13 @@ public:
     }
     std::ptrdiff_t corner[8];
     this->CornerOffsets(corner);
-    float c[8][LatticeBlock::Size]; // corner values, lane by lane
+    LaneValue c[8][LatticeBlock::Size]; // corner values, lane by lane
     for (int j = 0; j < n; ++j)
     {
       const T* v = this->Data + block.Offset[j];
       for (int m = 0; m < 8; ++m)
       {
-        c[m][j] = static_cast<float>(v[corner[m]]);
+        c[m][j] = static_cast<LaneValue>(v[corner[m]]);
       }
     }
     InterpolateLanes(c, block.Fractions, n, block.Values);
@@ -243,12 +249,12 @@ public:
     return w;
   }
   /// Whether central differences in every point of cell need no voxel outside the box.
-  bool IsInteriorCell(const int cell[3]) const
+  PARC_HOT_INLINE bool IsInteriorCell(const int cell[3]) const
   {
     bool interior = true;
     for (int a = 0; a < 3; ++a)
     {
-      interior = interior && cell[a] >= 1 && cell[a] + 3 <= this->Dims[a];
+      interior &= (cell[a] >= 1) & (cell[a] + 3 <= this->Dims[a]); // no branch
     }
     return interior;
   }
@@ -264,9 +270,31 @@ public:
       this->LoadDifferences(this->Data + w.Offset, differences.Values);
       differences.Offset = w.Offset;
     }
-    return { 0.5f * Interpolate(differences.Values[0], w.Fractions),
-      0.5f * Interpolate(differences.Values[1], w.Fractions),
-      0.5f * Interpolate(differences.Values[2], w.Fractions) };
+    const float(*d)[4] = differences.Values;
+#if defined(__SSE2__)
+    // Interpolate for the three axes at once: the same operations, lane by lane.
+    auto lerp = [](__m128 a, __m128 b, __m128 t) {
+      return _mm_add_ps(a, _mm_mul_ps(t, _mm_sub_ps(b, a)));
+    };
+    const __m128 fx = _mm_set1_ps(w.Fractions[0]), fy = _mm_set1_ps(w.Fractions[1]);
+    const __m128 fz = _mm_set1_ps(w.Fractions[2]);
+    const __m128 c00 = lerp(_mm_load_ps(d[0]), _mm_load_ps(d[1]), fx);
+    const __m128 c10 = lerp(_mm_load_ps(d[2]), _mm_load_ps(d[3]), fx);
+    const __m128 c01 = lerp(_mm_load_ps(d[4]), _mm_load_ps(d[5]), fx);
+    const __m128 c11 = lerp(_mm_load_ps(d[6]), _mm_load_ps(d[7]), fx);
+    alignas(16) float g[4];
+    _mm_store_ps(g,
+      _mm_mul_ps(_mm_set1_ps(0.5f), lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz)));
+#else
+    float g[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const float c[8] = { d[0][a], d[1][a], d[2][a], d[3][a], d[4][a], d[5][a], d[6][a],
+        d[7][a] };
+      g[a] = 0.5f * Interpolate(c, w.Fractions);
+    }
+#endif
+    return { g[0], g[1], g[2] };
   }
 
 private:
@@ -315,7 +343,7 @@ private:
 #endif
   }
   /// Interpolate for the lanes: c[corner][lane], f[axis][lane].
-  static PARC_HOT_INLINE void InterpolateLanes(const float c[8][LatticeBlock::Size],
+  static PARC_HOT_INLINE void InterpolateLanes(const LaneValue c[8][LatticeBlock::Size],
     const float f[3][LatticeBlock::Size], int n, float* values)
   {
 #if defined(__SSE2__)
@@ -326,23 +354,36 @@ private:
     {
       const __m128 fx = _mm_loadu_ps(f[0] + j), fy = _mm_loadu_ps(f[1] + j);
       const __m128 fz = _mm_loadu_ps(f[2] + j);
-      const __m128 c00 = lerp(_mm_loadu_ps(c[0] + j), _mm_loadu_ps(c[1] + j), fx);
-      const __m128 c10 = lerp(_mm_loadu_ps(c[2] + j), _mm_loadu_ps(c[3] + j), fx);
-      const __m128 c01 = lerp(_mm_loadu_ps(c[4] + j), _mm_loadu_ps(c[5] + j), fx);
-      const __m128 c11 = lerp(_mm_loadu_ps(c[6] + j), _mm_loadu_ps(c[7] + j), fx);
+      const __m128 c00 = lerp(LoadLanes(c[0] + j), LoadLanes(c[1] + j), fx);
+      const __m128 c10 = lerp(LoadLanes(c[2] + j), LoadLanes(c[3] + j), fx);
+      const __m128 c01 = lerp(LoadLanes(c[4] + j), LoadLanes(c[5] + j), fx);
+      const __m128 c11 = lerp(LoadLanes(c[6] + j), LoadLanes(c[7] + j), fx);
       _mm_storeu_ps(values + j, lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz));
     }
 #else
     for (int j = 0; j < n; ++j)
     {
-      const float c00 = Lerp(c[0][j], c[1][j], f[0][j]);
-      const float c10 = Lerp(c[2][j], c[3][j], f[0][j]);
-      const float c01 = Lerp(c[4][j], c[5][j], f[0][j]);
-      const float c11 = Lerp(c[6][j], c[7][j], f[0][j]);
+      float v[8];
+      for (int m = 0; m < 8; ++m)
+      {
+        v[m] = static_cast<float>(c[m][j]);
+      }
+      const float c00 = Lerp(v[0], v[1], f[0][j]);
+      const float c10 = Lerp(v[2], v[3], f[0][j]);
+      const float c01 = Lerp(v[4], v[5], f[0][j]);
+      const float c11 = Lerp(v[6], v[7], f[0][j]);
       values[j] = Lerp(Lerp(c00, c10, f[1][j]), Lerp(c01, c11, f[1][j]), f[2][j]);
     }
 #endif
   }
+#if defined(__SSE2__)
+  /// 4 lanes' values as floats.
+  static PARC_HOT_INLINE __m128 LoadLanes(const float* v) { return _mm_loadu_ps(v); }
+  static PARC_HOT_INLINE __m128 LoadLanes(const std::int32_t* v)
+  {
+    return _mm_cvtepi32_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(v)));
+  }
+#endif
   PARC_HOT_INLINE void Locate(const Vec3& p, int cell[3], float f[3]) const
   {
     LocateAxis(p.X, this->Last[0], this->LastCell[0], cell[0], f[0]);
@@ -393,18 +434,20 @@ private:
     return { g.X, g.Y, g.Z };
   }
   /// The voxel differences v(c + e_a) - v(c - e_a) at the 8 corners c of the interior cell
-  /// whose first voxel is v (corner n: x offset n & 1, y (n >> 1) & 1, z (n >> 2) & 1). Per
-  /// axis, each difference takes one corner of the cell and one voxel outside it: 8 corner
-  /// loads and 24 outer ones.
-  PARC_HOT_INLINE void LoadDifferences(const T* v, float d[3][8]) const
+  /// whose first voxel is v, as d[corner][axis] (corner n: x offset n & 1, y (n >> 1) & 1,
+  /// z (n >> 2) & 1; d[n][3] = 0). Per axis, each difference takes one corner of the cell
+  /// and one voxel outside it: 8 corner loads and 24 outer ones. 8- and 16-bit differences
+  /// are taken in integers, exactly, and converted together.
+  PARC_HOT_INLINE void LoadDifferences(const T* v, float d[8][4]) const
   {
     std::ptrdiff_t corner[8];
     this->CornerOffsets(corner);
-    float c[8];
+    LaneValue c[8];
     for (int n = 0; n < 8; ++n)
     {
-      c[n] = static_cast<float>(v[corner[n]]);
+      c[n] = static_cast<LaneValue>(v[corner[n]]);
     }
+    alignas(16) LaneValue e[8][4];
     for (int a = 0; a < 3; ++a)
     {
       const std::ptrdiff_t s = this->Step[a];
@@ -419,9 +462,21 @@ private:
         // corner minus the voxel before the cell, the high one's the voxel after the cell
         // minus the low corner.
         const T* low = v + corner[n];
-        d[a][n] = c[n | bit] - static_cast<float>(low[-s]);
-        d[a][n | bit] = static_cast<float>(low[2 * s]) - c[n];
+        e[n][a] = c[n | bit] - static_cast<LaneValue>(low[-s]);
+        e[n | bit][a] = static_cast<LaneValue>(low[2 * s]) - c[n];
       }
+    }
+    for (int n = 0; n < 8; ++n)
+    {
+      e[n][3] = 0;
+#if defined(__SSE2__)
+      _mm_store_ps(d[n], LoadLanes(e[n]));
+#else
+      for (int a = 0; a < 4; ++a)
+      {
+        d[n][a] = static_cast<float>(e[n][a]);
+      }
+#endif
     }
   }
   /// Central differences of SampleLinear with the offsets clamped to the box.
