@@ -269,34 +269,47 @@ struct RayContext
   }
   /// The world-space gradient at ray parameter t, sample j of the block (or
   /// NotALatticeSample).
-  Vec3f WorldGradient(double t, int j)
+  PARC_NOINLINE Vec3f WorldGradient(double t, int j)
   {
     ++this->Stats.GradientEvaluations;
     Vec3f g;
-    if (this->P.Interp == Interpolation::Linear)
+    const bool lattice = this->P.Interp == Interpolation::Linear && j != NotALatticeSample;
+    if (lattice && this->Field.IsInteriorCell(this->Block.Cell, j))
     {
-      const SampleLocation w = j != NotALatticeSample
-        ? this->Block.Location(j)
-        : this->Field.LocationOf(this->IndexPosition(t));
-      if (this->Field.IsInteriorCell(w.Cell))
-      {
-        CellDifferences& slot = this->DifferencesOf(w.Offset);
-        this->Stats.DifferenceLoads += (slot.Offset != w.Offset);
-        g = this->Field.InteriorGradient(w, slot);
-      }
-      else // near a face: one-sided differences, no cell differences
-      {
-        g = Vec3f(
-          this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->OwnDifferences, &w));
-      }
+      const SampleLocation w = this->Block.Location(j);
+      CellDifferences& slot = this->DifferencesOf(w.Offset);
+      this->Stats.DifferenceLoads += (slot.Offset != w.Offset);
+      g = this->Field.InteriorGradient(w, slot);
     }
     else
     {
-      g = Vec3f(this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->OwnDifferences));
+      g = this->IndexGradient(t, j);
     }
     const float* m = this->K.GradientToWorld;
     return { m[0] * g.X + m[1] * g.Y + m[2] * g.Z, m[3] * g.X + m[4] * g.Y + m[5] * g.Z,
       m[6] * g.X + m[7] * g.Y + m[8] * g.Z };
+  }
+  /// The voxel-index gradient at ray parameter t, sample j of the block (or
+  /// NotALatticeSample), where WorldGradient's common case does not hold.
+  PARC_NOINLINE Vec3f IndexGradient(double t, int j)
+  {
+    if (this->P.Interp != Interpolation::Linear)
+    {
+      return Vec3f(
+        this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->OwnDifferences));
+    }
+    const SampleLocation w = j != NotALatticeSample
+      ? this->Block.Location(j)
+      : this->Field.LocationOf(this->IndexPosition(t));
+    if (this->Field.IsInteriorCell(w.Cell))
+    {
+      CellDifferences& slot = this->DifferencesOf(w.Offset);
+      this->Stats.DifferenceLoads += (slot.Offset != w.Offset);
+      return this->Field.InteriorGradient(w, slot);
+    }
+    // Near a face: one-sided differences, no cell differences.
+    return Vec3f(
+      this->Field.Gradient(this->IndexPosition(t), this->P.Interp, this->OwnDifferences, &w));
   }
   /// Scales opacity a by the gradient opacity of gradient g (computed only when needed);
   /// false when the result is 0.
@@ -419,8 +432,9 @@ PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f
   {
     // The normal faces the eye (two-sided lighting).
     const Vec3f n = FlipUnlessPositive(1.f / length, Dot(g, this->ToEye)) * g;
-    const auto& lights = this->K.DirectionalLights;
-    for (std::size_t i = 0; i < lights.size(); ++i)
+    const RayCaster::DirectionalLight* lights = this->K.DirectionalLights.data();
+    const std::size_t count = this->K.DirectionalLights.size();
+    for (std::size_t i = 0; i < count; ++i)
     {
       const RayCaster::DirectionalLight& light = lights[i];
       float ndl = Dot(n, light.ToLight);
