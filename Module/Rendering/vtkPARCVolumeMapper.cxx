@@ -799,6 +799,9 @@ bool vtkPARCVolumeMapper::vtkInternals::Cast(vtkPARCVolumeMapper* self, vtkRende
   this->ImageSize[1] = rays.Height;
   vtkRenderWindow* window = ren->GetRenderWindow();
   auto progress = [self, window](double fraction) {
+    // As VTK's ray cast mappers report it (call data: the fraction done), and as an
+    // algorithm does.
+    self->InvokeEvent(vtkCommand::VolumeMapperRenderProgressEvent, &fraction);
     self->UpdateProgress(fraction);
     return !self->GetAbortExecute() && !window->CheckAbortStatus();
   };

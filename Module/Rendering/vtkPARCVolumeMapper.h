@@ -72,6 +72,11 @@
  * own lattice (the common SampleDistance, or half its own smallest voxel edge). With a
  * plain vtkVolume, only port 0 is rendered.
  *
+ * Events: each render that casts emits VolumeMapperRenderStartEvent, then after every band
+ * of image rows VolumeMapperRenderProgressEvent (call data: a double*, the fraction cast)
+ * and ProgressEvent (GetProgress), then VolumeMapperRenderEndEvent. SetAbortExecute(1) from
+ * an observer, or the render window's abort check, stops the cast after the band.
+ *
  * Thread safety: like every VTK mapper, use it from the rendering thread; it parallelizes
  * internally and the image is the same for any number of threads.
  *

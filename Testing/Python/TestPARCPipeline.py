@@ -8,7 +8,9 @@ from parc import vtkPARCVolumeMapper
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
 from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
+from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.util.vtkConstants import VTK_DOUBLE
 from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderWindow,
                                          vtkRenderer, vtkVolume, vtkVolumeProperty)
 
@@ -129,6 +131,30 @@ class TestPARCPipeline(unittest.TestCase):
         mapper.AddObserver(vtkCommand.ProgressEvent, abort)
         window.Render()
         self.assertLess(mapper.GetLastSampleCount(), full)
+
+    def test_volume_mapper_render_events(self):
+        # What VTK's ray cast mappers emit: start, progress with the fraction done as call
+        # data, end; the fractions rise to 1.
+        mapper, window = make_scene(size=256)
+        events = []
+
+        @calldata_type(VTK_DOUBLE)
+        def on_progress(obj, event, fraction):
+            events.append(fraction)
+        mapper.AddObserver(vtkCommand.VolumeMapperRenderProgressEvent, on_progress)
+        mapper.AddObserver(vtkCommand.VolumeMapperRenderStartEvent,
+                           lambda obj, event: events.append("start"))
+        mapper.AddObserver(vtkCommand.VolumeMapperRenderEndEvent,
+                           lambda obj, event: events.append("end"))
+        window.Render()
+        self.assertEqual(events[0], "start")
+        self.assertEqual(events[-1], "end")
+        fractions = events[1:-1]
+        self.assertGreater(len(fractions), 2)
+        self.assertTrue(all(isinstance(f, float) for f in fractions))
+        self.assertEqual(fractions, sorted(fractions))
+        self.assertGreater(fractions[0], 0.0)
+        self.assertAlmostEqual(fractions[-1], 1.0)
 
 
 if __name__ == "__main__":
