@@ -78,9 +78,11 @@ void ConvertLights(vtkRenderer* ren, const parc::Vec3& frame, std::vector<parc::
     light->GetTransformedFocalPoint(f);
     l.Position = parc::Vec3{ p[0], p[1], p[2] } - frame;
     l.FocalPoint = parc::Vec3{ f[0], f[1], f[2] } - frame;
-    const double* c = light->GetDiffuseColor();
     const double i = light->GetIntensity();
+    const double* c = light->GetDiffuseColor();
     l.Color = { c[0] * i, c[1] * i, c[2] * i };
+    const double* s = light->GetSpecularColor();
+    l.SpecularColor = { s[0] * i, s[1] * i, s[2] * i };
     const double* a = light->GetAttenuationValues();
     l.Attenuation = { a[0], a[1], a[2] };
     l.ConeAngle = light->GetConeAngle();

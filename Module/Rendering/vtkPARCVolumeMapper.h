@@ -44,7 +44,9 @@
  *   unusable SampleDistance or ImageSampleDistance, and an isosurface without a finite iso
  *   value are errors. Supercells that would be too many for the volume are enlarged
  *   uniformly, with a warning.
- * - Positional lights use their attenuation and spot cone; shading is Blinn-Phong, two-sided.
+ * - Positional lights use their attenuation and spot cone; shading is Blinn-Phong, two-sided,
+ *   with each light's diffuse colour for the diffuse and its specular colour for the
+ *   specular term (both times its intensity).
  *
  * Shadows (paper section 5): when the renderer uses shadows (vtkRenderer::UseShadowsOn) and
  * a light has a ShadowAttenuation > 0 (vtkLight's default is 1), every shaded contribution

@@ -256,6 +256,38 @@ TEST(RayCaster, ShadingFollowsTheLight)
   EXPECT_EQ(r.Stats.GradientEvaluations, 0u) << "no gradient without shading";
 }
 
+TEST(RayCaster, HighlightsTakeTheLightsSpecularColour)
+{
+  // As ShadingFollowsTheLight, facing the light: ambient 0.2 + diffuse 0.3 in the diffuse
+  // colour (white), specular 0.1 in the specular colour (green), for a directional and a
+  // positional light.
+  const int n[3] = { 11, 5, 5 };
+  const parc::ScalarField field =
+    parctest::MakeField(n, [](int i, int, int) { return static_cast<float>(i); });
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 10.0 }, { 1.0, 1.0 });
+  p.Blend = BlendMode::IsoSurface;
+  p.IsoValues = { 5.0 };
+  p.Shade = true;
+  p.Ambient = 0.2;
+  p.Diffuse = 0.3;
+  p.Specular = 0.1;
+  parc::Light light;
+  light.Position = { 100.0, 2.0, 2.0 };
+  light.FocalPoint = { 0.0, 2.0, 2.0 };
+  light.SpecularColor = { 0.0, 1.0, 0.0 };
+  const parc::Ray ray = MakeRay({ 20.0, 2.0, 2.0 }, { -1, 0, 0 });
+  for (const bool positional : { false, true })
+  {
+    light.Positional = positional;
+    p.Lights = { light };
+    const auto r = CastOne(field, p, ray);
+    EXPECT_NEAR(r.RGBA[0], 0.5f, 1e-5) << "positional " << positional;
+    EXPECT_NEAR(r.RGBA[1], 0.6f, 1e-5) << "positional " << positional;
+    EXPECT_NEAR(r.RGBA[2], 0.5f, 1e-5) << "positional " << positional;
+  }
+}
+
 TEST(RayCaster, GradientOpacityUsesTheWorldGradient)
 {
   const int n[3] = { 11, 5, 5 };

@@ -68,6 +68,27 @@ class TestPARCPipeline(unittest.TestCase):
             mapper.GetLastAccelerationMode()), "None" if all_pc else "DepthBuffer")
         self.assertGreater(mapper.GetLastSupercellCount(), 0)
 
+    def test_light_specular_colour(self):
+        # A green specular colour keeps the red and blue of a light without highlights and
+        # the green of a white one, bit for bit.
+        mapper, window = make_scene()
+        renderer = window.GetRenderers().GetFirstRenderer()
+        volume = renderer.GetVolumes().GetItemAsObject(0)
+        volume.GetProperty().SetSpecular(0.8)
+        window.Render()  # creates the headlight
+        light = renderer.GetLights().GetItemAsObject(0)
+
+        def ray_image(specular):
+            light.SetSpecularColor(*specular)
+            window.Render()
+            image = vtkImageData()
+            mapper.GetLastRayCastImage(image)
+            return vtk_to_numpy(image.GetPointData().GetScalars()).copy()
+        white, green, black = ray_image((1, 1, 1)), ray_image((0, 1, 0)), ray_image((0, 0, 0))
+        self.assertTrue((green[:, 1] == white[:, 1]).all())
+        self.assertTrue((green[:, [0, 2]] == black[:, [0, 2]]).all())
+        self.assertGreater(white[:, 0].sum(), green[:, 0].sum() + 1.0, "highlights show")
+
     def test_auto_tries_each_pass(self):
         """Auto tries depth, colour, both and none in turn (a frame that also builds or
         uploads a model is tried again), then keeps one; every frame gives the same float

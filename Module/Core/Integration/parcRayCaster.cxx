@@ -109,7 +109,7 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
     {
       const Vec3 toLight = Normalized(light.Position - light.FocalPoint);
       k.DirectionalLights.push_back({ Vec3f(toLight), Vec3f(parameters->Diffuse * light.Color),
-        Vec3f(parameters->Specular * light.Color), i, toLight,
+        Vec3f(parameters->Specular * light.SpecularColor), i, toLight,
         static_cast<float>(light.ShadowAttenuation) });
     }
   }
@@ -503,8 +503,9 @@ void RayContext<View>::AddPositionalLights(
       for (int c = 0; c < 3; ++c)
       {
         const double color = attenuation * light->Color[c];
+        const double specularColor = attenuation * light->SpecularColor[c];
         diffuse[c] += static_cast<float>(this->P.Diffuse * color * ndl);
-        specular[c] += static_cast<float>(this->P.Specular * color * spec);
+        specular[c] += static_cast<float>(this->P.Specular * specularColor * spec);
       }
     }
   }

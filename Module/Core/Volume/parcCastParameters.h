@@ -35,7 +35,8 @@ struct Light
   bool Positional = false;
   Vec3 Position;                     ///< positional lights
   Vec3 FocalPoint;                   ///< the light points from Position to FocalPoint
-  Vec3 Color{ 1.0, 1.0, 1.0 };       ///< colour times intensity
+  Vec3 Color{ 1.0, 1.0, 1.0 };       ///< diffuse colour times intensity
+  Vec3 SpecularColor{ 1.0, 1.0, 1.0 }; ///< specular colour times intensity
   Vec3 Attenuation{ 1.0, 0.0, 0.0 }; ///< constant, linear, quadratic (positional only)
   double ConeAngle = 180.0;          ///< degrees; >= 90 means no spot
   double Exponent = 1.0;             ///< spot exponent
