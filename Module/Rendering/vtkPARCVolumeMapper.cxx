@@ -598,6 +598,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   }
   p.AverageRange[0] = this->AverageIPScalarRange[0];
   p.AverageRange[1] = this->AverageIPScalarRange[1];
+  std::copy_n(in.Field.GetRange(), 2, p.IntensityRange);
   p.TerminationOpacity = this->TerminationOpacity;
 
   // The core sees world coordinates minus the camera position, as the passes' views do.

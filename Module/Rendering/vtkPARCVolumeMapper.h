@@ -32,8 +32,14 @@
  * - The colour function is sampled into a 1024-entry table over the data range; opacity
  *   functions are evaluated exactly from their nodes (segments with a non-default midpoint
  *   or sharpness are subdivided into 32 linear pieces).
- * - Additive blending sums opacity-weighted colours and opacities (no attenuation) and clamps
- *   them to 1. Slice blending is not supported (nothing is drawn, with an error).
+ * - Additive and average-intensity blending give grey images, as VTK defines them (see
+ *   vtkVolumeMapper::SetBlendMode) and its GPU mapper draws them: each sample adds its value,
+ *   normalised to the scalars' range, times its opacity (corrected for the sample
+ *   distance); additive shows the sum, average the mean over the samples whose value lies
+ *   in AverageIPScalarRange, clamped to [0, 1] and opaque. An additive ray that meets the
+ *   volume is opaque even where nothing contributes (black); an average ray without a
+ *   sample in the range draws nothing. Slice blending is not supported (nothing is drawn,
+ *   with an error).
  * - Clipping planes (world coordinates) keep the side their normal points to; cropping keeps
  *   the regions of CroppingRegionFlags between CroppingRegionPlanes, given in the image's
  *   physical coordinates along its axes (origin and spacing; a direction matrix is not

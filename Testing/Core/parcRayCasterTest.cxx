@@ -171,6 +171,8 @@ TEST(RayCaster, MaximumAndMinimumIntensityAlongAGridLine)
 
 TEST(RayCaster, AverageIntensityCountsOnlyItsRange)
 {
+  // VTK's meaning: the mean over the samples in the range of value (normalised to the
+  // intensity range) times opacity, as an opaque grey.
   const parc::ScalarField field = RandomCube(12);
   CastParameters p;
   parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.0, 1.0 });
@@ -179,6 +181,8 @@ TEST(RayCaster, AverageIntensityCountsOnlyItsRange)
   p.Blend = BlendMode::AverageIntensity;
   p.AverageRange[0] = 100.0;
   p.AverageRange[1] = 255.0;
+  p.IntensityRange[0] = 0.0;
+  p.IntensityRange[1] = 255.0;
   double sum = 0.0;
   int count = 0;
   for (int i = 0; i < 8; ++i)
@@ -186,24 +190,49 @@ TEST(RayCaster, AverageIntensityCountsOnlyItsRange)
     const float v = field.GetValue(i, 2, 6);
     if (v >= 100.f)
     {
-      sum += v;
+      sum += (v / 255.0) * (v / 255.0); // opacity v / 255 (unit sample distance)
       ++count;
     }
   }
   ASSERT_GT(count, 0);
   const auto r = CastOne(field, p, MakeRay({ -3.0, 2.0, 6.0 }, { 1, 0, 0 }));
-  EXPECT_FLOAT_EQ(r.RGBA[3], static_cast<float>(sum / count / 255.0));
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(r.RGBA[c], sum / count, 1e-6) << "grey";
+  }
+  EXPECT_EQ(r.RGBA[3], 1.f);
   EXPECT_EQ(r.Stats.ContributingSamples, static_cast<unsigned>(count));
+  p.AverageRange[0] = 300.0; // no sample in the range: nothing
+  const auto none = CastOne(field, p, MakeRay({ -3.0, 2.0, 6.0 }, { 1, 0, 0 }));
+  EXPECT_EQ(none.RGBA[3], 0.f);
+  EXPECT_EQ(none.RGBA[0], 0.f);
 }
 
-TEST(RayCaster, AdditiveSumsCorrectedOpacities)
+TEST(RayCaster, AdditiveSumsIntensityTimesCorrectedOpacity)
 {
+  // 801 samples of value 100 in [0, 200]: each adds 0.5 times its corrected opacity.
   const parc::ScalarField field = ConstantSlab(100.f);
   CastParameters p = SlabParameters(0.001);
   p.Blend = BlendMode::Additive;
-  const auto r = CastOne(field, p, SlabRay());
+  p.IntensityRange[0] = 0.0;
+  p.IntensityRange[1] = 200.0;
+  auto r = CastOne(field, p, SlabRay());
   const double perSample = 1.0 - std::pow(1.0 - 0.001, 0.125);
-  EXPECT_NEAR(r.RGBA[3], 801 * perSample, 1e-4);
+  for (int c = 0; c < 3; ++c)
+  {
+    EXPECT_NEAR(r.RGBA[c], 801 * 0.5 * perSample, 1e-4) << "grey";
+  }
+  EXPECT_EQ(r.RGBA[3], 1.f);
+  p = SlabParameters(0.5); // the sum goes past 1: clamped
+  p.Blend = BlendMode::Additive;
+  p.IntensityRange[1] = 200.0;
+  r = CastOne(field, p, SlabRay());
+  EXPECT_EQ(r.RGBA[0], 1.f);
+  p = SlabParameters(0.0); // no opacity anywhere: opaque black, as VTK draws it
+  p.Blend = BlendMode::Additive;
+  r = CastOne(field, p, SlabRay());
+  EXPECT_EQ(r.RGBA[0], 0.f);
+  EXPECT_EQ(r.RGBA[3], 1.f);
 }
 
 TEST(RayCaster, CompositingIsFrontToBack)

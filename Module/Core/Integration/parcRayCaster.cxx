@@ -79,6 +79,8 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   k.GradientOpacityConstant =
     parameters->UseGradientOpacity && parameters->GradientOpacity.IsConstant(constant);
   k.GradientOpacityValue = static_cast<float>(constant);
+  const double intensityWidth = parameters->IntensityRange[1] - parameters->IntensityRange[0];
+  k.IntensityScale = intensityWidth > 0.0 ? 1.0 / intensityWidth : 0.0;
   k.ZeroOpacityBelow = FloatAtMost(parameters->Opacity.FirstNonZero());
   k.ZeroOpacityAbove = -FloatAtMost(-parameters->Opacity.LastNonZero());
   k.GradientNeeded =
@@ -189,6 +191,8 @@ struct RayContext
   double Dt;
   CastStatistics& Stats;
   double FirstHit = std::numeric_limits<double>::infinity();
+  /// Where the ray enters the field (inside the clipping planes).
+  double EntryT = 0.0;
   /// Where the ray's events go (several volumes), or null.
   std::vector<RayEvent>* Events = nullptr;
   /// The block of lattice samples taken last.
@@ -383,6 +387,11 @@ struct RayContext
       lanes |= static_cast<unsigned>(s > below && s < above) << j;
     }
     return lanes;
+  }
+  /// s normalised to the intensity range (additive and average intensity).
+  double NormalizedIntensity(float s) const
+  {
+    return (s - this->P.IntensityRange[0]) * this->K.IntensityScale;
   }
   float CorrectOpacity(float a) const
   {
@@ -603,6 +612,17 @@ struct ExtremeFunction
   }
 };
 
+/// The grey level of an intensity result: clamped to [0, 1], opaque.
+void GreyIntensity(double intensity, float rgba[4])
+{
+  const float grey = static_cast<float>(std::min(std::max(intensity, 0.0), 1.0));
+  rgba[0] = rgba[1] = rgba[2] = grey;
+  rgba[3] = 1.f;
+}
+
+/// VTK's average intensity: the mean, over the samples whose value lies in AverageRange,
+/// of the value (normalised to IntensityRange) times its corrected opacity; a grey, opaque
+/// result where the ray has such samples, nothing elsewhere.
 template <class Context>
 struct AverageFunction
 {
@@ -624,7 +644,8 @@ struct AverageFunction
         {
           this->FirstAt = (k0 + j) * this->C.Dt;
         }
-        this->Sum += s;
+        const float a = this->C.CorrectOpacity(this->C.P.Opacity.Evaluate(s));
+        this->Sum += a * this->C.NormalizedIntensity(s);
         ++this->Count;
         ++this->C.Stats.ContributingSamples;
       }
@@ -634,50 +655,39 @@ struct AverageFunction
   double Position() const { return this->FirstAt; } ///< where the result lies on the ray
   void Finish(float rgba[4]) const
   {
-    float rgb[3] = { 0.f, 0.f, 0.f };
-    float a = 0.f;
+    rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0.f;
     if (this->Count > 0)
     {
-      const double mean = this->Sum / static_cast<double>(this->Count);
-      a = this->C.P.Opacity.Evaluate(mean);
-      this->C.P.Color.Lookup(mean, rgb);
+      GreyIntensity(this->Sum / static_cast<double>(this->Count), rgba);
     }
-    Premultiply(rgb, a, rgba);
   }
 };
 
+/// VTK's additive intensity: the sum over the samples of the value (normalised to
+/// IntensityRange) times its corrected opacity, as an opaque grey wherever the ray meets
+/// the field (black where nothing contributes, as VTK's GPU mapper draws it; such a ray is
+/// cast even where acceleration finds nothing to sample, see CastsEveryRay).
 template <class Context>
 struct AdditiveFunction
 {
   static constexpr bool WholeRay = true;
   Context& C;
-  float Rgb[3] = { 0.f, 0.f, 0.f };
-  float Alpha = 0.f;
+  double Sum = 0.0;
+  bool Contributed = false;
 
   bool operator()(long k0, int n, bool, int& visited)
   {
     return this->C.ContributingSamples(
       k0, n, visited, [this](int j, double, float a, const Vec3f&, bool) {
-        float rgb[3];
-        this->C.P.Color.Lookup(this->C.Value(j), rgb);
-        for (int c = 0; c < 3; ++c)
-        {
-          this->Rgb[c] += a * rgb[c];
-        }
-        this->Alpha += a;
+        this->Sum += a * this->C.NormalizedIntensity(this->C.Value(j));
+        this->Contributed = true;
         return true;
       });
   }
-  void Finish(float rgba[4]) const
-  {
-    for (int c = 0; c < 3; ++c)
-    {
-      rgba[c] = std::min(this->Rgb[c], 1.f);
-    }
-    rgba[3] = std::min(this->Alpha, 1.f);
-  }
-  /// Where the result lies on the ray: the first contributing sample.
-  double Position() const { return this->C.FirstHit; }
+  void Finish(float rgba[4]) const { GreyIntensity(this->Sum, rgba); }
+  /// Where the result lies on the ray: the first contributing sample, or where the ray
+  /// enters the field.
+  double Position() const { return this->Contributed ? this->C.FirstHit : this->C.EntryT; }
 };
 
 /// Isosurfaces; with Shadow, along a shadow ray: each crossing of a value v multiplies
@@ -895,13 +905,13 @@ void RayCaster::CastRay(const RayQuery& query, const SegmentSource& source,
 
 bool RayCaster::RangesOf(const RayQuery& query, const SegmentSource& source,
   std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, Vec3& indexOrigin,
-  Vec3& indexDirection, std::size_t& sourceSegments) const
+  Vec3& indexDirection, std::size_t& sourceSegments, double& tEnter) const
 {
   const Ray& ray = query.Path;
   const Matrix4& w2i = this->Params->WorldToIndex;
   indexOrigin = w2i.TransformPoint(ray.Origin);
   indexDirection = w2i.TransformVector(ray.Direction);
-  double tEnter, tExit;
+  double tExit;
   if (!ClipToField(*this->Field, *this->Params, indexOrigin, indexDirection, ray, tEnter, tExit))
   {
     return false;
@@ -941,8 +951,9 @@ float RayCaster::TransmittanceIn(const View& field, const RayQuery& query,
   shadow.Path.TMin = std::max(shadow.Path.TMin, 0.5 * p.SampleDistance); // from k = 1
   Vec3 indexOrigin, indexDirection;
   std::size_t sourceSegments = 0;
+  double tEnter;
   if (!this->RangesOf(shadow, source, scratch.Segments, scratch.Ranges, indexOrigin,
-        indexDirection, sourceSegments) ||
+        indexDirection, sourceSegments, tEnter) ||
     scratch.Ranges.empty())
   {
     return 1.f;
@@ -1010,14 +1021,15 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
   }
   Vec3 indexOrigin, indexDirection;
   std::size_t sourceSegments = 0;
+  double tEnter;
   if (!this->RangesOf(
-        query, source, segments, ranges, indexOrigin, indexDirection, sourceSegments))
+        query, source, segments, ranges, indexOrigin, indexDirection, sourceSegments, tEnter))
   {
     return;
   }
   ++stats.Rays;
   stats.Segments += sourceSegments;
-  if (ranges.empty())
+  if (ranges.empty() && !this->CastsEveryRay())
   {
     return;
   }
@@ -1025,6 +1037,7 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
   Context context(
     field, *this->Params, this->Constants, query.Path, indexOrigin, indexDirection, stats, true);
   context.Events = events;
+  context.EntryT = tEnter;
   ShadowScratch ownShadowScratch;
   context.Shadows = this->Shadows;
   context.ShadowSpace = shadows ? shadows : &ownShadowScratch;
@@ -1177,7 +1190,8 @@ bool RayCaster::CastImageIn(const View& field, const Camera& view, const float* 
     this->CastRayIn(field, query, source, scratch.Segments, scratch.Ranges, pixel,
       scratch.Stats, nullptr, nullptr, &scratch.Differences, &scratch.Shadows);
   };
-  auto mayHave = [&](int px, int py) { return source.MayHaveSegments(px, py); };
+  const bool everyRay = this->CastsEveryRay();
+  auto mayHave = [&](int px, int py) { return everyRay || source.MayHaveSegments(px, py); };
   auto reduce = [&stats](const RayScratch& scratch) { stats += scratch.Stats; };
   return CastTiles(view, depth, castOne, mayHave, rgba, reduce, progress);
 }
@@ -1205,7 +1219,8 @@ void SceneCaster::CastRay(const RayQuery& query, std::vector<Segment>& segments,
   {
     const Member& m = this->Members[v];
     events[v].clear();
-    if (!query.HasPixel || m.Source->MayHaveSegments(query.Pixel[0], query.Pixel[1]))
+    if (!query.HasPixel || m.Caster->CastsEveryRay() ||
+      m.Source->MayHaveSegments(query.Pixel[0], query.Pixel[1]))
     {
       m.Caster->CastRay(
         query, *m.Source, segments, ranges, own, stats[v], nullptr, &events[v], shadows);
@@ -1249,7 +1264,9 @@ bool SceneCaster::CastImage(const Camera& view, const float* depth, float* rgba,
   };
   auto mayHave = [&](int px, int py) {
     return std::any_of(this->Members.begin(), this->Members.end(),
-      [px, py](const Member& m) { return m.Source->MayHaveSegments(px, py); });
+      [px, py](const Member& m) {
+        return m.Caster->CastsEveryRay() || m.Source->MayHaveSegments(px, py);
+      });
   };
   stats.assign(n, CastStatistics());
   auto reduce = [&stats](const RayScratch& scratch) {

@@ -115,6 +115,12 @@ public:
   /// The ray-parameter interval of ray inside the field's box, [TMin, TMax] and the
   /// clipping planes (cropping may cut it further).
   bool ClipRay(const Ray& ray, double& tEnter, double& tExit) const;
+  /// Whether every ray that meets the field has a result, even with nothing to sample
+  /// (additive blending: opaque black), so that no ray may be skipped.
+  bool CastsEveryRay() const
+  {
+    return this->Params && this->Params->Blend == BlendMode::Additive;
+  }
 
   const CastParameters* GetParameters() const { return this->Params; }
   const ScalarField* GetField() const { return this->Field; }
@@ -151,6 +157,7 @@ public:
     /// ZeroOpacityAbove (floats on the safe side of its first and last non-zero value).
     float ZeroOpacityBelow = 0.f;
     float ZeroOpacityAbove = 0.f;
+    double IntensityScale = 1.0; ///< 1 / the width of CastParameters::IntensityRange, or 0
     /// World gradient = GradientToWorld (row-major 3x3) times the voxel-index gradient: the
     /// transpose of the world-to-index matrix's linear part.
     float GradientToWorld[9] = { 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f };
@@ -162,11 +169,12 @@ public:
 
 private:
   /// The lattice ranges of query.Path to cast: its part inside the field, the clipping
-  /// planes and the cropping where source gives segments (sourceSegments of them). False
-  /// when the ray misses the field (source is not asked).
+  /// planes and the cropping where source gives segments (sourceSegments of them); tEnter
+  /// is where the ray enters the field inside the planes. False when the ray misses the
+  /// field (source is not asked).
   bool RangesOf(const RayQuery& query, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, Vec3& indexOrigin,
-    Vec3& indexDirection, std::size_t& sourceSegments) const;
+    Vec3& indexDirection, std::size_t& sourceSegments, double& tEnter) const;
   /// differences (optional): a thread's cache of cell differences for gradients, a power
   /// of two of them, shared by the rays of one image.
   template <class View>

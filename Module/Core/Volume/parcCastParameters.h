@@ -61,6 +61,10 @@ struct CastParameters
   double TerminationOpacity = 0.99;
   std::vector<double> IsoValues;
   double AverageRange[2] = { -1e300, 1e300 };
+  /// Additive and average intensity weigh each sample's value normalised to this range,
+  /// (s - IntensityRange[0]) / (IntensityRange[1] - IntensityRange[0]), as VTK's mappers
+  /// normalise to the scalars' range (0 for an empty range).
+  double IntensityRange[2] = { 0.0, 1.0 };
   bool Shade = false;
   double Ambient = 0.1, Diffuse = 0.7, Specular = 0.2, SpecularPower = 10.0;
   std::vector<Light> Lights;
