@@ -196,6 +196,25 @@ bool CheckImage(vtkImageData* image, std::string& error)
   return true;
 }
 
+bool IsSupportedScalarType(int vtkType)
+{
+  switch (vtkType)
+  {
+    case VTK_CHAR:
+    case VTK_SIGNED_CHAR:
+    case VTK_UNSIGNED_CHAR:
+    case VTK_SHORT:
+    case VTK_UNSIGNED_SHORT:
+    case VTK_INT:
+    case VTK_UNSIGNED_INT:
+    case VTK_FLOAT:
+    case VTK_DOUBLE:
+      return true;
+    default:
+      return false;
+  }
+}
+
 bool WrapScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
   std::size_t& replaced, std::string& error)
 {

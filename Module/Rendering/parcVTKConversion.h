@@ -28,6 +28,9 @@ bool ConvertBlendMode(int vtkBlendMode, BlendMode& out);
 bool WrapScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
   std::size_t& replaced, std::string& error);
 
+/// Whether WrapScalars takes scalars of this VTK type.
+bool IsSupportedScalarType(int vtkType);
+
 /// Checks that an image can be cast (dims >= 2, finite non-zero spacing); false with a
 /// message otherwise.
 bool CheckImage(vtkImageData* image, std::string& error);

@@ -149,6 +149,19 @@ double VolumeDiagonal(const parc::Matrix4& indexToWorld, const int dims[3])
     { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 }));
 }
 
+/// The sample distance LockSampleDistanceToInputSpacing asks for: the average voxel edge
+/// (world units) times min(1/2, cbrt(voxels) / 200).
+double SpacingLockedSampleDistance(const parc::Matrix4& indexToWorld, std::size_t voxels)
+{
+  double edges = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    edges += parc::Length(indexToWorld.TransformVector(
+      { a == 0 ? 1.0 : 0.0, a == 1 ? 1.0 : 0.0, a == 2 ? 1.0 : 0.0 }));
+  }
+  return edges / 3.0 * std::min(0.5, std::cbrt(static_cast<double>(voxels)) / 200.0);
+}
+
 /// The volume axis whose direction (indexToWorld's column) is closest to direction, the
 /// view's (or a light's towards the volume): its planes are crossed in order by every ray.
 int MajorAxis(const parc::Matrix4& indexToWorld, const parc::Vec3& direction)
@@ -317,7 +330,7 @@ public:
   std::vector<std::pair<const char*, std::size_t>> Memory() const;
 
   /// The mode Auto resolves to for the current classification, ray function and view.
-  int ChooseMode(int requested, const parc::Camera& camera);
+  int ChooseMode(const vtkPARCVolumeMapper* self, int requested, const parc::Camera& camera);
   /// The segment source of shadow rays towards light `index` (lit from lights, in the
   /// render frame whose world origin is frame): the light's plane passes (planes) or depth
   /// passes, run again only when the light, the volume's transform, its model or that kind
@@ -352,6 +365,12 @@ public:
   LightPassWork LightPasses; ///< the shadow rays' light passes (part of the render)
   double RenderTime = 0.0;
   vtkNew<vtkOpenGLRayCastImageDisplayHelper> DisplayHelper;
+  /// The volume's allocated render time for this render (render-time budgets).
+  double Budget = 0.0;
+  /// The last render that cast: its time, image sample distance and sample distance (port
+  /// 0), from which the next render's image sample distance is estimated.
+  double PreviousTime = 0.0, PreviousImageStep = 1.0, PreviousSampleDistance = 0.0;
+  bool JitteringWarned = false, RenderModeWarned = false;
 
   /// Bytes held per structure (see GetMemorySize).
   std::vector<std::pair<const char*, std::size_t>> Memory() const;
@@ -452,6 +471,14 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   in.Stats = parc::CastStatistics();
   in.CastingTime = in.ProjectionTime = 0.0;
   in.ImageSize[0] = in.ImageSize[1] = 0; // no image until a cast fills one
+  in.Budget = vol->GetAllocatedRenderTime();
+  this->LastInteractive =
+    this->AutoAdjustSampleDistances && in.Budget < 1.0 / this->InteractiveUpdateRate;
+  if (this->UseJittering && !in.JitteringWarned)
+  {
+    vtkWarningMacro("UseJittering is not supported: rays sample one exact lattice; ignored.");
+    in.JitteringWarned = true;
+  }
   if (this->PrepareVolumes(ren, vol))
   {
     this->InvokeEvent(vtkCommand::VolumeMapperRenderStartEvent, nullptr);
@@ -461,6 +488,82 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   }
   in.RenderTime = vtkTimerLog::GetUniversalTime() - renderStart;
   this->TimeToDraw = in.RenderTime;
+  if (in.ImageSize[0] > 0)
+  {
+    in.PreviousTime = in.RenderTime;
+    in.PreviousImageStep = this->LastImageSampleDistance;
+    in.PreviousSampleDistance = this->LastSampleDistance;
+  }
+}
+
+//------------------------------------------------------------------------------
+double vtkPARCVolumeMapper::ChooseImageSampleDistance() const
+{
+  const vtkInternals& in = *this->Internals;
+  if (!this->AutoAdjustSampleDistances)
+  {
+    return this->ImageSampleDistance;
+  }
+  const double lo = this->MinimumImageSampleDistance;
+  const double hi = std::max(lo, this->MaximumImageSampleDistance);
+  if (!(in.PreviousTime > 0.0) || !(in.Budget > 0.0) || !(in.PreviousSampleDistance > 0.0))
+  {
+    return lo;
+  }
+  // A render's time grows with its rays (1 / step^2) times their samples (1 / the sample
+  // distance): the step that would have made the last render fit the budget, for this
+  // render's sample distance.
+  const double time =
+    in.PreviousTime * in.PreviousSampleDistance / std::max(this->LastSampleDistance, 1e-300);
+  const double step = in.PreviousImageStep * std::sqrt(time / in.Budget);
+  return std::min(std::max(step, lo), hi);
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCVolumeMapper::SetRequestedRenderMode(int mode)
+{
+  if (mode != this->RequestedRenderMode)
+  {
+    this->RequestedRenderMode = mode;
+    this->Modified();
+  }
+  constexpr int defaultMode = 0, rayCastMode = 1;
+  if (mode != defaultMode && mode != rayCastMode && !this->Internals->RenderModeWarned)
+  {
+    vtkWarningMacro("Render mode " << mode << " requested: this mapper casts rays on the CPU "
+                                    "(GL only accelerates them); it renders as RayCast.");
+    this->Internals->RenderModeWarned = true;
+  }
+}
+
+//------------------------------------------------------------------------------
+int vtkPARCVolumeMapper::GetLastUsedRenderMode()
+{
+  constexpr int rayCastMode = 1, invalidMode = 5; // vtkSmartVolumeMapper's values
+  return this->Internals->ImageSize[0] > 0 ? rayCastMode : invalidMode;
+}
+
+//------------------------------------------------------------------------------
+int vtkPARCVolumeMapper::IsRenderSupported(vtkRenderWindow*, vtkVolumeProperty*)
+{
+  if (this->GetNumberOfInputConnections(0) == 0)
+  {
+    return 0;
+  }
+  this->GetInputAlgorithm(0, 0)->Update();
+  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(0, 0));
+  if (!image)
+  {
+    return 0;
+  }
+  int cellFlag = 0;
+  vtkDataArray* scalars = vtkAbstractMapper::GetScalars(image, this->ScalarMode,
+    this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  std::string error;
+  return scalars && cellFlag == 0 && parc::vtk::CheckImage(image, error) &&
+      parc::vtk::IsSupportedScalarType(scalars->GetDataType())
+    ? 1
+    : 0;
 }
 
 //------------------------------------------------------------------------------
@@ -618,6 +721,14 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
     smallestStep = std::min(smallestStep, parc::Length(axis));
   }
   p.SampleDistance = this->SampleDistance > 0.0 ? this->SampleDistance : 0.5 * smallestStep;
+  if (this->LockSampleDistanceToInputSpacing)
+  {
+    p.SampleDistance = SpacingLockedSampleDistance(indexToWorld, in.Field.GetNumberOfValues());
+  }
+  if (this->LastInteractive && this->InteractiveSampleDistance > p.SampleDistance)
+  {
+    p.SampleDistance = this->InteractiveSampleDistance;
+  }
   const double diagonal = VolumeDiagonal(indexToWorld, in.Field.GetDimensions());
   if (std::isnan(this->SampleDistance) || !std::isfinite(p.SampleDistance) ||
     p.SampleDistance * MaxSamplesPerDiagonal < diagonal)
@@ -689,7 +800,8 @@ bool vtkPARCVolumeMapper::vtkInternals::MakeView(
   {
     return false;
   }
-  const double step = self->ImageSampleDistance;
+  const double step = self->ChooseImageSampleDistance();
+  self->LastImageSampleDistance = step;
   if (!vtkPARCRasterizer::MakeView(ren, std::max(1, static_cast<int>(width / step)),
         std::max(1, static_cast<int>(height / step)), view))
   {
@@ -809,21 +921,30 @@ bool vtkPARCVolumeMapper::vtkInternals::Cast(vtkPARCVolumeMapper* self, vtkRende
     return !self->GetAbortExecute() && !window->CheckAbortStatus();
   };
   const double start = vtkTimerLog::GetUniversalTime();
-  bool completed;
-  if (members.size() == 1)
-  {
-    vtkVolumeState& volume = *this->Rendered[0].first;
-    completed = volume.Caster.CastImage(
-      rays, depth, *members[0].Source, this->Image.data(), volume.Stats, progress);
-  }
-  else
-  {
+  bool completed = false;
+  auto cast = [&]() {
+    self->LastNumberOfThreads = vtkSMPTools::GetEstimatedNumberOfThreads();
+    if (members.size() == 1)
+    {
+      vtkVolumeState& volume = *this->Rendered[0].first;
+      completed = volume.Caster.CastImage(
+        rays, depth, *members[0].Source, this->Image.data(), volume.Stats, progress);
+      return;
+    }
     this->Scene.SetMembers(members, self->TerminationOpacity);
     completed = this->Scene.CastImage(rays, depth, this->Image.data(), this->MemberStats, progress);
     for (std::size_t v = 0; v < members.size(); ++v)
     {
       this->Rendered[v].first->Stats = this->MemberStats[v];
     }
+  };
+  if (self->NumberOfThreads > 0)
+  {
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ self->NumberOfThreads }, cast);
+  }
+  else
+  {
+    cast();
   }
   this->CastingTime = vtkTimerLog::GetUniversalTime() - start;
   for (const auto& entry : this->Rendered)
@@ -855,7 +976,7 @@ void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
 
 //------------------------------------------------------------------------------
 int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
-  int requested, const parc::Camera& camera)
+  const vtkPARCVolumeMapper* self, int requested, const parc::Camera& camera)
 {
   vtkVolumeState& in = *this;
   if (requested != ACCELERATION_AUTO)
@@ -874,8 +995,9 @@ int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   const parc::Vec3 centre = in.IndexToFrame.TransformPoint( // the eye is the frame's origin
     { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
   in.Plan.Auto.SetView(camera.Direction, parc::Length(centre));
+  // No trial during interaction: a trial of a slow mode would break the frame budget.
   return AutoCandidates[in.Plan.Auto.Choose(
-    in.Plan.GetModelVersion(), pc, camera.Width, camera.Height)];
+    in.Plan.GetModelVersion(), pc, camera.Width, camera.Height, !self->LastInteractive)];
 }
 
 //------------------------------------------------------------------------------
@@ -906,7 +1028,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     in.LastMode = requested;
     return in.NoRays; // outside the view (another volume of the scene is not): no pass
   }
-  const int mode = in.ChooseMode(requested, passView.Camera);
+  const int mode = in.ChooseMode(self, requested, passView.Camera);
   if (mode == ACCELERATION_NONE)
   {
     in.ReleaseUnusedPasses(window, false, false);
@@ -1419,4 +1541,17 @@ void vtkPARCVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "TerminationOpacity: " << this->TerminationOpacity << "\n";
   os << indent << "IntermixIntersectingGeometry: " << this->IntermixIntersectingGeometry << "\n";
   os << indent << "LastSampleDistance: " << this->LastSampleDistance << "\n";
+  os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
+  os << indent << "MinimumImageSampleDistance: " << this->MinimumImageSampleDistance << "\n";
+  os << indent << "MaximumImageSampleDistance: " << this->MaximumImageSampleDistance << "\n";
+  os << indent << "InteractiveSampleDistance: " << this->InteractiveSampleDistance << "\n";
+  os << indent << "InteractiveUpdateRate: " << this->InteractiveUpdateRate << "\n";
+  os << indent << "LastImageSampleDistance: " << this->LastImageSampleDistance << "\n";
+  os << indent << "LastInteractive: " << this->LastInteractive << "\n";
+  os << indent << "LockSampleDistanceToInputSpacing: " << this->LockSampleDistanceToInputSpacing
+     << "\n";
+  os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
+  os << indent << "LastNumberOfThreads: " << this->LastNumberOfThreads << "\n";
+  os << indent << "UseJittering: " << this->UseJittering << "\n";
+  os << indent << "RequestedRenderMode: " << this->RequestedRenderMode << "\n";
 }

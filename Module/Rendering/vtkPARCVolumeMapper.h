@@ -99,6 +99,8 @@
 #include <memory> // For std::unique_ptr
 
 class vtkImageData;
+class vtkRenderWindow;
+class vtkVolumeProperty;
 
 class PARCRENDERING_EXPORT vtkPARCVolumeMapper : public vtkVolumeMapper
 {
@@ -168,7 +170,9 @@ public:
   ///@{
   /**
    * Screen pixels per ray along each image axis (1 = one ray per pixel, the default; 2 = a
-   * ray every second pixel, the image magnified with linear filtering).
+   * ray every second pixel, the image magnified with linear filtering). Used as set only
+   * with AutoAdjustSampleDistances off, as in vtkFixedPointVolumeRayCastMapper; otherwise
+   * each render chooses it (see AutoAdjustSampleDistances).
    */
   vtkSetClampMacro(ImageSampleDistance, double, 1.0, 64.0);
   vtkGetMacro(ImageSampleDistance, double);
@@ -181,6 +185,90 @@ public:
    */
   vtkSetClampMacro(TerminationOpacity, double, 0.0, 1.0);
   vtkGetMacro(TerminationOpacity, double);
+  ///@}
+
+  ///@{
+  /**
+   * Render-time budgets, as vtkFixedPointVolumeRayCastMapper keeps them. With
+   * AutoAdjustSampleDistances on (the default), each render picks the ImageSampleDistance
+   * that should fit the volume's allocated render time (vtkProp::GetAllocatedRenderTime,
+   * set by the render window's desired update rate), estimated from the last render's time
+   * (a render's time grows with its number of rays and samples), within
+   * [MinimumImageSampleDistance, MaximumImageSampleDistance]; an interactive render (less
+   * than 1 / InteractiveUpdateRate seconds allocated) also samples every
+   * InteractiveSampleDistance world units when that is coarser. A still render (a large
+   * allocation, as after interaction ends) is cast at MinimumImageSampleDistance and the
+   * full sample distance. Every render is exact for the settings it uses: the acceleration
+   * modes agree bit for bit on it. With AutoAdjustSampleDistances off, ImageSampleDistance
+   * and SampleDistance are used as set. GetLastImageSampleDistance and
+   * GetLastSampleDistance give what the last render used, GetLastInteractive whether it
+   * was interactive.
+   * Defaults: on, 1, 10, 2.0 world units and 1 frame per second (FixedPoint's).
+   */
+  vtkSetMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkGetMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkBooleanMacro(AutoAdjustSampleDistances, vtkTypeBool);
+  vtkSetClampMacro(MinimumImageSampleDistance, double, 1.0, 64.0);
+  vtkGetMacro(MinimumImageSampleDistance, double);
+  vtkSetClampMacro(MaximumImageSampleDistance, double, 1.0, 64.0);
+  vtkGetMacro(MaximumImageSampleDistance, double);
+  vtkSetMacro(InteractiveSampleDistance, double);
+  vtkGetMacro(InteractiveSampleDistance, double);
+  vtkSetClampMacro(InteractiveUpdateRate, double, 1e-6, 1e6);
+  vtkGetMacro(InteractiveUpdateRate, double);
+  vtkGetMacro(LastImageSampleDistance, double);
+  vtkGetMacro(LastInteractive, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Derive the sample distance from the input's spacing instead of SampleDistance: the
+   * average voxel edge (world units) times min(1/2, cbrt(N) / 200) for N voxels, half the
+   * average edge from 10^6 voxels on and proportionally finer for smaller volumes, as
+   * vtkFixedPointVolumeRayCastMapper describes it. Default off.
+   */
+  vtkSetMacro(LockSampleDistanceToInputSpacing, vtkTypeBool);
+  vtkGetMacro(LockSampleDistanceToInputSpacing, vtkTypeBool);
+  vtkBooleanMacro(LockSampleDistanceToInputSpacing, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
+   * Threads that cast rays (vtkSMPTools); 0, the default, means vtkSMPTools' own number
+   * (all cores unless configured otherwise). The image is the same for any number.
+   * GetLastNumberOfThreads is the number the last cast could use.
+   */
+  vtkSetClampMacro(NumberOfThreads, int, 0, 1024);
+  vtkGetMacro(NumberOfThreads, int);
+  vtkGetMacro(LastNumberOfThreads, int);
+  ///@}
+
+  ///@{
+  /**
+   * vtkGPUVolumeRayCastMapper and vtkSmartVolumeMapper settings, for programs that swap
+   * mappers. Jittering (random ray offsets against wood-grain artefacts) is not done: rays
+   * sample one exact lattice; turning it on warns once and changes nothing. The requested
+   * render mode may be Default or RayCast (the mapper always casts rays on the CPU, with GL
+   * only to accelerate); GPU or OSPRay warn once and cast rays as well.
+   * GetLastUsedRenderMode is vtkSmartVolumeMapper::RayCastRenderMode after a render, and
+   * InvalidRenderMode before one.
+   */
+  vtkSetMacro(UseJittering, vtkTypeBool);
+  vtkGetMacro(UseJittering, vtkTypeBool);
+  vtkBooleanMacro(UseJittering, vtkTypeBool);
+  void SetRequestedRenderMode(int mode);
+  vtkGetMacro(RequestedRenderMode, int);
+  void SetRequestedRenderModeToDefault() { this->SetRequestedRenderMode(0); }
+  void SetRequestedRenderModeToRayCast() { this->SetRequestedRenderMode(1); }
+  void SetRequestedRenderModeToGPU() { this->SetRequestedRenderMode(2); }
+  void SetRequestedRenderModeToOSPRay() { this->SetRequestedRenderMode(3); }
+  int GetLastUsedRenderMode();
+  /**
+   * Whether the mapper can render vol in window: 1 when the volume's input is an image it
+   * supports (scalars of a supported type, at least 2 samples along each axis, non-zero
+   * spacing). No GL context is needed: without one the mapper casts unaccelerated.
+   */
+  int IsRenderSupported(vtkRenderWindow* window, vtkVolumeProperty* property);
   ///@}
 
   ///@{
@@ -331,6 +419,12 @@ protected:
   /** Classifies and builds the volume's polygon models when their inputs changed. */
   bool PrepareModels(vtkVolumeState& volume, vtkVolume* prop);
 
+  /**
+   * The image sample distance of this render: ImageSampleDistance, or with
+   * AutoAdjustSampleDistances the one estimated to fit the allocated render time.
+   */
+  double ChooseImageSampleDistance() const;
+
   /** Composites the ray image over the renderer's viewport. */
   void DisplayImage(vtkRenderer* ren, vtkVolume* vol);
 
@@ -341,6 +435,18 @@ protected:
   double TerminationOpacity = 0.99;
   vtkTypeBool IntermixIntersectingGeometry = 1;
   double LastSampleDistance = 0.0;
+  vtkTypeBool AutoAdjustSampleDistances = 1;
+  double MinimumImageSampleDistance = 1.0;
+  double MaximumImageSampleDistance = 10.0;
+  double InteractiveSampleDistance = 2.0;
+  double InteractiveUpdateRate = 1.0;
+  double LastImageSampleDistance = 1.0;
+  vtkTypeBool LastInteractive = 0;
+  vtkTypeBool LockSampleDistanceToInputSpacing = 0;
+  int NumberOfThreads = 0;
+  int LastNumberOfThreads = 0;
+  vtkTypeBool UseJittering = 0;
+  int RequestedRenderMode = 0;
   int InputBlendModes[MaxInputPorts] = {}; ///< ports 1 and up (port 0: BlendMode)
 
 private:

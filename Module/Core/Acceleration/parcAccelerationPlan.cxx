@@ -18,37 +18,44 @@ void AutoTrials::SetView(const Vec3& direction, double distance)
   }
 }
 
-int AutoTrials::Choose(std::uint64_t modelVersion, std::size_t contributing, int width, int height)
+int AutoTrials::Choose(std::uint64_t modelVersion, std::size_t contributing, int width,
+  int height, bool allowTrials)
 {
-  if (width != this->Size[0] || height != this->Size[1])
-  {
-    std::fill_n(this->Estimates, Count, Estimate());
-    this->Size[0] = width;
-    this->Size[1] = height;
-  }
-  this->Chosen = 0;
+  this->Size[0] = width;
+  this->Size[1] = height;
+  this->Chosen = -1;
   for (int i = 0; i < Count; ++i)
   {
-    if (!this->Estimates[i].Measured)
+    const Estimate& e = this->Estimates[i];
+    if (!e.Measured)
     {
-      this->Chosen = i;
-      return i;
+      if (allowTrials)
+      {
+        this->Chosen = i;
+        return i;
+      }
+      continue;
     }
-    if (Predict(this->Estimates[i], modelVersion, contributing) <
-      Predict(this->Estimates[this->Chosen], modelVersion, contributing))
+    if (this->Chosen < 0 ||
+      this->Predict(e, modelVersion, contributing) <
+        this->Predict(this->Estimates[this->Chosen], modelVersion, contributing))
     {
       this->Chosen = i;
     }
   }
+  this->Chosen = std::max(this->Chosen, 0);
   return this->Chosen;
 }
 
-double AutoTrials::Predict(const Estimate& e, std::uint64_t modelVersion, std::size_t contributing)
+double AutoTrials::Predict(
+  const Estimate& e, std::uint64_t modelVersion, std::size_t contributing) const
 {
   const double scale = (e.ModelVersion == modelVersion || e.Contributing == 0)
     ? 1.0
     : static_cast<double>(contributing) / static_cast<double>(e.Contributing);
-  return scale * e.Projection + e.Casting;
+  const double rays = static_cast<double>(this->Size[0]) * this->Size[1];
+  const double raysScale = e.Rays > 0.0 ? rays / e.Rays : 1.0;
+  return raysScale * (scale * e.Projection + e.Casting);
 }
 
 void AutoTrials::Record(std::uint64_t modelVersion, std::size_t contributing, double projection,
@@ -57,10 +64,12 @@ void AutoTrials::Record(std::uint64_t modelVersion, std::size_t contributing, do
   if (this->Chosen >= 0 && representative)
   {
     Estimate& e = this->Estimates[this->Chosen];
+    const double rays = static_cast<double>(this->Size[0]) * this->Size[1];
     if (!e.Measured || e.ModelVersion != modelVersion || e.ViewVersion != this->ViewVersion ||
-      projection + casting < e.Projection + e.Casting)
+      e.Rays != rays || projection + casting < e.Projection + e.Casting)
     {
-      e = { true, modelVersion, this->ViewVersion, contributing, projection, casting };
+      e = { true, modelVersion, this->ViewVersion, contributing,
+        static_cast<double>(this->Size[0]) * this->Size[1], projection, casting };
     }
   }
   this->Chosen = -1;

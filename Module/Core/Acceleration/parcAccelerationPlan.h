@@ -44,9 +44,10 @@ struct AutoTrials
     std::uint64_t ModelVersion = 0; ///< of the measured frame
     std::uint64_t ViewVersion = 0;  ///< of the measured frame
     std::size_t Contributing = 0;   ///< PC supercells of that frame's classification
+    double Rays = 0.0;              ///< ray-image pixels of that frame
     double Projection = 0.0, Casting = 0.0;
   };
-  int Size[2] = { 0, 0 };
+  int Size[2] = { 0, 0 }; ///< the ray image of the current frame
   Estimate Estimates[Count];
   int Chosen = -1; ///< the candidate of the current frame, or -1
   std::uint64_t ViewVersion = 0;
@@ -55,8 +56,12 @@ struct AutoTrials
 
   /// Notes the view: direction, and the volume's distance from the eye.
   void SetView(const Vec3& direction, double distance);
-  /// The candidate for this frame.
-  int Choose(std::uint64_t modelVersion, std::size_t contributing, int width, int height);
+  /// The candidate for this frame: one not measured yet when trials are allowed, else the
+  /// one predicted fastest (the first candidate when none is measured). A prediction
+  /// scales a measured frame's projection by the PC supercells and both its times by the
+  /// ray-image pixels, so a new image size (as render-time budgets make) needs no trials.
+  int Choose(std::uint64_t modelVersion, std::size_t contributing, int width, int height,
+    bool allowTrials = true);
   /// The times of the frame Choose chose. A frame that was aborted or also did set-up work
   /// (building or uploading a model) does not count.
   void Record(std::uint64_t modelVersion, std::size_t contributing, double projection,
@@ -65,7 +70,7 @@ struct AutoTrials
   int Remaining() const;
 
 private:
-  static double Predict(const Estimate& e, std::uint64_t modelVersion, std::size_t contributing);
+  double Predict(const Estimate& e, std::uint64_t modelVersion, std::size_t contributing) const;
 };
 
 class AccelerationPlan

@@ -1,0 +1,126 @@
+"""The settings of VTK's own volume mappers that programs call when they swap in
+vtkPARCVolumeMapper: render-time budgets (AutoAdjustSampleDistances, the image and
+interactive sample distances), the number of threads, a sample distance locked to the
+spacing, IsRenderSupported and the vtkSmartVolumeMapper render modes. Each has a meaning
+that can be seen in the render's statistics or image."""
+import sys
+import unittest
+
+from parc import vtkPARCVolumeMapper
+from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.util.numpy_support import vtk_to_numpy
+
+from TestPARCPipeline import make_scene
+
+STILL_RATE = 0.0001  # vtkRenderWindowInteractor's still update rate
+INTERACTIVE_RATE = 1000.0  # a budget of 1 ms: no render fits it
+
+
+def ray_image(mapper):
+    image = vtkImageData()
+    mapper.GetLastRayCastImage(image)
+    return vtk_to_numpy(image.GetPointData().GetScalars()).copy()
+
+
+class TestPARCDropIn(unittest.TestCase):
+    def test_budget_coarsens_interactive_renders_only(self):
+        mapper, window = make_scene(size=240)
+        self.assertTrue(mapper.GetAutoAdjustSampleDistances())
+        window.SetDesiredUpdateRate(STILL_RATE)
+        window.Render()
+        still_distance = mapper.GetLastSampleDistance()
+        self.assertFalse(mapper.GetLastInteractive())
+        self.assertEqual(mapper.GetLastImageSampleDistance(), 1.0)
+        self.assertEqual(ray_image(mapper).shape[0], 240 * 240)
+
+        window.SetDesiredUpdateRate(INTERACTIVE_RATE)
+        steps = []
+        for _ in range(3):
+            window.Render()
+            self.assertTrue(mapper.GetLastInteractive())
+            self.assertEqual(mapper.GetLastSampleDistance(),
+                             max(still_distance, mapper.GetInteractiveSampleDistance()))
+            steps.append(mapper.GetLastImageSampleDistance())
+        self.assertGreater(steps[0], 1.0, "coarser rays to meet the budget")
+        self.assertLessEqual(max(steps), mapper.GetMaximumImageSampleDistance())
+        self.assertLess(ray_image(mapper).shape[0], 240 * 240)
+
+        # The interactive render is exact for its own settings: every mode agrees on it.
+        interactive = ray_image(mapper)
+        step, distance = steps[-1], mapper.GetLastSampleDistance()
+        mapper.AutoAdjustSampleDistancesOff()
+        mapper.SetImageSampleDistance(step)
+        mapper.SetSampleDistance(distance)
+        for mode in (vtkPARCVolumeMapper.ACCELERATION_NONE,
+                     vtkPARCVolumeMapper.ACCELERATION_DEPTH_BUFFER,
+                     vtkPARCVolumeMapper.ACCELERATION_COLOR_BUFFER):
+            mapper.SetAccelerationMode(mode)
+            window.Render()
+            self.assertTrue((ray_image(mapper) == interactive).all(), mode)
+
+        # Interaction ends: the still render is at full quality again.
+        mapper.AutoAdjustSampleDistancesOn()
+        mapper.SetSampleDistance(0.0)
+        mapper.SetAccelerationModeToAuto()
+        window.SetDesiredUpdateRate(STILL_RATE)
+        window.Render()
+        self.assertFalse(mapper.GetLastInteractive())
+        self.assertEqual(mapper.GetLastImageSampleDistance(), 1.0)
+        self.assertEqual(mapper.GetLastSampleDistance(), still_distance)
+
+    def test_no_auto_trial_while_interacting(self):
+        mapper, window = make_scene(size=200)
+        window.SetDesiredUpdateRate(INTERACTIVE_RATE)
+        modes = set()
+        for _ in range(4):
+            window.Render()
+            modes.add(mapper.GetLastAccelerationMode())
+        self.assertEqual(len(modes), 1, "one mode while interacting")
+        self.assertGreaterEqual(mapper.GetAutoTrialsRemaining(), 3)
+        window.SetDesiredUpdateRate(STILL_RATE)
+        for _ in range(6):
+            window.Render()
+        self.assertEqual(mapper.GetAutoTrialsRemaining(), 0, "still renders try the modes")
+
+    def test_threads(self):
+        mapper, window = make_scene()
+        window.Render()
+        everyone = ray_image(mapper)
+        mapper.SetNumberOfThreads(1)
+        window.Render()
+        self.assertEqual(mapper.GetLastNumberOfThreads(), 1)
+        self.assertTrue((ray_image(mapper) == everyone).all())
+        mapper.SetNumberOfThreads(0)
+        window.Render()
+        self.assertGreaterEqual(mapper.GetLastNumberOfThreads(), 1)
+
+    def test_sample_distance_locked_to_spacing(self):
+        mapper, window = make_scene()
+        mapper.SetSampleDistance(3.0)
+        mapper.LockSampleDistanceToInputSpacingOn()
+        window.Render()
+        # The wavelet: 41^3 voxels of spacing 1, so min(1/2, 41 / 200) = 0.205.
+        self.assertAlmostEqual(mapper.GetLastSampleDistance(), 0.205, places=12)
+
+    def test_render_support_and_modes(self):
+        mapper, window = make_scene()
+        self.assertEqual(mapper.IsRenderSupported(window, None), 1)
+        flat = vtkImageData()
+        flat.SetDimensions(8, 8, 1)
+        flat.AllocateScalars(3, 1)  # VTK_UNSIGNED_CHAR, one slice
+        other = vtkPARCVolumeMapper()
+        other.SetInputData(flat)
+        self.assertEqual(other.IsRenderSupported(window, None), 0)
+        self.assertEqual(mapper.GetLastUsedRenderMode(), 5)  # InvalidRenderMode
+        mapper.SetRequestedRenderModeToRayCast()
+        window.Render()
+        self.assertEqual(mapper.GetLastUsedRenderMode(), 1)  # RayCastRenderMode
+        before = ray_image(mapper)
+        mapper.UseJitteringOn()  # warns once; the lattice stays exact
+        window.Render()
+        self.assertTrue((ray_image(mapper) == before).all())
+
+
+if __name__ == "__main__":
+    result = unittest.main(exit=False).result
+    sys.exit(0 if result.wasSuccessful() else 1)
