@@ -89,6 +89,17 @@ scene() { # title, file, options...
     done
   done
   echo
+  echo "## Interaction under a render-time budget (issue 15)"
+  echo
+  echo "A 30-frame rotation (3 degrees a frame) at a desired update rate of 10 frames per second (a budget of 0.1 s), each mapper with AutoAdjustSampleDistances on, frames interleaved, then a still frame (full quality)."
+  for size in 400 800; do
+    [ -f "$head" ] || { echo; echo "($head not found, skipped)"; break; }
+    echo; echo "### MRI head, shaded, ${size}x${size}"; echo
+    xrun "$here/build/bin/parc-render" "$head" --tf mri --shade --elevation -80 --azimuth 30 \
+      --size "$size" --sample-distance 0.5 --output "$here/out/benchmark.png" --budget 10 \
+      | sed -n '/^| mapper/,/^PARC.s image sample distance/p'
+  done
+  echo
   echo "## Casting cost per sample (issue 11; goals: 10 ns per sample, 30 ns per contributing shaded sample)"
   echo
   echo "MRI head, 400x400, sample distance 0.5 voxel, acceleration none; the unshaded cast per sample, and the shaded minus the unshaded cast per contributing sample, both per thread."

@@ -75,6 +75,11 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
   --thread-scaling R    R interleaved rounds of one thread and all threads per acceleration
                         mode: median frame times and their ratio (table)
   --threads N           threads for vtkSMPTools (default: all cores)
+  --budget RATE         a simulated 30-frame rotation (3 degrees a frame) at a desired
+                        update rate of RATE frames per second, this mapper (Auto) and
+                        vtkFixedPointVolumeRayCastMapper each with AutoAdjustSampleDistances,
+                        frames interleaved, then a still frame: frame times against the
+                        budget 1/RATE (table)
   --memory              print the bytes the mapper holds, per structure
   --second VOLUME       a second volume in the same image (vtkPARCMultiVolume, input
                         port 1), its centre on the first's; with --second-blend MODE
@@ -103,6 +108,7 @@ struct Options
   double Iso = 0.0, Azimuth = 30.0, Elevation = 20.0, Zoom = 1.0, SampleDistance = 0.0;
   bool HasIso = false, Shade = false, Parallel = false, Compare = false, Json = false;
   bool HasPosition = false, HasFocal = false, CompareAcceleration = false, Memory = false;
+  double BudgetRate = 0.0;
   int ShadowTableRounds = 0, Versus = 0, SampleCost = 0, Threads = 0, Accuracy = 0, EditCost = 0, ThreadScaling = 0;
   double Supercell[3] = { 2, 2, 2 };
   std::vector<double> Sweep;
@@ -176,6 +182,7 @@ Options Parse(int argc, char* argv[])
     else if (a == "--acceleration") { o.Acceleration = value(); }
     else if (a == "--repeat") { o.Repeat = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--compare-fixed-point") { o.Compare = true; }
+    else if (a == "--budget") { o.BudgetRate = ToNumber(a, value()); }
     else if (a == "--versus-fixed-point") { o.Versus = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--sample-cost") { o.SampleCost = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--accuracy-curve") { o.Accuracy = static_cast<int>(ToNumber(a, value())); }
@@ -233,6 +240,10 @@ Options Parse(int argc, char* argv[])
   if (o.ShadowTableRounds < 0 || o.ShadowTableRounds > 0 && o.Lights.empty())
   {
     Fail("--shadow-table takes a positive number and needs --light");
+  }
+  if (o.BudgetRate < 0.0)
+  {
+    Fail("--budget takes a positive rate in frames per second");
   }
   if (o.Versus < 0 || o.SampleCost < 0 || o.Threads < 0 || o.Accuracy < 0 || o.EditCost < 0 ||
     o.ThreadScaling < 0)
@@ -572,6 +583,84 @@ void VersusFixedPoint(vtkRenderWindow* window, vtkVolume* volume, vtkPARCVolumeM
   }
   std::printf("Auto used %s; %d interleaved rounds after warm-up\n",
     vtkPARCVolumeMapper::GetAccelerationModeAsString(automatic->GetLastAccelerationMode()), rounds);
+}
+
+/// Interaction under a render-time budget: a still frame of each mapper (PARC with Auto
+/// warmed up, vtkFixedPointVolumeRayCastMapper), then 30 frames of a rotation at the desired
+/// update rate, the two mappers interleaved frame by frame, then a still frame of each
+/// (markdown table of frame times against the budget).
+void BudgetRotation(vtkRenderWindow* window, vtkRenderer* renderer, vtkVolume* volume,
+  vtkPARCVolumeMapper* parc, vtkImageData* image, double rate)
+{
+  constexpr int Frames = 30;
+  constexpr double DegreesPerFrame = 3.0;
+  constexpr double StillRate = 0.0001; // vtkRenderWindowInteractor's still update rate
+  const double budget = 1.0 / rate;
+  const auto automatic = CopyMapper(parc, vtkPARCVolumeMapper::ACCELERATION_AUTO);
+  vtkNew<vtkFixedPointVolumeRayCastMapper> fixed;
+  fixed->SetInputData(image);
+  fixed->SetBlendMode(parc->GetBlendMode());
+  fixed->SetLockSampleDistanceToInputSpacing(0);
+  fixed->SetSampleDistance(parc->GetLastSampleDistance());
+  vtkVolumeMapper* mappers[2] = { automatic, fixed };
+  const char* names[2] = { "PARC, Auto", "vtkFixedPointVolumeRayCastMapper" };
+  vtkCamera* camera = renderer->GetActiveCamera();
+  vtkNew<vtkCamera> start;
+  start->DeepCopy(camera);
+  window->SetDesiredUpdateRate(StillRate);
+  for (vtkVolumeMapper* m : mappers)
+  {
+    volume->SetMapper(m);
+    if (auto* p = vtkPARCVolumeMapper::SafeDownCast(m))
+    {
+      WarmUp(window, p);
+    }
+    window->Render();
+  }
+  std::vector<double> times[2], steps;
+  for (int f = 0; f < Frames; ++f)
+  {
+    for (int i = 0; i < 2; ++i)
+    {
+      volume->SetMapper(mappers[i]);
+      camera->DeepCopy(start);
+      camera->Azimuth(DegreesPerFrame * (f + 1));
+      window->SetDesiredUpdateRate(rate);
+      times[i].push_back(TimedRender(window));
+      if (i == 0)
+      {
+        steps.push_back(automatic->GetLastImageSampleDistance());
+      }
+    }
+  }
+  double still[2];
+  window->SetDesiredUpdateRate(StillRate);
+  for (int i = 0; i < 2; ++i)
+  {
+    volume->SetMapper(mappers[i]);
+    still[i] = TimedRender(window);
+  }
+  camera->DeepCopy(start);
+  volume->SetMapper(parc);
+  std::printf("| mapper | budget (s) | median frame (s) | slowest frame (s) | frames over the "
+              "budget | over 1.5x | still frame (s) |\n|---|---|---|---|---|---|---|\n");
+  for (int i = 0; i < 2; ++i)
+  {
+    const auto t = MinMedian(times[i]);
+    const double slowest = *std::max_element(times[i].begin(), times[i].end());
+    const auto over = [&](double factor) {
+      return std::count_if(times[i].begin(), times[i].end(),
+        [&](double x) { return x > factor * budget; });
+    };
+    std::printf("| %s | %.3f | %.4f | %.4f | %ld of %d | %ld | %.4f |\n", names[i], budget,
+      t.second, slowest, static_cast<long>(over(1.0)), Frames, static_cast<long>(over(1.5)),
+      still[i]);
+  }
+  std::printf("PARC's image sample distance while rotating: median %.2f, from %.2f to %.2f; "
+              "its frames used %s\n",
+    MinMedian(steps).second, *std::min_element(steps.begin(), steps.end()),
+    *std::max_element(steps.begin(), steps.end()),
+    vtkPARCVolumeMapper::GetAccelerationModeAsString(automatic->GetLastAccelerationMode()));
 }
 
 /// Casting cost per sample (unshaded) and per contributing shaded sample (the shaded cast
@@ -994,6 +1083,10 @@ int main(int argc, char* argv[])
   if (o.Versus > 0)
   {
     VersusFixedPoint(window, volume, mapper, image, o.Versus);
+  }
+  if (o.BudgetRate > 0.0)
+  {
+    BudgetRotation(window, renderer, volume, mapper, image, o.BudgetRate);
   }
   if (o.SampleCost > 0)
   {

@@ -162,6 +162,10 @@ double SpacingLockedSampleDistance(const parc::Matrix4& indexToWorld, std::size_
   return edges / 3.0 * std::min(0.5, std::cbrt(static_cast<double>(voxels)) / 200.0);
 }
 
+/// The share of a render's allocated time a budgeted render aims at: the window's own work
+/// (clearing, swapping) and the variation between frames take the rest.
+constexpr double BudgetShare = 0.8;
+
 /// The volume axis whose direction (indexToWorld's column) is closest to direction, the
 /// view's (or a light's towards the volume): its planes are crossed in order by every ray.
 int MajorAxis(const parc::Matrix4& indexToWorld, const parc::Vec3& direction)
@@ -367,9 +371,11 @@ public:
   vtkNew<vtkOpenGLRayCastImageDisplayHelper> DisplayHelper;
   /// The volume's allocated render time for this render (render-time budgets).
   double Budget = 0.0;
-  /// The last render that cast: its time, image sample distance and sample distance (port
-  /// 0), from which the next render's image sample distance is estimated.
-  double PreviousTime = 0.0, PreviousImageStep = 1.0, PreviousSampleDistance = 0.0;
+  /// The last render that cast: its time, the parts of it in the PARC passes and the cast,
+  /// its image sample distance and sample distance (port 0), from which the next render's
+  /// image sample distance is estimated.
+  double PreviousTime = 0.0, PreviousProjection = 0.0, PreviousCasting = 0.0;
+  double PreviousImageStep = 1.0, PreviousSampleDistance = 0.0;
   bool JitteringWarned = false, RenderModeWarned = false;
 
   /// Bytes held per structure (see GetMemorySize).
@@ -491,6 +497,8 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   if (in.ImageSize[0] > 0)
   {
     in.PreviousTime = in.RenderTime;
+    in.PreviousProjection = in.ProjectionTime;
+    in.PreviousCasting = in.CastingTime;
     in.PreviousImageStep = this->LastImageSampleDistance;
     in.PreviousSampleDistance = this->LastSampleDistance;
   }
@@ -510,12 +518,19 @@ double vtkPARCVolumeMapper::ChooseImageSampleDistance() const
   {
     return lo;
   }
-  // A render's time grows with its rays (1 / step^2) times their samples (1 / the sample
-  // distance): the step that would have made the last render fit the budget, for this
-  // render's sample distance.
-  const double time =
-    in.PreviousTime * in.PreviousSampleDistance / std::max(this->LastSampleDistance, 1e-300);
-  const double step = in.PreviousImageStep * std::sqrt(time / in.Budget);
+  // The last render's time: the PARC passes grow with the rays (1 / step^2), the cast with
+  // the rays times their samples (1 / the sample distance), the rest (display, set-up)
+  // stays. The step that makes that model fit a share of the budget, for this render's
+  // sample distance.
+  const double samples = in.PreviousSampleDistance / std::max(this->LastSampleDistance, 1e-300);
+  const double scaled = in.PreviousProjection + in.PreviousCasting * samples;
+  const double fixed = std::max(0.0, in.PreviousTime - in.PreviousProjection - in.PreviousCasting);
+  const double room = BudgetShare * in.Budget - fixed;
+  if (!(room > 0.0))
+  {
+    return hi;
+  }
+  const double step = in.PreviousImageStep * std::sqrt(scaled / room);
   return std::min(std::max(step, lo), hi);
 }
 
