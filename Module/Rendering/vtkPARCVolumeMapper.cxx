@@ -95,10 +95,15 @@ void ConvertLights(vtkRenderer* ren, const parc::Vec3& frame, std::vector<parc::
 }
 
 /// The matrix from 0-based voxel indices of the image to the render frame (origin at frame).
-parc::Matrix4 IndexToFrame(vtkImageData* image, vtkVolume* vol, const parc::Vec3& frame)
+/// A field of cell scalars has its voxels at the cells' centres: index i lies at the
+/// image's index i + cellOffset (0.5; 0 for point scalars).
+parc::Matrix4 IndexToFrame(
+  vtkImageData* image, vtkVolume* vol, const parc::Vec3& frame, double cellOffset)
 {
-  return parc::Translated(
-    parc::Multiply(parc::vtk::ToMatrix4(vol->GetMatrix()), parc::vtk::IndexToPhysical(image)),
+  parc::Matrix4 shift;
+  shift(0, 3) = shift(1, 3) = shift(2, 3) = cellOffset;
+  return parc::Translated(parc::Multiply(parc::vtk::ToMatrix4(vol->GetMatrix()),
+                            parc::Multiply(parc::vtk::IndexToPhysical(image), shift)),
     -frame);
 }
 
@@ -123,15 +128,16 @@ void ConvertClippingPlanes(
 
 /// vtkVolumeMapper's cropping planes (the image's physical coordinates along its axes) in
 /// voxel-index coordinates of the field (index 0 at the extent's start).
-void ConvertCropping(vtkImageData* image, const double planes[6], int flags, parc::Cropping& out)
+void ConvertCropping(vtkImageData* image, double cellOffset, const double planes[6], int flags,
+  parc::Cropping& out)
 {
   const double* origin = image->GetOrigin();
   const double* spacing = image->GetSpacing();
   const int* extent = image->GetExtent();
   for (int a = 0; a < 3; ++a)
   {
-    double lo = (planes[2 * a] - origin[a]) / spacing[a] - extent[2 * a];
-    double hi = (planes[2 * a + 1] - origin[a]) / spacing[a] - extent[2 * a];
+    double lo = (planes[2 * a] - origin[a]) / spacing[a] - extent[2 * a] - cellOffset;
+    double hi = (planes[2 * a + 1] - origin[a]) / spacing[a] - extent[2 * a] - cellOffset;
     if (lo > hi) // negative spacing
     {
       std::swap(lo, hi);
@@ -271,6 +277,8 @@ class vtkPARCVolumeMapper::vtkVolumeState
 public:
   int Port = 0;
   parc::ScalarField Field;
+  /// 0.5 when Field holds cell scalars (its voxels at the cells' centres), else 0.
+  double CellOffset = 0.0;
   vtkMTimeType FieldTime = 0;
   /// Counts the fields wrapped: what the pyramid and the classification were made from (an
   /// array switched by SelectScalarArray or a scalar mode can be older than the last one).
@@ -622,31 +630,44 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in)
     return false;
   }
   producer->Update();
-  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(port, 0));
+  vtkDataObject* input = this->GetInputDataObject(port, 0);
+  vtkImageData* image = vtkImageData::SafeDownCast(input);
   if (!image)
   {
-    vtkErrorMacro("The input on port " << port << " is not a vtkImageData.");
-    return false;
-  }
-  std::string error;
-  if (!parc::vtk::CheckImage(image, error))
-  {
-    vtkErrorMacro(<< error << " Nothing is drawn.");
+    vtkErrorMacro("The input on port " << port << " is a "
+                                        << (input ? input->GetClassName() : "null object")
+                                        << ", not a vtkImageData: resample it onto an image "
+                                           "first (vtkResampleToImage), then render that.");
     return false;
   }
   int cellFlag = 0;
   vtkDataArray* scalars = vtkAbstractMapper::GetScalars(image, this->ScalarMode,
     this->ArrayAccessMode, this->ArrayId, this->ArrayName, cellFlag);
+  std::string error;
   if (!scalars)
   {
-    vtkErrorMacro("The input has no scalars to render.");
+    vtkErrorMacro(<< (parc::vtk::CheckImage(image, error) ? "The input has no scalars to render."
+                                                          : error + " Nothing is drawn."));
     return false;
   }
+  // Cell scalars are a field of one voxel per cell, at the cells' centres (as VTK's GPU
+  // mapper renders them): an image of one sample fewer along each axis.
+  int dims[3];
+  image->GetDimensions(dims);
+  vtkNew<vtkImageData> cells;
   if (cellFlag)
   {
-    vtkErrorMacro("Cell scalars are not supported: use point scalars.");
+    cells->SetDimensions(std::max(dims[0] - 1, 1), std::max(dims[1] - 1, 1),
+      std::max(dims[2] - 1, 1));
+    cells->SetSpacing(image->GetSpacing());
+    cells->GetDimensions(dims);
+  }
+  if (!parc::vtk::CheckImage(cellFlag ? cells.Get() : image, error))
+  {
+    vtkErrorMacro(<< (cellFlag ? "The image's cells: " : "") << error << " Nothing is drawn.");
     return false;
   }
+  in.CellOffset = cellFlag ? 0.5 : 0.0;
   const vtkMTimeType time = std::max(image->GetMTime(), scalars->GetMTime());
   if (scalars == in.FieldArray && time == in.FieldTime)
   {
@@ -657,8 +678,6 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in)
     vtkWarningMacro("The scalars have " << scalars->GetNumberOfComponents()
                                         << " components; only the first is rendered.");
   }
-  int dims[3];
-  image->GetDimensions(dims);
   std::size_t replaced = 0;
   if (!parc::vtk::WrapScalars(scalars, dims, in.Field, replaced, error))
   {
@@ -694,7 +713,13 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
     vtkErrorMacro("The volume of port " << in.Port << " has no property; nothing is drawn.");
     return false;
   }
-  const std::string fixes = parc::vtk::ConvertProperty(property, in.Field.GetRange(), p);
+  std::string fixes = parc::vtk::ConvertProperty(property, in.Field.GetRange(), p);
+  if (property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D)
+  {
+    fixes += std::string(fixes.empty() ? "" : " ") +
+      "2-D transfer functions are not supported: the 1-D colour and scalar opacity "
+      "functions of the property are used.";
+  }
   if (!fixes.empty() && property->GetMTime() != in.FixesWarnedTime)
   {
     vtkWarningMacro(<< fixes);
@@ -722,7 +747,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   // The core sees world coordinates minus the camera position, as the passes' views do.
   const parc::Vec3 frame = vtkPARCRasterizer::FrameOrigin(ren);
   vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(in.Port, 0));
-  in.IndexToFrame = IndexToFrame(image, vol, frame);
+  in.IndexToFrame = IndexToFrame(image, vol, frame, in.CellOffset);
   const parc::Matrix4& indexToWorld = in.IndexToFrame;
   if (!parc::Invert(indexToWorld, p.WorldToIndex))
   {
@@ -764,7 +789,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   p.Crop.Enabled = this->Cropping != 0;
   if (p.Crop.Enabled)
   {
-    ConvertCropping(image, this->CroppingRegionPlanes,
+    ConvertCropping(image, in.CellOffset, this->CroppingRegionPlanes,
       this->CroppingRegionFlags, p.Crop);
   }
   if (p.Shade)
@@ -1438,6 +1463,9 @@ int vtkPARCVolumeMapper::FillInputPortInformation(int port, vtkInformation* info
   {
     return 0;
   }
+  // Any data set passes the pipeline, so that a vtkRectilinearGrid or an unstructured grid
+  // gets the mapper's error, which names a way out (PrepareField), not the pipeline's.
+  info->Set(vtkAlgorithm::INPUT_REQUIRED_DATA_TYPE(), "vtkDataSet");
   if (port > 0)
   {
     info->Set(vtkAlgorithm::INPUT_IS_OPTIONAL(), 1);

@@ -14,8 +14,9 @@
  * off. Rays sample a global lattice t_k = k * SampleDistance from the eye (perspective) or
  * from the plane through the camera position (parallel), whatever part of the ray is cast.
  *
- * Supported: scalar types (unsigned) char, short, int, float and double (point data; the
- * first component of a multi-component array is used, with a warning); any origin, spacing
+ * Supported: scalar types (unsigned) char, short, int, float and double (point data, or
+ * cell data as one voxel per cell at the cell's centre, as VTK's GPU mapper renders it;
+ * the first component of a multi-component array is used, with a warning); any origin, spacing
  * (non-zero), direction matrix and vtkVolume transform; scalar colour (gray or RGB) and
  * scalar opacity functions, opacity unit distance, gradient opacity, nearest and linear
  * interpolation (cubic is cast as linear), shading with the renderer's lights; blend modes
@@ -27,8 +28,11 @@
  * - NaN scalars count as the smallest finite value, -inf as the smallest and +inf as the
  *   largest (a warning gives the number replaced). double and 32-bit integers are cast
  *   through float (24-bit mantissa).
- * - An image with fewer than 2 samples along an axis, zero spacing, no scalars or an
- *   unsupported type draws nothing and reports an error.
+ * - An image with fewer than 2 samples (cell scalars: cells) along an axis, zero spacing,
+ *   no scalars or an unsupported type draws nothing and reports an error; so does an input
+ *   that is not a vtkImageData (a vtkRectilinearGrid, say), with vtkResampleToImage named
+ *   as the way out. A 2-D transfer function (vtkVolumeProperty TF_2D) warns once: the 1-D
+ *   functions are used.
  * - The colour function is sampled into a 1024-entry table over the data range; opacity
  *   functions are evaluated exactly from their nodes (segments with a non-default midpoint
  *   or sharpness are subdivided into 32 linear pieces).

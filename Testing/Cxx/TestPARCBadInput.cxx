@@ -1,5 +1,6 @@
 // Bad input gives a clear error (or a documented result) and never a crash, a hang or a
-// stale image: no input, an empty image, one voxel, one slice, zero spacing, cell scalars,
+// stale image: no input, an empty image, one voxel, one slice, zero spacing, cell scalars
+// one cell thick,
 // an unsupported scalar type, a scalar array shorter than the image, NaN/Inf scalars, no
 // transfer function set, NaN or out-of-range transfer-function values (the same image in
 // every acceleration mode), unusable sample distances, isosurfaces without a usable value.
@@ -85,13 +86,13 @@ int TestPARCBadInput(int, char*[])
   flat->SetSpacing(1.0, 0.0, 1.0);
   ok &= h.ExpectError(flat, "non-zero", "zero spacing");
 
-  auto cells = vtkSmartPointer<vtkImageData>::New();
-  cells->SetDimensions(4, 4, 4);
+  auto cells = vtkSmartPointer<vtkImageData>::New(); // one cell along z: no volume of cells
+  cells->SetDimensions(4, 4, 2);
   vtkNew<vtkDoubleArray> cellScalars;
-  cellScalars->SetNumberOfTuples(27);
+  cellScalars->SetNumberOfTuples(9);
   cellScalars->Fill(1.0);
   cells->GetCellData()->SetScalars(cellScalars);
-  ok &= h.ExpectError(cells, "Cell scalars are not supported", "cell scalars only");
+  ok &= h.ExpectError(cells, "The image's cells", "cell scalars, one cell thick");
 
   auto wide = vtkSmartPointer<vtkImageData>::New();
   wide->SetDimensions(4, 4, 4);

@@ -6,14 +6,30 @@ that can be seen in the render's statistics or image."""
 import sys
 import unittest
 
+import numpy
+
 from parc import vtkPARCVolumeMapper
-from vtkmodules.vtkCommonDataModel import vtkImageData
-from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkCommonCore import vtkCommand, vtkFloatArray
+from vtkmodules.vtkCommonDataModel import vtkImageData, vtkRectilinearGrid
+from vtkmodules.util.misc import calldata_type
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.vtkConstants import VTK_STRING
 
 from TestPARCPipeline import make_scene
 
 STILL_RATE = 0.0001  # vtkRenderWindowInteractor's still update rate
 INTERACTIVE_RATE = 1000.0  # a budget of 1 ms: no render fits it
+
+
+def messages(obj, event):
+    """The texts of the event (ErrorEvent, WarningEvent) obj emits, as a list that fills."""
+    texts = []
+
+    @calldata_type(VTK_STRING)
+    def on_message(caller, name, text):
+        texts.append(text)
+    obj.AddObserver(event, on_message)
+    return texts
 
 
 def ray_image(mapper):
@@ -119,6 +135,56 @@ class TestPARCDropIn(unittest.TestCase):
         mapper.UseJitteringOn()  # warns once; the lattice stays exact
         window.Render()
         self.assertTrue((ray_image(mapper) == before).all())
+
+    def test_cell_scalars_are_voxels_at_the_cell_centres(self):
+        # Cell scalars of a 21^3 image render as the point scalars of the 20^3 image of its
+        # cell centres.
+        mapper, window = make_scene()
+        centres = numpy.arange(20) - 9.5
+        z, y, x = numpy.meshgrid(centres, centres, centres, indexing="ij")
+        values = (250 * numpy.exp(-(x * x + y * y + z * z) / 60.0)).ravel().astype(numpy.float32)
+        cells = vtkImageData()
+        cells.SetDimensions(21, 21, 21)
+        cells.SetOrigin(-10, -10, -10)
+        cells.GetCellData().SetScalars(numpy_to_vtk(values, deep=True))
+        points = vtkImageData()
+        points.SetDimensions(20, 20, 20)
+        points.SetOrigin(-9.5, -9.5, -9.5)
+        points.GetPointData().SetScalars(numpy_to_vtk(values, deep=True))
+        images = []
+        for image in (cells, points):
+            mapper.SetInputData(image)
+            mapper.SetScalarModeToDefault()
+            window.Render()
+            images.append(ray_image(mapper))
+            self.assertGreater(images[-1][:, 3].max(), 0.1)
+        self.assertLess(numpy.abs(images[0] - images[1]).max(), 1e-5)
+
+    def test_rectilinear_grid_gets_a_way_out(self):
+        mapper, window = make_scene()
+        grid = vtkRectilinearGrid()
+        grid.SetDimensions(4, 4, 4)
+        for axis in (grid.SetXCoordinates, grid.SetYCoordinates, grid.SetZCoordinates):
+            coordinates = vtkFloatArray()
+            for c in (0.0, 1.0, 3.0, 7.0):
+                coordinates.InsertNextValue(c)
+            axis(coordinates)
+        mapper.SetInputData(grid)
+        errors = messages(mapper, vtkCommand.ErrorEvent)
+        window.Render()
+        self.assertEqual(mapper.GetLastRayCount(), 0)
+        self.assertTrue(any("vtkRectilinearGrid" in e and "vtkResampleToImage" in e
+                            for e in errors), errors)
+
+    def test_two_dimensional_transfer_function_warns(self):
+        mapper, window = make_scene()
+        volume = window.GetRenderers().GetFirstRenderer().GetVolumes().GetItemAsObject(0)
+        volume.GetProperty().SetTransferFunctionMode(1)  # vtkVolumeProperty.TF_2D
+        warnings = messages(mapper, vtkCommand.WarningEvent)
+        window.Render()
+        window.Render()
+        self.assertEqual(len([w for w in warnings if "2-D transfer functions" in w]), 1)
+        self.assertGreater(mapper.GetLastContributingSampleCount(), 0, "1-D functions used")
 
 
 if __name__ == "__main__":
