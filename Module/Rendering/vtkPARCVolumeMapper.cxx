@@ -1596,5 +1596,6 @@ void vtkPARCVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "NumberOfThreads: " << this->NumberOfThreads << "\n";
   os << indent << "LastNumberOfThreads: " << this->LastNumberOfThreads << "\n";
   os << indent << "UseJittering: " << this->UseJittering << "\n";
+  os << indent << "UseDepthPass: " << this->UseDepthPass << "\n";
   os << indent << "RequestedRenderMode: " << this->RequestedRenderMode << "\n";
 }

@@ -260,6 +260,14 @@ public:
   vtkSetMacro(UseJittering, vtkTypeBool);
   vtkGetMacro(UseJittering, vtkTypeBool);
   vtkBooleanMacro(UseJittering, vtkTypeBool);
+  /**
+   * vtkGPUVolumeRayCastMapper's depth pass renders a depth image of an isosurface for
+   * other passes to read; it does not change the picture. Here it has no effect: the flag
+   * is kept so that such programs run.
+   */
+  vtkSetMacro(UseDepthPass, vtkTypeBool);
+  vtkGetMacro(UseDepthPass, vtkTypeBool);
+  vtkBooleanMacro(UseDepthPass, vtkTypeBool);
   void SetRequestedRenderMode(int mode);
   vtkGetMacro(RequestedRenderMode, int);
   void SetRequestedRenderModeToDefault() { this->SetRequestedRenderMode(0); }
@@ -450,6 +458,7 @@ protected:
   int NumberOfThreads = 0;
   int LastNumberOfThreads = 0;
   vtkTypeBool UseJittering = 0;
+  vtkTypeBool UseDepthPass = 0;
   int RequestedRenderMode = 0;
   int InputBlendModes[MaxInputPorts] = {}; ///< ports 1 and up (port 0: BlendMode)
 

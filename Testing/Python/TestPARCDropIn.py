@@ -133,6 +133,7 @@ class TestPARCDropIn(unittest.TestCase):
         self.assertEqual(mapper.GetLastUsedRenderMode(), 1)  # RayCastRenderMode
         before = ray_image(mapper)
         mapper.UseJitteringOn()  # warns once; the lattice stays exact
+        mapper.UseDepthPassOn()  # no effect on the picture
         window.Render()
         self.assertTrue((ray_image(mapper) == before).all())
 
