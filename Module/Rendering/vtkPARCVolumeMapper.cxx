@@ -31,6 +31,7 @@
 #include "vtkRenderWindow.h"
 #include "vtkRenderer.h"
 #include "vtkSMPTools.h"
+#include "vtkSmartVolumeMapper.h"
 #include "vtkTimerLog.h"
 #include "vtkVolume.h"
 #include "vtkVolumeProperty.h"
@@ -550,8 +551,8 @@ void vtkPARCVolumeMapper::SetRequestedRenderMode(int mode)
     this->RequestedRenderMode = mode;
     this->Modified();
   }
-  constexpr int defaultMode = 0, rayCastMode = 1;
-  if (mode != defaultMode && mode != rayCastMode && !this->Internals->RenderModeWarned)
+  if (mode != vtkSmartVolumeMapper::DefaultRenderMode &&
+    mode != vtkSmartVolumeMapper::RayCastRenderMode && !this->Internals->RenderModeWarned)
   {
     vtkWarningMacro("Render mode " << mode << " requested: this mapper casts rays on the CPU "
                                     "(GL only accelerates them); it renders as RayCast.");
@@ -562,8 +563,8 @@ void vtkPARCVolumeMapper::SetRequestedRenderMode(int mode)
 //------------------------------------------------------------------------------
 int vtkPARCVolumeMapper::GetLastUsedRenderMode()
 {
-  constexpr int rayCastMode = 1, invalidMode = 5; // vtkSmartVolumeMapper's values
-  return this->Internals->ImageSize[0] > 0 ? rayCastMode : invalidMode;
+  return this->Internals->ImageSize[0] > 0 ? vtkSmartVolumeMapper::RayCastRenderMode
+                                           : vtkSmartVolumeMapper::InvalidRenderMode;
 }
 
 //------------------------------------------------------------------------------

@@ -131,11 +131,13 @@ public:
    * intersects the two. Auto picks per volume, ray function and view: no pass when every
    * supercell may contribute (none can help), no sample when none may, and otherwise the
    * fastest of DepthBuffer, ColorBuffer, Both and None, measured: each is tried on one
-   * frame (GetAutoTrialsRemaining) when the ray image size is new, then every frame uses
-   * the one predicted fastest. A prediction is the mode's fastest frame for the current
-   * classification or, after a transfer-function edit, its last frame with the projection
-   * scaled by the number of PC supercells; an edit brings no trial frames. After the view
-   * turns or moves markedly, a mode's next frame replaces its estimate.
+   * still frame (GetAutoTrialsRemaining; interactive frames of a render-time budget try
+   * none), then every frame uses the one predicted fastest. A prediction is the mode's
+   * fastest frame for the current classification or, after a transfer-function edit, its
+   * last frame with the projection scaled by the number of PC supercells, and both times
+   * scaled by the ray-image pixels; an edit or a new image size brings no trial frames.
+   * After the view turns or moves markedly, or the image size changes, a mode's next frame
+   * replaces its estimate.
    * GetLastAccelerationMode says which mode a frame used. The image is bit-identical in
    * every mode. When no OpenGL 3.3 context or framebuffer is available, the mapper warns
    * once and casts unaccelerated.
@@ -270,6 +272,7 @@ public:
   vtkBooleanMacro(UseDepthPass, vtkTypeBool);
   void SetRequestedRenderMode(int mode);
   vtkGetMacro(RequestedRenderMode, int);
+  // vtkSmartVolumeMapper's values: Default 0, RayCast 1, GPU 2, OSPRay 3.
   void SetRequestedRenderModeToDefault() { this->SetRequestedRenderMode(0); }
   void SetRequestedRenderModeToRayCast() { this->SetRequestedRenderMode(1); }
   void SetRequestedRenderModeToGPU() { this->SetRequestedRenderMode(2); }

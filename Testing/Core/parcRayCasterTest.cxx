@@ -253,64 +253,61 @@ TEST(RayCaster, CompositingIsFrontToBack)
   EXPECT_LT(back.RGBA[0], 0.01f);
 }
 
+/// s = x on an 11 x 5 x 5 box: the opaque, white isosurface x = 5 with its normal along x,
+/// shaded with ambient 0.2, diffuse 0.3 and specular 0.1, lit by a directional light from
+/// +x, and the ray that meets it from +x.
+struct ShadedPlane
+{
+  const int Dims[3] = { 11, 5, 5 };
+  parc::ScalarField Field =
+    parctest::MakeField(Dims, [](int i, int, int) { return static_cast<float>(i); });
+  CastParameters P;
+  parc::Ray Ray = MakeRay({ 20.0, 2.0, 2.0 }, { -1, 0, 0 });
+
+  ShadedPlane()
+  {
+    parctest::SetOpacity(this->P, { 0.0, 10.0 }, { 1.0, 1.0 });
+    this->P.Blend = BlendMode::IsoSurface;
+    this->P.IsoValues = { 5.0 };
+    this->P.Shade = true;
+    this->P.Ambient = 0.2;
+    this->P.Diffuse = 0.3;
+    this->P.Specular = 0.1;
+    parc::Light light;
+    light.Position = { 100.0, 2.0, 2.0 };
+    light.FocalPoint = { 0.0, 2.0, 2.0 };
+    this->P.Lights = { light };
+  }
+};
+
 TEST(RayCaster, ShadingFollowsTheLight)
 {
-  // s = x: the isosurface x = 5 has its normal along x.
-  const int n[3] = { 11, 5, 5 };
-  const parc::ScalarField field =
-    parctest::MakeField(n, [](int i, int, int) { return static_cast<float>(i); });
-  CastParameters p;
-  parctest::SetOpacity(p, { 0.0, 10.0 }, { 1.0, 1.0 });
-  p.Blend = BlendMode::IsoSurface;
-  p.IsoValues = { 5.0 };
-  p.Shade = true;
-  p.Ambient = 0.2;
-  p.Diffuse = 0.3;
-  p.Specular = 0.1;
-  parc::Light light;
-  light.Position = { 100.0, 2.0, 2.0 };
-  light.FocalPoint = { 0.0, 2.0, 2.0 };
-  p.Lights = { light };
-  const parc::Ray ray = MakeRay({ 20.0, 2.0, 2.0 }, { -1, 0, 0 });
-  auto r = CastOne(field, p, ray);
+  ShadedPlane scene;
+  CastParameters& p = scene.P;
+  auto r = CastOne(scene.Field, p, scene.Ray);
   EXPECT_NEAR(r.RGBA[0], 0.6f, 1e-5) << "facing the light: ambient + diffuse + specular";
   EXPECT_NEAR(r.FirstHit, 15.0, 1e-6);
   p.Lights[0].Position = { 5.0, 100.0, 2.0 };
   p.Lights[0].FocalPoint = { 5.0, 0.0, 2.0 };
-  r = CastOne(field, p, ray);
+  r = CastOne(scene.Field, p, scene.Ray);
   EXPECT_NEAR(r.RGBA[0], 0.2f, 1e-5) << "light along the surface: ambient only";
   p.Lights.clear();
   p.Shade = false;
-  r = CastOne(field, p, ray);
+  r = CastOne(scene.Field, p, scene.Ray);
   EXPECT_EQ(r.Stats.GradientEvaluations, 0u) << "no gradient without shading";
 }
 
 TEST(RayCaster, HighlightsTakeTheLightsSpecularColour)
 {
-  // As ShadingFollowsTheLight, facing the light: ambient 0.2 + diffuse 0.3 in the diffuse
-  // colour (white), specular 0.1 in the specular colour (green), for a directional and a
-  // positional light.
-  const int n[3] = { 11, 5, 5 };
-  const parc::ScalarField field =
-    parctest::MakeField(n, [](int i, int, int) { return static_cast<float>(i); });
-  CastParameters p;
-  parctest::SetOpacity(p, { 0.0, 10.0 }, { 1.0, 1.0 });
-  p.Blend = BlendMode::IsoSurface;
-  p.IsoValues = { 5.0 };
-  p.Shade = true;
-  p.Ambient = 0.2;
-  p.Diffuse = 0.3;
-  p.Specular = 0.1;
-  parc::Light light;
-  light.Position = { 100.0, 2.0, 2.0 };
-  light.FocalPoint = { 0.0, 2.0, 2.0 };
+  // Facing the light: ambient 0.2 + diffuse 0.3 in the diffuse colour (white), specular
+  // 0.1 in the specular colour (green), for a directional and a positional light.
+  ShadedPlane scene;
+  parc::Light& light = scene.P.Lights[0];
   light.SpecularColor = { 0.0, 1.0, 0.0 };
-  const parc::Ray ray = MakeRay({ 20.0, 2.0, 2.0 }, { -1, 0, 0 });
   for (const bool positional : { false, true })
   {
     light.Positional = positional;
-    p.Lights = { light };
-    const auto r = CastOne(field, p, ray);
+    const auto r = CastOne(scene.Field, scene.P, scene.Ray);
     EXPECT_NEAR(r.RGBA[0], 0.5f, 1e-5) << "positional " << positional;
     EXPECT_NEAR(r.RGBA[1], 0.6f, 1e-5) << "positional " << positional;
     EXPECT_NEAR(r.RGBA[2], 0.5f, 1e-5) << "positional " << positional;

@@ -276,26 +276,14 @@ struct RayContext
   PARC_NOINLINE Vec3f WorldGradient(double t, int j)
   {
     ++this->Stats.GradientEvaluations;
-    Vec3f g;
-    const bool lattice = this->P.Interp == Interpolation::Linear && j != NotALatticeSample;
-    if (lattice && this->Field.IsInteriorCell(this->Block.Cell, j))
-    {
-      const SampleLocation w = this->Block.Location(j);
-      CellDifferences& slot = this->DifferencesOf(w.Offset);
-      this->Stats.DifferenceLoads += (slot.Offset != w.Offset);
-      g = this->Field.InteriorGradient(w, slot);
-    }
-    else
-    {
-      g = this->IndexGradient(t, j);
-    }
+    const Vec3f g = this->IndexGradient(t, j);
     const float* m = this->K.GradientToWorld;
     return { m[0] * g.X + m[1] * g.Y + m[2] * g.Z, m[3] * g.X + m[4] * g.Y + m[5] * g.Z,
       m[6] * g.X + m[7] * g.Y + m[8] * g.Z };
   }
   /// The voxel-index gradient at ray parameter t, sample j of the block (or
-  /// NotALatticeSample), where WorldGradient's common case does not hold.
-  PARC_NOINLINE Vec3f IndexGradient(double t, int j)
+  /// NotALatticeSample).
+  Vec3f IndexGradient(double t, int j)
   {
     if (this->P.Interp != Interpolation::Linear)
     {

@@ -258,12 +258,6 @@ public:
     }
     return interior;
   }
-  /// The same for the cell of lane j of a block (cells[axis][lane]).
-  PARC_HOT_INLINE bool IsInteriorCell(const int cells[3][LatticeBlock::Size], int j) const
-  {
-    const int cell[3] = { cells[0][j], cells[1][j], cells[2][j] };
-    return this->IsInteriorCell(cell);
-  }
   /// The linear-interpolation gradient at a located point of an interior cell, in float:
   /// the same bits as Gradient. Inside, f(p + e_a) - f(p - e_a) is the trilinear
   /// interpolation, in p's own cell, of the voxel differences v(c + e_a) - v(c - e_a) at
