@@ -136,9 +136,9 @@ void ConvertColor(
 }
 
 template <typename T>
-std::size_t WrapField(ScalarField& field, vtkDataArray* array, const int dims[3])
+std::size_t WrapField(ScalarField& field, vtkDataArray* array, const int dims[3], int component)
 {
-  return field.Wrap(static_cast<const T*>(array->GetVoidPointer(0)), dims,
+  return field.Wrap(static_cast<const T*>(array->GetVoidPointer(0)) + component, dims,
     array->GetNumberOfComponents());
 }
 }
@@ -216,7 +216,7 @@ bool IsSupportedScalarType(int vtkType)
 }
 
 bool WrapScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
-  std::size_t& replaced, std::string& error)
+  std::size_t& replaced, std::string& error, int component)
 {
   replaced = 0;
   const vtkIdType points =
@@ -233,28 +233,28 @@ bool WrapScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
     {
       case VTK_CHAR:
       case VTK_SIGNED_CHAR:
-        replaced = WrapField<signed char>(field, scalars, dims);
+        replaced = WrapField<signed char>(field, scalars, dims, component);
         return true;
       case VTK_UNSIGNED_CHAR:
-        replaced = WrapField<unsigned char>(field, scalars, dims);
+        replaced = WrapField<unsigned char>(field, scalars, dims, component);
         return true;
       case VTK_SHORT:
-        replaced = WrapField<short>(field, scalars, dims);
+        replaced = WrapField<short>(field, scalars, dims, component);
         return true;
       case VTK_UNSIGNED_SHORT:
-        replaced = WrapField<unsigned short>(field, scalars, dims);
+        replaced = WrapField<unsigned short>(field, scalars, dims, component);
         return true;
       case VTK_INT:
-        replaced = WrapField<int>(field, scalars, dims);
+        replaced = WrapField<int>(field, scalars, dims, component);
         return true;
       case VTK_UNSIGNED_INT:
-        replaced = WrapField<unsigned int>(field, scalars, dims);
+        replaced = WrapField<unsigned int>(field, scalars, dims, component);
         return true;
       case VTK_FLOAT:
-        replaced = WrapField<float>(field, scalars, dims);
+        replaced = WrapField<float>(field, scalars, dims, component);
         return true;
       case VTK_DOUBLE:
-        replaced = WrapField<double>(field, scalars, dims);
+        replaced = WrapField<double>(field, scalars, dims, component);
         return true;
       default:
         error = std::string("Unsupported scalar type ") + scalars->GetDataTypeAsString() +

@@ -20,13 +20,13 @@ namespace vtk
 /// The core blend mode of a vtkVolumeMapper blend mode; false for unsupported ones.
 bool ConvertBlendMode(int vtkBlendMode, BlendMode& out);
 
-/// Makes field read the first component of scalars (point data of an image of dims) in
-/// place, without a copy (scalars must stay alive while field is used; only non-finite
-/// floating-point values make a copy). Returns false with a message in error for
-/// unsupported types, fewer tuples than the image has points, or too little memory;
-/// replaced receives the number of non-finite values replaced.
+/// Makes field read one component of scalars (point data of an image of dims) in place,
+/// without a copy (scalars must stay alive while field is used; only non-finite
+/// floating-point values make a copy, of that component alone). Returns false with a
+/// message in error for unsupported types, fewer tuples than the image has points, or too
+/// little memory; replaced receives the number of non-finite values replaced.
 bool WrapScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
-  std::size_t& replaced, std::string& error);
+  std::size_t& replaced, std::string& error, int component = 0);
 
 /// Whether WrapScalars takes scalars of this VTK type.
 bool IsSupportedScalarType(int vtkType);

@@ -281,6 +281,9 @@ public:
   parc::ScalarField Field;
   /// 0.5 when Field holds cell scalars (its voxels at the cells' centres), else 0.
   double CellOffset = 0.0;
+  int FieldComponent = 0; ///< the component of FieldArray that Field reads
+  /// The number of dependent components (2 or 4: colour from the others), or 0.
+  int DependentComponents = 0;
   vtkMTimeType FieldTime = 0;
   /// Counts the fields wrapped: what the pyramid and the classification were made from (an
   /// array switched by SelectScalarArray or a scalar mode can be older than the last one).
@@ -608,7 +611,8 @@ bool vtkPARCVolumeMapper::PrepareVolumes(vtkRenderer* ren, vtkVolume* vol)
     volume.PolygonCount = 0;
     volume.PlaneCount = volume.PassCount = 0;
     volume.LastMode = ACCELERATION_NONE;
-    if (!this->PrepareField(volume) || !this->PrepareParameters(volume, ren, input.second))
+    if (!this->PrepareField(volume, input.second) ||
+      !this->PrepareParameters(volume, ren, input.second))
     {
       in.Rendered.clear();
       return false;
@@ -625,7 +629,7 @@ bool vtkPARCVolumeMapper::PrepareVolumes(vtkRenderer* ren, vtkVolume* vol)
 }
 
 //------------------------------------------------------------------------------
-bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in)
+bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
 {
   const int port = in.Port;
   vtkAlgorithm* producer =
@@ -674,20 +678,43 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in)
     return false;
   }
   in.CellOffset = cellFlag ? 0.5 : 0.0;
+  // Dependent components (vtkVolumeProperty::IndependentComponentsOff): opacity and
+  // gradient from the last component, colour from the others.
+  const int components = scalars->GetNumberOfComponents();
+  vtkVolumeProperty* property = prop ? prop->GetProperty() : nullptr;
+  const bool dependent = components > 1 && property && !property->GetIndependentComponents();
+  if (dependent &&
+    !(components == 2 || (components == 4 && scalars->GetDataType() == VTK_UNSIGNED_CHAR)))
+  {
+    vtkErrorMacro("Dependent components (IndependentComponentsOff) need 2 components (colour "
+                  "and opacity) or 4 unsigned char ones (RGBA); these scalars have "
+                  << components << " of type " << scalars->GetDataTypeAsString()
+                  << ". Nothing is drawn.");
+    return false;
+  }
+  const int component = dependent ? components - 1 : 0;
   const vtkMTimeType time = std::max(image->GetMTime(), scalars->GetMTime());
-  if (scalars == in.FieldArray && time == in.FieldTime)
+  if (scalars == in.FieldArray && time == in.FieldTime && component == in.FieldComponent)
   {
     return true;
   }
-  if (scalars->GetNumberOfComponents() > 1)
+  if (components > 1 && !dependent)
   {
-    vtkWarningMacro("The scalars have " << scalars->GetNumberOfComponents()
-                                        << " components; only the first is rendered.");
+    vtkWarningMacro("The scalars have " << components
+                                        << " independent components; only the first is "
+                                           "rendered.");
   }
   std::size_t replaced = 0;
-  if (!parc::vtk::WrapScalars(scalars, dims, in.Field, replaced, error))
+  if (!parc::vtk::WrapScalars(scalars, dims, in.Field, replaced, error, component))
   {
     vtkErrorMacro(<< error << " Nothing is drawn.");
+    in.FieldArray = nullptr;
+    return false;
+  }
+  if (dependent && in.Field.GetMemorySize() > 0)
+  {
+    vtkErrorMacro("Dependent components with non-finite values are not supported (the "
+                  "replaced copy holds one component); nothing is drawn.");
     in.FieldArray = nullptr;
     return false;
   }
@@ -699,6 +726,8 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in)
   }
   in.FieldArray = scalars;
   in.FieldTime = time;
+  in.FieldComponent = component;
+  in.DependentComponents = dependent ? components : 0;
   ++in.FieldVersion;
   return true;
 }
@@ -719,7 +748,21 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
     vtkErrorMacro("The volume of port " << in.Port << " has no property; nothing is drawn.");
     return false;
   }
-  std::string fixes = parc::vtk::ConvertProperty(property, in.Field.GetRange(), p);
+  // With 2 dependent components the colour function maps the first one's range.
+  double colorRange[2];
+  std::copy_n(in.Field.GetRange(), 2, colorRange);
+  if (in.DependentComponents == 2)
+  {
+    in.FieldArray->GetRange(colorRange, 0);
+  }
+  std::string fixes = parc::vtk::ConvertProperty(property, colorRange, p);
+  constexpr float UnsignedCharToUnit = 1.f / 255.f;
+  p.ColorShiftCount = in.DependentComponents == 0 ? 0 : in.DependentComponents - 1;
+  for (int c = 0; c < p.ColorShiftCount; ++c)
+  {
+    p.ColorShifts[c] = c - p.ColorShiftCount; // the components before the opacity's
+  }
+  p.DirectColorScale = UnsignedCharToUnit;
   if (property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D)
   {
     fixes += std::string(fixes.empty() ? "" : " ") +

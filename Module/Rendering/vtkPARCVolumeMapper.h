@@ -16,7 +16,11 @@
  *
  * Supported: scalar types (unsigned) char, short, int, float and double (point data, or
  * cell data as one voxel per cell at the cell's centre, as VTK's GPU mapper renders it;
- * the first component of a multi-component array is used, with a warning); any origin, spacing
+ * of independent components only the first is used, with a warning; dependent components,
+ * vtkVolumeProperty::IndependentComponentsOff, as VTK defines them: 2 components give
+ * colour through the colour function from the first and opacity and gradient from the
+ * second, 4 unsigned char components give RGB directly from the first three and opacity
+ * and gradient from the fourth); any origin, spacing
  * (non-zero), direction matrix and vtkVolume transform; scalar colour (gray or RGB) and
  * scalar opacity functions, opacity unit distance, gradient opacity, nearest and linear
  * interpolation (cubic is cast as linear), shading with the renderer's lights; blend modes
@@ -420,7 +424,7 @@ protected:
    * Updates the input of the volume's port and converts its scalars when they changed;
    * false on bad input.
    */
-  bool PrepareField(vtkVolumeState& volume);
+  bool PrepareField(vtkVolumeState& volume, vtkVolume* prop);
   /**
    * Converts the property and transform of prop (the vtkVolume of the volume's port) and
    * the renderer's lights into the caster's parameters.

@@ -544,6 +544,9 @@ TEST(RayCaster, RejectsUnusableParameters)
   const parc::ScalarField slice = parctest::MakeField(flat, [](int, int, int) { return 1.f; });
   p.OpacityUnitDistance = 1.0;
   EXPECT_FALSE(caster.Prepare(&slice, &p)) << "one slice has no cells";
+  EXPECT_TRUE(caster.Prepare(&field, &p));
+  p.ColorShiftCount = 2;
+  EXPECT_FALSE(caster.Prepare(&field, &p)) << "colour from 0, 1 or 3 other components";
 }
 
 TEST(Camera, PerspectiveRaysStartAtTheEyeAndParallelRaysOnTheCameraPlane)

@@ -187,6 +187,61 @@ class TestPARCDropIn(unittest.TestCase):
         self.assertEqual(len([w for w in warnings if "2-D transfer functions" in w]), 1)
         self.assertGreater(mapper.GetLastContributingSampleCount(), 0, "1-D functions used")
 
+    def test_dependent_components(self):
+        # RGBA (4 unsigned char components) and colour + opacity (2 components), with
+        # IndependentComponentsOff: opacity from the last component, bit for bit as that
+        # component alone, colour from the others; the same image in every mode.
+        mapper, window = make_scene()
+        volume = window.GetRenderers().GetFirstRenderer().GetVolumes().GetItemAsObject(0)
+        prop = volume.GetProperty()
+        prop.ShadeOff()
+        axis = numpy.arange(24) - 11.5
+        z, y, x = numpy.meshgrid(axis, axis, axis, indexing="ij")
+        density = (250 * numpy.exp(-(x * x + y * y + z * z) / 50.0)).ravel()
+
+        def image_of(columns, dtype):
+            data = numpy.ascontiguousarray(numpy.stack(columns, axis=1).astype(dtype))
+            image = vtkImageData()
+            image.SetDimensions(24, 24, 24)
+            image.GetPointData().SetScalars(numpy_to_vtk(data, deep=True))
+            return image
+
+        def render(image, modes=(vtkPARCVolumeMapper.ACCELERATION_NONE,)):
+            mapper.SetInputData(image)
+            images = []
+            for mode in modes:
+                mapper.SetAccelerationMode(mode)
+                window.Render()
+                images.append(ray_image(mapper))
+            for other in images[1:]:
+                self.assertTrue((other == images[0]).all(), "every mode alike")
+            return images[0]
+
+        alone = render(image_of([density], numpy.uint8))
+        self.assertGreater(alone[:, 3].max(), 0.1)
+        prop.IndependentComponentsOff()
+        red = numpy.full_like(density, 255)
+        zero = numpy.zeros_like(density)
+        rgba = render(image_of([red, zero, zero, density], numpy.uint8),
+                      (vtkPARCVolumeMapper.ACCELERATION_NONE,
+                       vtkPARCVolumeMapper.ACCELERATION_DEPTH_BUFFER,
+                       vtkPARCVolumeMapper.ACCELERATION_COLOR_BUFFER))
+        self.assertTrue((rgba[:, 3] == alone[:, 3]).all(), "opacity from the fourth")
+        self.assertTrue((rgba[:, 0] == rgba[:, 3]).all(), "red, unshaded: red = alpha")
+        self.assertEqual(rgba[:, 1:3].max(), 0.0)
+
+        colour = render(image_of([numpy.full_like(density, 250), density], numpy.uint8))
+        self.assertTrue((colour[:, 3] == alone[:, 3]).all(), "opacity from the second")
+        expected = numpy.array(prop.GetRGBTransferFunction().GetColor(250.0))
+        lit = colour[:, 3] > 0.05
+        ratio = colour[lit, :3] / colour[lit, 3:4]
+        self.assertLess(numpy.abs(ratio - expected).max(), 2e-3, "colour of the first")
+
+        errors = messages(mapper, vtkCommand.ErrorEvent)
+        render(image_of([red, zero, density], numpy.uint8))  # 3 dependent components
+        self.assertEqual(mapper.GetLastRayCount(), 0)
+        self.assertTrue(any("Dependent components" in e for e in errors), errors)
+
 
 if __name__ == "__main__":
     result = unittest.main(exit=False).result

@@ -68,7 +68,8 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
     return false;
   }
   const int* dims = field->GetDimensions();
-  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
+  const int shifts = parameters->ColorShiftCount;
+  if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2 || !(shifts == 0 || shifts == 1 || shifts == 3))
   {
     return false;
   }
@@ -376,6 +377,27 @@ struct RayContext
     }
     return lanes;
   }
+  /// The colour of sample j of the block at t (or of a crossing of value s at t, j =
+  /// NotALatticeSample): see CastParameters::ColorShiftCount.
+  void SampleColor(int j, double t, double s, float rgb[3]) const
+  {
+    if (this->P.ColorShiftCount == 0)
+    {
+      this->P.Color.Lookup(j != NotALatticeSample ? this->Value(j) : s, rgb);
+      return;
+    }
+    const Vec3 x = this->IndexPosition(t);
+    if (this->P.ColorShiftCount == 1)
+    {
+      this->P.Color.Lookup(this->Field.Shifted(this->P.ColorShifts[0]).Sample(x, this->P.Interp), rgb);
+      return;
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      const float v = this->Field.Shifted(this->P.ColorShifts[c]).Sample(x, this->P.Interp);
+      rgb[c] = std::min(std::max(v * this->P.DirectColorScale, 0.f), 1.f);
+    }
+  }
   /// s normalised to the intensity range (additive and average intensity).
   double NormalizedIntensity(float s) const
   {
@@ -549,7 +571,7 @@ struct CompositeFunction
     return this->C.ContributingSamples(k0, n, visited,
       [this](int j, double t, float a, const Vec3f& g, bool haveGradient) {
         float rgb[3];
-        this->C.P.Color.Lookup(this->C.Value(j), rgb);
+        this->C.SampleColor(j, t, 0.0, rgb);
         if (this->C.P.Shade)
         {
           this->C.Shade(rgb, t, haveGradient ? g : this->C.WorldGradient(t, j));
@@ -727,7 +749,7 @@ struct IsoSurfaceFunction
       return true;
     }
     float rgb[3];
-    this->C.P.Color.Lookup(v, rgb);
+    this->C.SampleColor(NotALatticeSample, t, v, rgb);
     if (this->C.P.Shade)
     {
       this->C.Shade(rgb, t, this->C.WorldGradient(t, NotALatticeSample));

@@ -65,6 +65,14 @@ struct CastParameters
   /// (s - IntensityRange[0]) / (IntensityRange[1] - IntensityRange[0]), as VTK's mappers
   /// normalise to the scalars' range (0 for an empty range).
   double IntensityRange[2] = { 0.0, 1.0 };
+  /// Where composite samples and isosurface crossings take their colour (dependent
+  /// components; opacity and gradient always come from the field): with 0 ColorShifts
+  /// from Color at the field's value; with 1, from Color at the value of the component
+  /// ColorShifts[0] elements away in memory; with 3, directly from those three components
+  /// times DirectColorScale (RGB).
+  int ColorShiftCount = 0;
+  int ColorShifts[3] = { 0, 0, 0 };
+  float DirectColorScale = 1.f;
   bool Shade = false;
   double Ambient = 0.1, Diffuse = 0.7, Specular = 0.2, SpecularPower = 10.0;
   std::vector<Light> Lights;

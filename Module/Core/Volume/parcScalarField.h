@@ -127,6 +127,14 @@ public:
   }
 
   const int* GetDimensions() const { return this->Dims; }
+  /// The view of the values `elements` further in memory, with the same layout: another
+  /// component of the same multi-component array.
+  FieldView Shifted(std::ptrdiff_t elements) const
+  {
+    FieldView view = *this;
+    view.Data += elements;
+    return view;
+  }
   float Value(int i, int j, int k) const
   {
     return static_cast<float>(this->Data[i * this->Step[0] + j * this->Step[1] + k * this->Step[2]]);
