@@ -12,9 +12,10 @@ from parc import vtkPARCVolumeMapper
 from vtkmodules.vtkCommonCore import vtkCommand, vtkFloatArray
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkRectilinearGrid
 from vtkmodules.util.misc import calldata_type
-from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
+from vtkmodules.util.numpy_support import numpy_to_vtk
 from vtkmodules.util.vtkConstants import VTK_STRING
 
+from parctesthelpers import ray_image
 from TestPARCPipeline import make_scene
 
 STILL_RATE = 0.0001  # vtkRenderWindowInteractor's still update rate
@@ -30,12 +31,6 @@ def messages(obj, event):
         texts.append(text)
     obj.AddObserver(event, on_message)
     return texts
-
-
-def ray_image(mapper):
-    image = vtkImageData()
-    mapper.GetLastRayCastImage(image)
-    return vtk_to_numpy(image.GetPointData().GetScalars()).copy()
 
 
 class TestPARCDropIn(unittest.TestCase):

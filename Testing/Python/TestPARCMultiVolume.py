@@ -5,14 +5,15 @@ the surface shows through it, and the depth-buffer passes give the unaccelerated
 import unittest
 
 from parc import vtkPARCMultiVolume, vtkPARCVolumeMapper
-from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
+from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
 from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
 from vtkmodules.vtkImagingSources import vtkImageEllipsoidSource
 from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderWindow,
                                          vtkRenderer, vtkVolume, vtkVolumeProperty)
 from vtkmodules.vtkRenderingVolume import vtkVolumeMapper
-from vtkmodules.util.numpy_support import vtk_to_numpy
+
+from parctesthelpers import ray_image
 
 
 def property_of(opacity_points, rgb, iso=None):
@@ -66,12 +67,6 @@ def make_scene():
     window.AddRenderer(renderer)
     renderer.ResetCamera()
     return mapper, multi, window
-
-
-def ray_image(mapper):
-    image = vtkImageData()
-    mapper.GetLastRayCastImage(image)
-    return vtk_to_numpy(image.GetPointData().GetScalars()).copy()
 
 
 class TestPARCMultiVolume(unittest.TestCase):
