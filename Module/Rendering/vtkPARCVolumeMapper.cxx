@@ -284,6 +284,10 @@ public:
   int FieldComponent = 0; ///< the component of FieldArray that Field reads
   /// The number of dependent components (2 or 4: colour from the others), or 0.
   int DependentComponents = 0;
+  /// The binary mask's values (port 0), and the array and time they were wrapped from.
+  parc::ScalarField Mask;
+  vtkSmartPointer<vtkDataArray> MaskArray;
+  vtkMTimeType MaskTime = 0;
   vtkMTimeType FieldTime = 0;
   /// Counts the fields wrapped: what the pyramid and the classification were made from (an
   /// array switched by SelectScalarArray or a scalar mode can be older than the last one).
@@ -457,7 +461,10 @@ vtkPARCVolumeMapper::vtkPARCVolumeMapper()
 }
 
 //------------------------------------------------------------------------------
-vtkPARCVolumeMapper::~vtkPARCVolumeMapper() = default;
+vtkPARCVolumeMapper::~vtkPARCVolumeMapper()
+{
+  this->SetMaskInput(nullptr);
+}
 
 //------------------------------------------------------------------------------
 const char* vtkPARCVolumeMapper::GetAccelerationModeAsString(int mode)
@@ -518,6 +525,58 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     in.PreviousImageStep = this->LastImageSampleDistance;
     in.PreviousSampleDistance = this->LastSampleDistance;
   }
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCVolumeMapper::SetMaskInput(vtkImageData* mask)
+{
+  vtkSetObjectBodyMacro(MaskInput, vtkImageData, mask);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPARCVolumeMapper::PrepareMask(vtkVolumeState& in)
+{
+  parc::CastParameters& p = in.Parameters;
+  if (this->MaskType != BinaryMaskType)
+  {
+    vtkErrorMacro("Label-map masks are not supported: SetMaskTypeToBinary for a binary mask; "
+                  "nothing is drawn.");
+    return false;
+  }
+  if (!(p.Blend == parc::BlendMode::Composite || p.Blend == parc::BlendMode::IsoSurface ||
+        p.Blend == parc::BlendMode::Additive))
+  {
+    vtkErrorMacro("A binary mask applies to composite, isosurface and additive blending; "
+                  "nothing is drawn.");
+    return false;
+  }
+  vtkDataArray* values = this->MaskInput->GetPointData()->GetScalars();
+  const int* fieldDims = in.Field.GetDimensions();
+  int dims[3];
+  this->MaskInput->GetDimensions(dims);
+  if (!values || !std::equal(dims, dims + 3, fieldDims))
+  {
+    vtkErrorMacro("The mask needs point scalars and the volume's dimensions ("
+                  << fieldDims[0] << " x " << fieldDims[1] << " x " << fieldDims[2]
+                  << "); nothing is drawn.");
+    return false;
+  }
+  const vtkMTimeType time = std::max(this->MaskInput->GetMTime(), values->GetMTime());
+  if (values != in.MaskArray || time != in.MaskTime)
+  {
+    std::size_t replaced = 0;
+    std::string error;
+    if (!parc::vtk::WrapScalars(values, dims, in.Mask, replaced, error))
+    {
+      vtkErrorMacro("The mask: " << error << " Nothing is drawn.");
+      in.MaskArray = nullptr;
+      return false;
+    }
+    in.MaskArray = values;
+    in.MaskTime = time;
+  }
+  p.Mask = &in.Mask;
+  return true;
 }
 
 //------------------------------------------------------------------------------
@@ -792,6 +851,11 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   p.AverageRange[1] = this->AverageIPScalarRange[1];
   std::copy_n(in.Field.GetRange(), 2, p.IntensityRange);
   p.TerminationOpacity = this->TerminationOpacity;
+  p.Mask = nullptr;
+  if (in.Port == 0 && this->MaskInput && !this->PrepareMask(in))
+  {
+    return false;
+  }
 
   // The core sees world coordinates minus the camera position, as the passes' views do.
   const parc::Vec3 frame = vtkPARCRasterizer::FrameOrigin(ren);
@@ -1646,5 +1710,8 @@ void vtkPARCVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "LastNumberOfThreads: " << this->LastNumberOfThreads << "\n";
   os << indent << "UseJittering: " << this->UseJittering << "\n";
   os << indent << "UseDepthPass: " << this->UseDepthPass << "\n";
+  os << indent << "MaskInput: " << this->MaskInput << "\n";
+  os << indent << "MaskType: " << this->MaskType << "\n";
+  os << indent << "MaskBlendFactor: " << this->MaskBlendFactor << "\n";
   os << indent << "RequestedRenderMode: " << this->RequestedRenderMode << "\n";
 }

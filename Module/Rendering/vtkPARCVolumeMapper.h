@@ -267,6 +267,27 @@ public:
   vtkGetMacro(UseJittering, vtkTypeBool);
   vtkBooleanMacro(UseJittering, vtkTypeBool);
   /**
+   * A mask for the volume of port 0, as vtkGPUVolumeRayCastMapper takes it: an image of
+   * the volume's dimensions. A binary mask (SetMaskTypeToBinary) confines composite,
+   * isosurface and additive rendering (and the shadows of those) to where the mask's
+   * nearest voxel is non-zero, exactly in every acceleration mode; the other ray functions
+   * report an error. Label maps (the default type, as in VTK) are not supported: an error,
+   * nothing drawn. MaskBlendFactor (label maps only) is kept for such programs.
+   */
+  void SetMaskInput(vtkImageData* mask);
+  vtkGetObjectMacro(MaskInput, vtkImageData);
+  enum MaskTypes
+  {
+    BinaryMaskType = 0,
+    LabelMapMaskType = 1
+  };
+  vtkSetClampMacro(MaskType, int, BinaryMaskType, LabelMapMaskType);
+  vtkGetMacro(MaskType, int);
+  void SetMaskTypeToBinary() { this->SetMaskType(BinaryMaskType); }
+  void SetMaskTypeToLabelMap() { this->SetMaskType(LabelMapMaskType); }
+  vtkSetClampMacro(MaskBlendFactor, float, 0.0f, 1.0f);
+  vtkGetMacro(MaskBlendFactor, float);
+  /**
    * vtkGPUVolumeRayCastMapper's depth pass renders a depth image of an isosurface for
    * other passes to read; it does not change the picture. Here it has no effect: the flag
    * is kept so that such programs run.
@@ -425,6 +446,8 @@ protected:
    * false on bad input.
    */
   bool PrepareField(vtkVolumeState& volume, vtkVolume* prop);
+  /** Wraps the binary mask for port 0's volume; false (nothing drawn) on a bad mask. */
+  bool PrepareMask(vtkVolumeState& volume);
   /**
    * Converts the property and transform of prop (the vtkVolume of the volume's port) and
    * the renderer's lights into the caster's parameters.
@@ -466,6 +489,9 @@ protected:
   int LastNumberOfThreads = 0;
   vtkTypeBool UseJittering = 0;
   vtkTypeBool UseDepthPass = 0;
+  vtkImageData* MaskInput = nullptr;
+  int MaskType = LabelMapMaskType;
+  float MaskBlendFactor = 1.0f;
   int RequestedRenderMode = 0;
   int InputBlendModes[MaxInputPorts] = {}; ///< ports 1 and up (port 0: BlendMode)
 

@@ -235,6 +235,40 @@ TEST(RayCaster, AdditiveSumsIntensityTimesCorrectedOpacity)
   EXPECT_EQ(r.RGBA[3], 1.f);
 }
 
+TEST(RayCaster, BinaryMaskConfinesTheSamples)
+{
+  // The slab along z behind a mask: all ones changes nothing, all zeros hides everything,
+  // ones up to k = 50 leave about the first half.
+  const parc::ScalarField field = ConstantSlab(100.f);
+  CastParameters p = SlabParameters(0.01);
+  const auto open = CastOne(field, p, SlabRay());
+  auto maskOf = [](int lastInside) {
+    return parctest::MakeField(
+      SlabDims, [lastInside](int, int, int k) { return k <= lastInside ? 255.f : 0.f; });
+  };
+  const parc::ScalarField ones = maskOf(100), zeros = maskOf(-1), half = maskOf(50);
+  p.Mask = &ones;
+  const auto all = CastOne(field, p, SlabRay());
+  EXPECT_EQ(std::memcmp(all.RGBA, open.RGBA, sizeof(all.RGBA)), 0);
+  p.Mask = &zeros;
+  const auto none = CastOne(field, p, SlabRay());
+  EXPECT_EQ(none.RGBA[3], 0.f);
+  EXPECT_EQ(none.Stats.ContributingSamples, 0u);
+  p.Mask = &half;
+  const auto front = CastOne(field, p, SlabRay());
+  const double sigma = -std::log(1.0 - 0.01);
+  EXPECT_NEAR(front.RGBA[3], 1.0 - std::exp(-sigma * 50.5), 2e-3) << "up to z = 50.5";
+  p.Blend = BlendMode::MaximumIntensity;
+  parc::RayCaster caster;
+  EXPECT_FALSE(caster.Prepare(&field, &p)) << "masks apply to compositing ray functions";
+  p.Blend = BlendMode::Composite;
+  EXPECT_TRUE(caster.Prepare(&field, &p));
+  const int shorter[3] = { 4, 4, 100 };
+  const parc::ScalarField other = parctest::MakeField(shorter, [](int, int, int) { return 1.f; });
+  p.Mask = &other;
+  EXPECT_FALSE(caster.Prepare(&field, &p)) << "a mask of other dimensions";
+}
+
 TEST(RayCaster, CompositingIsFrontToBack)
 {
   // Value 1 (red) for z < 50, value 2 (blue) beyond: each side sees its own colour first.

@@ -237,6 +237,42 @@ class TestPARCDropIn(unittest.TestCase):
         self.assertEqual(mapper.GetLastRayCount(), 0)
         self.assertTrue(any("Dependent components" in e for e in errors), errors)
 
+    def test_binary_mask(self):
+        # The wavelet (41^3, seen along z) behind a mask that keeps x indices below 20: the
+        # left of the image as without the mask, the right empty, every mode alike.
+        mapper, window = make_scene()
+        window.Render()
+        plain = ray_image(mapper).reshape(120, 120, 4)
+        plain_contributing = mapper.GetLastContributingSampleCount()
+        x = numpy.tile(numpy.arange(41), 41 * 41)
+        mask = vtkImageData()
+        mask.SetDimensions(41, 41, 41)
+        mask.GetPointData().SetScalars(
+            numpy_to_vtk(numpy.where(x < 20, 255, 0).astype(numpy.uint8), deep=True))
+        mapper.SetMaskInput(mask)
+        errors = messages(mapper, vtkCommand.ErrorEvent)
+        window.Render()  # VTK's default mask type, a label map: not supported
+        self.assertTrue(any("Label-map" in e for e in errors), errors)
+        self.assertEqual(mapper.GetLastRayCount(), 0)
+        mapper.SetMaskTypeToBinary()
+        images = []
+        for mode in (vtkPARCVolumeMapper.ACCELERATION_NONE,
+                     vtkPARCVolumeMapper.ACCELERATION_DEPTH_BUFFER,
+                     vtkPARCVolumeMapper.ACCELERATION_COLOR_BUFFER):
+            mapper.SetAccelerationMode(mode)
+            window.Render()
+            images.append(ray_image(mapper))
+            self.assertTrue((images[-1] == images[0]).all(), mode)
+        masked = images[0].reshape(120, 120, 4)
+        self.assertLess(mapper.GetLastContributingSampleCount(), plain_contributing)
+        self.assertGreater(plain[:, :30, 3].max(), 0.05)
+        self.assertTrue((masked[:, :30] == plain[:, :30]).all(), "left: as without the mask")
+        self.assertGreater(plain[:, 90:, 3].max(), 0.05)
+        self.assertEqual(masked[:, 90:, 3].max(), 0.0, "right: masked away")
+        mapper.SetMaskInput(None)
+        window.Render()
+        self.assertTrue((ray_image(mapper).reshape(120, 120, 4) == plain).all())
+
 
 if __name__ == "__main__":
     result = unittest.main(exit=False).result

@@ -73,6 +73,17 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   {
     return false;
   }
+  if (const ScalarField* mask = parameters->Mask)
+  {
+    // A mask of the field's dimensions, for the ray functions that composite samples.
+    const BlendMode blend = parameters->Blend;
+    if (!std::equal(dims, dims + 3, mask->GetDimensions()) ||
+      !(blend == BlendMode::Composite || blend == BlendMode::IsoSurface ||
+        blend == BlendMode::Additive))
+    {
+      return false;
+    }
+  }
   RenderConstants& k = this->Constants;
   k.OpacityExponent =
     static_cast<float>(parameters->SampleDistance / parameters->OpacityUnitDistance);
@@ -332,7 +343,7 @@ struct RayContext
   bool ContributingOpacity(int j, double t, float& a, Vec3f& g, bool& haveGradient)
   {
     a = this->P.Opacity.Evaluate(this->Value(j));
-    if (a == 0.f || !this->ApplyGradientOpacity(a, j, t, g, haveGradient))
+    if (a == 0.f || this->Masked(t) || !this->ApplyGradientOpacity(a, j, t, g, haveGradient))
     {
       return false;
     }
@@ -376,6 +387,11 @@ struct RayContext
       lanes |= static_cast<unsigned>(s > below && s < above) << j;
     }
     return lanes;
+  }
+  /// Whether the mask hides ray parameter t (see CastParameters::Mask).
+  bool Masked(double t) const
+  {
+    return this->P.Mask && this->P.Mask->SampleNearest(this->IndexPosition(t)) == 0.f;
   }
   /// The colour of sample j of the block at t (or of a crossing of value s at t, j =
   /// NotALatticeSample): see CastParameters::ColorShiftCount.
@@ -741,6 +757,10 @@ struct IsoSurfaceFunction
 
   bool Composite(double t, double v)
   {
+    if (this->C.Masked(t))
+    {
+      return true;
+    }
     float a = this->C.P.Opacity.Evaluate(v);
     ++this->C.Stats.ContributingSamples;
     this->C.RecordHit(t);
@@ -757,9 +777,13 @@ struct IsoSurfaceFunction
     return this->C.Over(this->Out, t, rgb, a);
   }
 
-  /// A shadow ray crosses v; false once it may stop.
-  bool Block(double v)
+  /// A shadow ray crosses v between (t0, s0) and (t1, s1); false once it may stop.
+  bool Block(double v, double t0, double s0, double t1, double s1)
   {
+    if (this->C.P.Mask && this->C.Masked(this->Refine(t0, s0, t1, s1, v)))
+    {
+      return true;
+    }
     this->Transmittance *= 1.f - this->C.P.Opacity.Evaluate(v);
     return this->Transmittance >= this->ShadowFloor;
   }
@@ -801,7 +825,8 @@ struct IsoSurfaceFunction
       {
         continue;
       }
-      const bool more = Shadow ? this->Block(v) : this->Composite(this->Refine(t0, s0, t1, s1, v), v);
+      const bool more = Shadow ? this->Block(v, t0, s0, t1, s1)
+                               : this->Composite(this->Refine(t0, s0, t1, s1, v), v);
       if (!more)
       {
         return false;

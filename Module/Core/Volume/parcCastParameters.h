@@ -70,6 +70,10 @@ struct CastParameters
   /// from Color at the field's value; with 1, from Color at the value of the component
   /// ColorShifts[0] elements away in memory; with 3, directly from those three components
   /// times DirectColorScale (RGB).
+  /// A binary mask of the field's dimensions, or null: a sample or isosurface crossing
+  /// contributes only where the nearest voxel of Mask is non-zero (composite, isosurface,
+  /// additive). The mask must outlive the casts.
+  const ScalarField* Mask = nullptr;
   int ColorShiftCount = 0;
   int ColorShifts[3] = { 0, 0, 0 };
   float DirectColorScale = 1.f;
