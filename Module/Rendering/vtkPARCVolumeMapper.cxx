@@ -1628,7 +1628,7 @@ std::vector<std::pair<const char*, std::size_t>>
 vtkPARCVolumeMapper::vtkVolumeState::Memory() const
 {
   return { { "scalar copy", this->Field.GetMemorySize() },
-    { "range pyramid", this->Plan.GetPyramidMemorySize() },
+    { "mask copy", this->Mask.GetMemorySize() }, { "range pyramid", this->Plan.GetPyramidMemorySize() },
     { "supercell flags", this->Plan.GetGrid().GetMemorySize() },
     { "depth model", this->Plan.GetDepthModelMemorySize() },
     { "colour models", this->Plan.GetColorModelsMemorySize() },
