@@ -2,7 +2,8 @@
 // sample distance: vtkFixedPointVolumeRayCastMapper for MIP and composite, also with a
 // clipping plane and with cropping (the centre subvolume, and VTK's "fence" regions), set
 // alike on both; vtkGPUVolumeRayCastMapper (on llvmpipe) for average intensity and additive
-// blending, the modes FixedPoint lacks, which VTK defines as grey images. The samplers
+// blending, the modes FixedPoint lacks, which VTK defines as grey images, and for a binary
+// mask. The samplers
 // differ (fixed-point arithmetic, other sample positions), so the images are compared
 // within a stated tolerance: mean absolute difference below 1 of 255 per channel (2 for
 // the GPU mapper, whose rays start at the box's faces) and 99.9% of the values within 24
@@ -138,5 +139,21 @@ int TestPARCCompareVTKMappers(int, char*[])
   ok &= Compare(vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, "plain", plain, true);
   ok &= Compare(vtkVolumeMapper::AVERAGE_INTENSITY_BLEND, "average of 60 and up",
     [](vtkVolumeMapper* m) { m->SetAverageIPScalarRange(60, 255); }, true);
+  // A binary mask keeping the half x < 0, set alike on both.
+  auto mask = parctest::MakeVolume(64, [](double x, double, double) { return x < 0 ? 1.0 : 0.0; });
+  ok &= Compare(vtkVolumeMapper::COMPOSITE_BLEND, "binary mask",
+    [&mask](vtkVolumeMapper* m) {
+      if (auto* gpu = vtkGPUVolumeRayCastMapper::SafeDownCast(m))
+      {
+        gpu->SetMaskInput(mask);
+        gpu->SetMaskTypeToBinary();
+      }
+      else if (auto* parc = vtkPARCVolumeMapper::SafeDownCast(m))
+      {
+        parc->SetMaskInput(mask);
+        parc->SetMaskTypeToBinary();
+      }
+    },
+    true);
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }
