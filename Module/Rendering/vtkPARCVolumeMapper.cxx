@@ -394,7 +394,7 @@ public:
   double PreviousTime = 0.0, PreviousProjection = 0.0, PreviousCasting = 0.0;
   double PreviousRendererTime = 0.0; ///< the renderer's whole last render
   double PreviousImageStep = 1.0, PreviousSampleDistance = 0.0;
-  bool JitteringWarned = false, RenderModeWarned = false;
+  bool JitteringWarned = false, RenderModeWarned = false, WindowWarned = false;
 
   /// Bytes held per structure (see GetMemorySize).
   std::vector<std::pair<const char*, std::size_t>> Memory() const;
@@ -1371,14 +1371,34 @@ void vtkPARCVolumeMapper::DisplayImage(vtkRenderer* ren, vtkVolume* vol)
   in.Display.resize(static_cast<std::size_t>(values));
   const float* image = in.Image.data();
   unsigned char* display = in.Display.data();
-  vtkSMPTools::For(0, values,
-    [image, display](vtkIdType begin, vtkIdType end) {
-      for (vtkIdType i = begin; i < end; ++i)
+  // The final colour window and level, as VTK's ray cast mappers apply them to the
+  // premultiplied colours: rgb * scale + bias * alpha, within [0, alpha].
+  const bool windowLevel = !(this->FinalColorWindow == 1.f && this->FinalColorLevel == 0.5f);
+  if (windowLevel && this->FinalColorWindow == 0.f && !in.WindowWarned)
+  {
+    vtkWarningMacro("FinalColorWindow 0 is not usable: the final colours are not adjusted.");
+    in.WindowWarned = true;
+  }
+  const bool adjust = windowLevel && this->FinalColorWindow != 0.f;
+  const float scale = adjust ? 1.f / this->FinalColorWindow : 1.f;
+  const float bias = adjust ? 0.5f - this->FinalColorLevel / this->FinalColorWindow : 0.f;
+  vtkSMPTools::For(0, values / 4, [=](vtkIdType begin, vtkIdType end) {
+    for (vtkIdType p = begin; p < end; ++p)
+    {
+      const float* rgba = image + 4 * p;
+      const float a = std::min(std::max(rgba[3], 0.f), 1.f);
+      for (int c = 0; c < 4; ++c)
       {
-        const float v = std::min(std::max(image[i], 0.f), 1.f);
-        display[i] = static_cast<unsigned char>(v * 255.f + 0.5f);
+        float v = rgba[c];
+        if (adjust && c < 3)
+        {
+          v = std::min(std::max(v * scale + bias * a, 0.f), a);
+        }
+        v = std::min(std::max(v, 0.f), 1.f);
+        display[4 * p + c] = static_cast<unsigned char>(v * 255.f + 0.5f);
       }
-    });
+    }
+  });
   int origin[2] = { 0, 0 };
   in.DisplayHelper->RenderTexture(vol, ren, in.ImageSize, in.ImageSize, in.ImageSize, origin,
     DisplayDepth, in.Display.data());
@@ -1713,5 +1733,7 @@ void vtkPARCVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaskInput: " << this->MaskInput << "\n";
   os << indent << "MaskType: " << this->MaskType << "\n";
   os << indent << "MaskBlendFactor: " << this->MaskBlendFactor << "\n";
+  os << indent << "FinalColorWindow: " << this->FinalColorWindow << "\n";
+  os << indent << "FinalColorLevel: " << this->FinalColorLevel << "\n";
   os << indent << "RequestedRenderMode: " << this->RequestedRenderMode << "\n";
 }

@@ -199,6 +199,20 @@ public:
 
   ///@{
   /**
+   * Brightness and contrast of the displayed image, as vtkFixedPointVolumeRayCastMapper
+   * and vtkSmartVolumeMapper define them: each displayed premultiplied colour becomes
+   * rgb / window + (1/2 - level / window) alpha, kept within [0, alpha]; alpha is unchanged.
+   * The float ray-cast image (GetLastRayCastImage) is not adjusted. A window of 0 warns
+   * once and adjusts nothing. Defaults: window 1, level 0.5 (no change).
+   */
+  vtkSetMacro(FinalColorWindow, float);
+  vtkGetMacro(FinalColorWindow, float);
+  vtkSetMacro(FinalColorLevel, float);
+  vtkGetMacro(FinalColorLevel, float);
+  ///@}
+
+  ///@{
+  /**
    * Render-time budgets, as vtkFixedPointVolumeRayCastMapper keeps them. With
    * AutoAdjustSampleDistances on (the default), each render picks the ImageSampleDistance
    * that should fit the volume's allocated render time (vtkProp::GetAllocatedRenderTime,
@@ -492,6 +506,8 @@ protected:
   vtkImageData* MaskInput = nullptr;
   int MaskType = LabelMapMaskType;
   float MaskBlendFactor = 1.0f;
+  float FinalColorWindow = 1.0f;
+  float FinalColorLevel = 0.5f;
   int RequestedRenderMode = 0;
   int InputBlendModes[MaxInputPorts] = {}; ///< ports 1 and up (port 0: BlendMode)
 

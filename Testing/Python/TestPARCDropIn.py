@@ -9,10 +9,10 @@ import unittest
 import numpy
 
 from parc import vtkPARCVolumeMapper
-from vtkmodules.vtkCommonCore import vtkCommand, vtkFloatArray
+from vtkmodules.vtkCommonCore import vtkCommand, vtkFloatArray, vtkUnsignedCharArray
 from vtkmodules.vtkCommonDataModel import vtkImageData, vtkRectilinearGrid
 from vtkmodules.util.misc import calldata_type
-from vtkmodules.util.numpy_support import numpy_to_vtk
+from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.util.vtkConstants import VTK_STRING
 
 from parctesthelpers import ray_image
@@ -273,6 +273,28 @@ class TestPARCDropIn(unittest.TestCase):
         window.Render()
         self.assertTrue((ray_image(mapper).reshape(120, 120, 4) == plain).all())
 
+    def test_final_color_window_level(self):
+        # Window 0.5 and level 0.25 brighten the displayed image (rgb / window + (1/2 -
+        # level / window) alpha); window 1 and level 0.5 change nothing; the float
+        # ray-cast image is never adjusted.
+        mapper, window = make_scene()
+        window.GetRenderers().GetFirstRenderer().SetBackground(0, 0, 0)
+
+        def shown():
+            pixels = vtkUnsignedCharArray()
+            window.GetPixelData(0, 0, 119, 119, 0, pixels, 0)
+            return vtk_to_numpy(pixels).astype(int)
+        window.Render()
+        plain, plain_shown = ray_image(mapper), shown()
+        mapper.SetFinalColorWindow(0.5)
+        mapper.SetFinalColorLevel(0.25)
+        window.Render()
+        self.assertTrue((ray_image(mapper) == plain).all(), "the float image is not adjusted")
+        self.assertGreater(shown().mean(), 1.3 * plain_shown.mean())
+        mapper.SetFinalColorWindow(1.0)
+        mapper.SetFinalColorLevel(0.5)
+        window.Render()
+        self.assertTrue((shown() == plain_shown).all())
 
 if __name__ == "__main__":
     result = unittest.main(exit=False).result
