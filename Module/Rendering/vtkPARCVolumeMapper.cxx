@@ -1069,8 +1069,11 @@ bool vtkPARCVolumeMapper::vtkInternals::Cast(vtkPARCVolumeMapper* self, vtkRende
   auto progress = [self, window](double fraction) {
     // As VTK's ray cast mappers report it (call data: the fraction done), and as an
     // algorithm does.
-    self->InvokeEvent(vtkCommand::VolumeMapperRenderProgressEvent, &fraction);
-    self->UpdateProgress(fraction);
+    if (self->ReportProgress)
+    {
+      self->InvokeEvent(vtkCommand::VolumeMapperRenderProgressEvent, &fraction);
+      self->UpdateProgress(fraction);
+    }
     return !self->GetAbortExecute() && !window->CheckAbortStatus();
   };
   const double start = vtkTimerLog::GetUniversalTime();
@@ -1733,6 +1736,10 @@ void vtkPARCVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "MaskInput: " << this->MaskInput << "\n";
   os << indent << "MaskType: " << this->MaskType << "\n";
   os << indent << "MaskBlendFactor: " << this->MaskBlendFactor << "\n";
+  os << indent << "ReportProgress: " << this->ReportProgress << "\n";
+  os << indent << "MaxMemoryInBytes: " << this->MaxMemoryInBytes << "\n";
+  os << indent << "MaxMemoryFraction: " << this->MaxMemoryFraction << "\n";
+  os << indent << "InterpolationMode: " << this->InterpolationMode << "\n";
   os << indent << "FinalColorWindow: " << this->FinalColorWindow << "\n";
   os << indent << "FinalColorLevel: " << this->FinalColorLevel << "\n";
   os << indent << "RequestedRenderMode: " << this->RequestedRenderMode << "\n";

@@ -302,6 +302,27 @@ public:
   vtkSetClampMacro(MaskBlendFactor, float, 0.0f, 1.0f);
   vtkGetMacro(MaskBlendFactor, float);
   /**
+   * Whether renders emit progress events (VolumeMapperRenderProgressEvent and
+   * ProgressEvent), as vtkGPUVolumeRayCastMapper's ReportProgress. Default on.
+   */
+  vtkSetMacro(ReportProgress, bool);
+  vtkGetMacro(ReportProgress, bool);
+  /**
+   * vtkGPUVolumeRayCastMapper's texture memory limits and vtkSmartVolumeMapper's
+   * interpolation for downsampling a volume that does not fit them: kept so that such
+   * programs run, without effect (this mapper samples the input in place, whole).
+   */
+  vtkSetMacro(MaxMemoryInBytes, vtkIdType);
+  vtkGetMacro(MaxMemoryInBytes, vtkIdType);
+  vtkSetClampMacro(MaxMemoryFraction, float, 0.1f, 1.0f);
+  vtkGetMacro(MaxMemoryFraction, float);
+  vtkSetClampMacro(InterpolationMode, int, 0, 2);
+  vtkGetMacro(InterpolationMode, int);
+  // vtkImageReslice's values: nearest 0, linear 1, cubic 2.
+  void SetInterpolationModeToNearestNeighbor() { this->SetInterpolationMode(0); }
+  void SetInterpolationModeToLinear() { this->SetInterpolationMode(1); }
+  void SetInterpolationModeToCubic() { this->SetInterpolationMode(2); }
+  /**
    * vtkGPUVolumeRayCastMapper's depth pass renders a depth image of an isosurface for
    * other passes to read; it does not change the picture. Here it has no effect: the flag
    * is kept so that such programs run.
@@ -506,6 +527,10 @@ protected:
   vtkImageData* MaskInput = nullptr;
   int MaskType = LabelMapMaskType;
   float MaskBlendFactor = 1.0f;
+  bool ReportProgress = true;
+  vtkIdType MaxMemoryInBytes = 0;
+  float MaxMemoryFraction = 0.75f;
+  int InterpolationMode = 1;
   float FinalColorWindow = 1.0f;
   float FinalColorLevel = 0.5f;
   int RequestedRenderMode = 0;

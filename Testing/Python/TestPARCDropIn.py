@@ -128,7 +128,12 @@ class TestPARCDropIn(unittest.TestCase):
         self.assertEqual(mapper.GetLastUsedRenderMode(), 1)  # RayCastRenderMode
         before = ray_image(mapper)
         mapper.UseJitteringOn()  # warns once; the lattice stays exact
-        mapper.UseDepthPassOn()  # no effect on the picture
+        mapper.UseDepthPassOn()  # no effect on the picture, nor have the memory limits
+        mapper.SetMaxMemoryInBytes(1 << 20)
+        mapper.SetMaxMemoryFraction(0.5)
+        mapper.SetInterpolationModeToCubic()
+        self.assertEqual((mapper.GetMaxMemoryInBytes(), mapper.GetMaxMemoryFraction(),
+                          mapper.GetInterpolationMode()), (1 << 20, 0.5, 2))
         window.Render()
         self.assertTrue((ray_image(mapper) == before).all())
 

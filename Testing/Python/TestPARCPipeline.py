@@ -174,6 +174,10 @@ class TestPARCPipeline(unittest.TestCase):
         self.assertEqual(fractions, sorted(fractions))
         self.assertGreater(fractions[0], 0.0)
         self.assertAlmostEqual(fractions[-1], 1.0)
+        mapper.SetReportProgress(False)
+        events.clear()
+        window.Render()
+        self.assertEqual(events, ["start", "end"], "no progress events when not reported")
 
 
 if __name__ == "__main__":
