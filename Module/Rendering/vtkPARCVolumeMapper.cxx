@@ -595,8 +595,8 @@ double vtkPARCVolumeMapper::ChooseImageSampleDistance() const
   }
   // The last render's time: the PARC passes grow with the rays (1 / step^2), the cast with
   // the rays times their samples (1 / the sample distance), the rest (display, set-up, the
-  // renderer's other work) stays. The step that makes that model fit a share of the budget, for this render's
-  // sample distance.
+  // renderer's other work) stays. The step that makes that model fit a share of the
+  // budget, for this render's sample distance.
   const double samples = in.PreviousSampleDistance / std::max(this->LastSampleDistance, 1e-300);
   const double scaled = in.PreviousProjection + in.PreviousCasting * samples;
   const double whole = std::max(in.PreviousTime, in.PreviousRendererTime);
@@ -1651,7 +1651,8 @@ std::vector<std::pair<const char*, std::size_t>>
 vtkPARCVolumeMapper::vtkVolumeState::Memory() const
 {
   return { { "scalar copy", this->Field.GetMemorySize() },
-    { "mask copy", this->Mask.GetMemorySize() }, { "range pyramid", this->Plan.GetPyramidMemorySize() },
+    { "mask copy", this->Mask.GetMemorySize() },
+    { "range pyramid", this->Plan.GetPyramidMemorySize() },
     { "supercell flags", this->Plan.GetGrid().GetMemorySize() },
     { "depth model", this->Plan.GetDepthModelMemorySize() },
     { "colour models", this->Plan.GetColorModelsMemorySize() },

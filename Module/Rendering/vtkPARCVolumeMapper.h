@@ -437,8 +437,9 @@ public:
   /**
    * Bytes the mapper holds besides its input, per structure and in total: the copy of
    * the scalars (only non-finite floating-point input is copied; other scalars are sampled
-   * in place, in their own type; so is a mask), the cell-range pyramid, the supercell flags, the polygon
-   * models, the read-back PARC buffers, and the ray-cast and display images.
+   * in place, in their own type; so is a mask), the cell-range pyramid, the supercell
+   * flags, the polygon models, the read-back PARC buffers, and the ray-cast and display
+   * images.
    * PrintMemory writes one line per structure.
    */
   vtkIdType GetMemorySize();

@@ -12,7 +12,8 @@ if (NOT rc EQUAL 0)
   message(FATAL_ERROR "cmake --install failed: ${rc}")
 endif ()
 foreach (f IN ITEMS include/parc/vtkPARCVolumeMapper.h include/parc/PARCRenderingModule.h
-    lib/libPARCRendering.so lib/cmake/parc/parc-config.cmake lib/cmake/parc/parc-config-version.cmake
+    lib/libPARCRendering.so lib/cmake/parc/parc-config.cmake
+    lib/cmake/parc/parc-config-version.cmake
     lib/cmake/parc/PARC-targets.cmake
     bin/parc-render "${PYTHON_DEST}/parc/__init__.py" "${PYTHON_DEST}/parc/PARCRendering.so")
   if (NOT EXISTS "${PREFIX}/${f}")

@@ -405,7 +405,8 @@ struct RayContext
     const Vec3 x = this->IndexPosition(t);
     if (this->P.ColorShiftCount == 1)
     {
-      this->P.Color.Lookup(this->Field.Shifted(this->P.ColorShifts[0]).Sample(x, this->P.Interp), rgb);
+      const float value = this->Field.Shifted(this->P.ColorShifts[0]).Sample(x, this->P.Interp);
+      this->P.Color.Lookup(value, rgb);
       return;
     }
     for (int c = 0; c < 3; ++c)
