@@ -172,9 +172,12 @@ bool ConvertBlendMode(int vtkBlendMode, BlendMode& out)
 
 bool CheckImage(vtkImageData* image, std::string& error)
 {
+  return CheckGrid(image->GetDimensions(), image->GetSpacing(), error);
+}
+
+bool CheckGrid(const int dims[3], const double spacing[3], std::string& error)
+{
   std::ostringstream message;
-  int dims[3];
-  image->GetDimensions(dims);
   if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2)
   {
     message << "The input has dimensions " << dims[0] << " x " << dims[1] << " x " << dims[2]
@@ -182,7 +185,6 @@ bool CheckImage(vtkImageData* image, std::string& error)
     error = message.str();
     return false;
   }
-  const double* spacing = image->GetSpacing();
   for (int a = 0; a < 3; ++a)
   {
     if (spacing[a] == 0.0 || !std::isfinite(spacing[a]))

@@ -34,6 +34,8 @@ bool IsSupportedScalarType(int vtkType);
 /// Checks that an image can be cast (dims >= 2, finite non-zero spacing); false with a
 /// message otherwise.
 bool CheckImage(vtkImageData* image, std::string& error);
+/// The same for a grid of dims samples with spacing (an image's, or its cells').
+bool CheckGrid(const int dims[3], const double spacing[3], std::string& error);
 
 /// The transfer functions, interpolation, shading coefficients and iso values of
 /// component 0 of property, for a field of the given value range. Blend must be set in p

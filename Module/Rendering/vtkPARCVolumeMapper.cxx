@@ -156,17 +156,19 @@ double VolumeDiagonal(const parc::Matrix4& indexToWorld, const int dims[3])
     { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 }));
 }
 
+/// The world length of a voxel's edge along index axis a.
+double VoxelEdge(const parc::Matrix4& indexToWorld, int a)
+{
+  return parc::Length(parc::Vec3{ indexToWorld(0, a), indexToWorld(1, a), indexToWorld(2, a) });
+}
+
 /// The sample distance LockSampleDistanceToInputSpacing asks for: the average voxel edge
 /// (world units) times min(1/2, cbrt(voxels) / 200).
 double SpacingLockedSampleDistance(const parc::Matrix4& indexToWorld, std::size_t voxels)
 {
-  double edges = 0.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    edges += parc::Length(indexToWorld.TransformVector(
-      { a == 0 ? 1.0 : 0.0, a == 1 ? 1.0 : 0.0, a == 2 ? 1.0 : 0.0 }));
-  }
-  return edges / 3.0 * std::min(0.5, std::cbrt(static_cast<double>(voxels)) / 200.0);
+  const double edge =
+    (VoxelEdge(indexToWorld, 0) + VoxelEdge(indexToWorld, 1) + VoxelEdge(indexToWorld, 2)) / 3.0;
+  return edge * std::min(0.5, std::cbrt(static_cast<double>(voxels)) / 200.0);
 }
 
 /// The share of a render's allocated time a budgeted render aims at: the window's own work
@@ -723,15 +725,14 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
   // mapper renders them): an image of one sample fewer along each axis.
   int dims[3];
   image->GetDimensions(dims);
-  vtkNew<vtkImageData> cells;
   if (cellFlag)
   {
-    cells->SetDimensions(std::max(dims[0] - 1, 1), std::max(dims[1] - 1, 1),
-      std::max(dims[2] - 1, 1));
-    cells->SetSpacing(image->GetSpacing());
-    cells->GetDimensions(dims);
+    for (int a = 0; a < 3; ++a)
+    {
+      dims[a] = std::max(dims[a] - 1, 1);
+    }
   }
-  if (!parc::vtk::CheckImage(cellFlag ? cells.Get() : image, error))
+  if (!parc::vtk::CheckGrid(dims, image->GetSpacing(), error))
   {
     vtkErrorMacro(<< (cellFlag ? "The image's cells: " : "") << error << " Nothing is drawn.");
     return false;
@@ -867,12 +868,8 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
     vtkErrorMacro("The volume's index-to-world transform is singular (zero scale?).");
     return false;
   }
-  double smallestStep = VTK_DOUBLE_MAX;
-  for (int a = 0; a < 3; ++a)
-  {
-    const parc::Vec3 axis{ indexToWorld(0, a), indexToWorld(1, a), indexToWorld(2, a) };
-    smallestStep = std::min(smallestStep, parc::Length(axis));
-  }
+  const double smallestStep = std::min(
+    { VoxelEdge(indexToWorld, 0), VoxelEdge(indexToWorld, 1), VoxelEdge(indexToWorld, 2) });
   p.SampleDistance = this->SampleDistance > 0.0 ? this->SampleDistance : 0.5 * smallestStep;
   if (this->LockSampleDistanceToInputSpacing)
   {
