@@ -47,6 +47,8 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
                         ramp, mip for mip/minip) or a file of "scalar opacity r g b" lines
   --iso VALUE           iso value for --blend iso (default: middle of the scalar range)
   --shade               shade with the headlight (on by default for iso)
+  --shading-model M     exact (default) or quantized (quantized voxel normals, as
+                        vtkFixedPointVolumeRayCastMapper shades)
   --size N | WxH        image size in pixels (default 300)
   --azimuth DEG --elevation DEG --zoom F     camera around the volume (after a reset)
   --camera-position X,Y,Z [--focal-point X,Y,Z]   explicit camera
@@ -115,13 +117,23 @@ struct Options
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
   int Width = 300, Height = 300, Repeat = 1;
   std::vector<std::array<double, 3>> Lights;
-  bool Shadows = false, Floor = false;
+  bool Shadows = false, Floor = false, QuantizedNormals = false;
 };
 
 [[noreturn]] void Fail(const std::string& message)
 {
   std::cerr << "parc-render: " << message << std::endl;
   std::exit(2);
+}
+
+/// Whether --shading-model names the quantized normals (else exact shading).
+bool ShadingModelNamed(const std::string& name)
+{
+  if (name != "exact" && name != "quantized")
+  {
+    Fail("--shading-model takes exact or quantized");
+  }
+  return name == "quantized";
 }
 
 double ToNumber(const std::string& option, const std::string& text)
@@ -172,6 +184,7 @@ Options Parse(int argc, char* argv[])
     else if (a == "--tf") { o.TF = value(); }
     else if (a == "--iso") { o.Iso = ToNumber(a, value()); o.HasIso = true; }
     else if (a == "--shade") { o.Shade = true; }
+    else if (a == "--shading-model") { o.QuantizedNormals = ShadingModelNamed(value()); }
     else if (a == "--azimuth") { o.Azimuth = ToNumber(a, value()); }
     else if (a == "--elevation") { o.Elevation = ToNumber(a, value()); }
     else if (a == "--zoom") { o.Zoom = ToNumber(a, value()); }
@@ -411,6 +424,7 @@ vtkSmartPointer<vtkPARCVolumeMapper> CopyMapper(vtkPARCVolumeMapper* parc, int m
   m->SetBlendMode(parc->GetBlendMode());
   m->SetSampleDistance(parc->GetLastSampleDistance());
   m->SetSupercellSize(parc->GetSupercellSize());
+  m->SetShadingModel(parc->GetShadingModel());
   m->SetAccelerationMode(mode);
   return m;
 }
@@ -945,6 +959,8 @@ int main(int argc, char* argv[])
   mapper->SetAccelerationMode(acceleration);
   mapper->SetSupercellSize(o.Supercell);
   mapper->SetSampleDistance(o.SampleDistance);
+  mapper->SetShadingModel(o.QuantizedNormals ? vtkPARCVolumeMapper::SHADING_QUANTIZED_NORMALS
+                                             : vtkPARCVolumeMapper::SHADING_EXACT);
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
   volume->SetProperty(property);

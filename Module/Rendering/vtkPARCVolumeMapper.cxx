@@ -296,6 +296,10 @@ public:
   std::uint64_t FieldVersion = 0;
   vtkMTimeType FixesWarnedTime = 0; ///< the property whose conversion fixes were reported
   vtkSmartPointer<vtkDataArray> FieldArray; ///< the values Field reads
+  /// The quantized normals of Field (ShadingModel QuantizedNormals), and the field
+  /// version they were made from.
+  parc::NormalVolume Normals;
+  std::uint64_t NormalsVersion = 0;
   parc::CastParameters Parameters;
   /// Voxel index -> render frame (world minus the camera position), of the last
   /// PrepareParameters; every world quantity the core sees is in that frame.
@@ -352,6 +356,10 @@ public:
   /// Bytes held per structure (see GetMemorySize).
   std::vector<std::pair<const char*, std::size_t>> Memory() const;
 
+  /// The shading model's part of Parameters (after the lights and IndexToFrame): the
+  /// quantized normals (made again when the field changed) and the view direction they are
+  /// shaded for, or exact shading.
+  void PrepareShadingModel(bool quantized, vtkRenderer* ren);
   /// The mode Auto resolves to for the current classification, ray function and view.
   int ChooseMode(const vtkPARCVolumeMapper* self, int requested, const parc::Camera& camera);
   /// The segment source of shadow rays towards light `index` (lit from lights, in the
@@ -483,6 +491,20 @@ const char* vtkPARCVolumeMapper::GetAccelerationModeAsString(int mode)
       return "Auto";
     case ACCELERATION_BOTH:
       return "DepthAndColorBuffer";
+    default:
+      return "Unknown";
+  }
+}
+
+//------------------------------------------------------------------------------
+const char* vtkPARCVolumeMapper::GetShadingModelAsString(int model)
+{
+  switch (model)
+  {
+    case SHADING_EXACT:
+      return "Exact";
+    case SHADING_QUANTIZED_NORMALS:
+      return "QuantizedNormals";
     default:
       return "Unknown";
   }
@@ -910,6 +932,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   {
     p.Lights.clear();
   }
+  in.PrepareShadingModel(this->ShadingModel == SHADING_QUANTIZED_NORMALS, ren);
   if (!in.Caster.Prepare(&in.Field, &p))
   {
     vtkErrorMacro("Invalid rendering parameters (sample distance " << p.SampleDistance
@@ -919,6 +942,40 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
     return false;
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCVolumeMapper::vtkVolumeState::PrepareShadingModel(bool quantized, vtkRenderer* ren)
+{
+  parc::CastParameters& p = this->Parameters;
+  p.Shading = quantized ? parc::ShadingModel::QuantizedNormals : parc::ShadingModel::Exact;
+  p.Normals = nullptr;
+  if (!quantized)
+  {
+    this->Normals.Clear(); // only the model that uses them holds them
+    return;
+  }
+  if (!p.Shade || !parc::LightsAllowQuantizedNormals(p))
+  {
+    return; // shaded exactly, or not at all
+  }
+  if (this->Normals.IsEmpty() || this->NormalsVersion != this->FieldVersion)
+  {
+    this->Normals.Build(this->Field);
+    this->NormalsVersion = this->FieldVersion;
+  }
+  p.Normals = &this->Normals;
+  // Towards the eye (the frame's origin) from the volume's centre; along the view
+  // direction for a parallel projection.
+  vtkCamera* camera = ren->GetActiveCamera();
+  const int* dims = this->Field.GetDimensions();
+  const parc::Vec3 centre = this->IndexToFrame.TransformPoint(
+    parc::Vec3(0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1)));
+  const double* projection = camera->GetDirectionOfProjection();
+  const parc::Vec3 along = -parc::Vec3(projection[0], projection[1], projection[2]);
+  p.ShadingViewDirection = camera->GetParallelProjection() || !(parc::Length(centre) > 0.0)
+    ? parc::Normalized(along)
+    : parc::Normalized(-centre);
 }
 
 //------------------------------------------------------------------------------
@@ -1490,6 +1547,13 @@ double vtkPARCVolumeMapper::GetLastRenderTime()
 {
   return this->Internals->RenderTime;
 }
+int vtkPARCVolumeMapper::GetLastShadingModel()
+{
+  const auto& volumes = this->Internals->Volumes;
+  return !volumes.empty() && volumes[0] && volumes[0]->Caster.UsesQuantizedNormals()
+    ? SHADING_QUANTIZED_NORMALS
+    : SHADING_EXACT;
+}
 int vtkPARCVolumeMapper::GetLastAccelerationMode()
 {
   return this->GetLastInputAccelerationMode(0);
@@ -1649,6 +1713,7 @@ vtkPARCVolumeMapper::vtkVolumeState::Memory() const
 {
   return { { "scalar copy", this->Field.GetMemorySize() },
     { "mask copy", this->Mask.GetMemorySize() },
+    { "quantized normals", this->Normals.GetMemorySize() },
     { "range pyramid", this->Plan.GetPyramidMemorySize() },
     { "supercell flags", this->Plan.GetGrid().GetMemorySize() },
     { "depth model", this->Plan.GetDepthModelMemorySize() },
@@ -1711,6 +1776,7 @@ void vtkPARCVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   this->Superclass::PrintSelf(os, indent);
   os << indent << "AccelerationMode: " << GetAccelerationModeAsString(this->AccelerationMode)
      << "\n";
+  os << indent << "ShadingModel: " << GetShadingModelAsString(this->ShadingModel) << "\n";
   os << indent << "SupercellSize: " << this->SupercellSize[0] << ", " << this->SupercellSize[1]
      << ", " << this->SupercellSize[2] << "\n";
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";

@@ -157,6 +157,34 @@ public:
   static const char* GetAccelerationModeAsString(int mode);
   ///@}
 
+  enum ShadingModels
+  {
+    SHADING_EXACT = 0,
+    SHADING_QUANTIZED_NORMALS = 1
+  };
+
+  ///@{
+  /**
+   * How shaded samples (vtkVolumeProperty::ShadeOn) are lit. Exact, the default: the
+   * gradient of the interpolated field at every sample, then Blinn-Phong with every light.
+   * QuantizedNormals, as vtkFixedPointVolumeRayCastMapper shades: each voxel's gradient
+   * direction is stored in 16 bits (2 bytes per voxel, made once per input), the
+   * directional lights are evaluated once per render for every stored direction as seen
+   * from one view direction (towards the eye from the volume's centre), and a sample
+   * interpolates the results of its cell's 8 corners. Faster on shaded data, less accurate
+   * (scripts/benchmark.sh compares the two against a fine reference). Scenes with a
+   * positional or shadow-casting light are shaded exactly. Either model gives the same
+   * image in every acceleration mode. GetLastShadingModel says which one a render used.
+   */
+  vtkSetClampMacro(ShadingModel, int, SHADING_EXACT, SHADING_QUANTIZED_NORMALS);
+  vtkGetMacro(ShadingModel, int);
+  void SetShadingModelToExact() { this->SetShadingModel(SHADING_EXACT); }
+  void SetShadingModelToQuantizedNormals() { this->SetShadingModel(SHADING_QUANTIZED_NORMALS); }
+  static const char* GetShadingModelAsString(int model);
+  /** The shading model port 0's last render used (Exact when it was not shaded). */
+  int GetLastShadingModel();
+  ///@}
+
   ///@{
   /**
    * Supercell size in cells along the volume's x, y and z (positive real numbers; below 1
@@ -507,6 +535,7 @@ protected:
   void DisplayImage(vtkRenderer* ren, vtkVolume* vol);
 
   int AccelerationMode = ACCELERATION_AUTO;
+  int ShadingModel = SHADING_EXACT;
   double SupercellSize[3] = { 2.0, 2.0, 2.0 };
   double SampleDistance = 0.0;
   double ImageSampleDistance = 1.0;

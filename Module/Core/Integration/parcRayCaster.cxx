@@ -58,6 +58,67 @@ float FloatAtMost(double x)
 }
 }
 
+namespace
+{
+/// Whether shaded samples can use the quantized normals (see CastParameters::Shading).
+bool QuantizedNormalsApply(const ScalarField& field, const CastParameters& p)
+{
+  return p.Shade && p.Shading == ShadingModel::QuantizedNormals && p.Normals &&
+    std::equal(field.GetDimensions(), field.GetDimensions() + 3, p.Normals->GetDimensions()) &&
+    LightsAllowQuantizedNormals(p);
+}
+
+/// The shading factors of every normal code: Blinn-Phong of the directional lights, as
+/// RayContext::Shade computes it, for the world direction of the code's voxel-index
+/// normal, turned towards the eye and seen from p.ShadingViewDirection.
+std::vector<RayCaster::ShadingFactors> NormalShadingTable(const CastParameters& p)
+{
+  std::vector<RayCaster::ShadingFactors> table(NormalVolume::Count);
+  const Vec3 toEye = p.ShadingViewDirection;
+  for (std::size_t code = 0; code < table.size(); ++code)
+  {
+    RayCaster::ShadingFactors& f = table[code];
+    std::fill_n(f.Diffuse, 4, 0.f);
+    std::fill_n(f.Specular, 4, 0.f);
+    const Vec3 g = NormalVolume::Decode(static_cast<std::uint16_t>(code));
+    // The world gradient is the transpose of the world-to-index matrix times g.
+    Vec3 n;
+    for (int r = 0; r < 3; ++r)
+    {
+      n[r] = p.WorldToIndex(0, r) * g.X + p.WorldToIndex(1, r) * g.Y + p.WorldToIndex(2, r) * g.Z;
+    }
+    if (!(Length(n) > 0.0))
+    {
+      continue;
+    }
+    n = Normalized(n);
+    n = Dot(n, toEye) > 0.0 ? n : -n;
+    double diffuse[3] = { 0.0, 0.0, 0.0 }, specular[3] = { 0.0, 0.0, 0.0 };
+    for (const Light& light : p.Lights)
+    {
+      const Vec3 toLight = Normalized(light.Position - light.FocalPoint);
+      const double ndl = Dot(n, toLight);
+      if (ndl > 0.0)
+      {
+        const double ndh = Dot(n, Normalized(toLight + toEye));
+        const double spec = ndh > 0.0 ? std::pow(ndh, p.SpecularPower) : 0.0;
+        for (int c = 0; c < 3; ++c)
+        {
+          diffuse[c] += p.Diffuse * light.Color[c] * ndl;
+          specular[c] += p.Specular * light.SpecularColor[c] * spec;
+        }
+      }
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      f.Diffuse[c] = static_cast<float>(diffuse[c]);
+      f.Specular[c] = static_cast<float>(specular[c]);
+    }
+  }
+  return table;
+}
+}
+
 bool RayCaster::Prepare(const ScalarField* field, const CastParameters* parameters)
 {
   this->Field = field;
@@ -95,8 +156,6 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   k.IntensityScale = intensityWidth > 0.0 ? 1.0 / intensityWidth : 0.0;
   k.ZeroOpacityBelow = FloatAtMost(parameters->Opacity.FirstNonZero());
   k.ZeroOpacityAbove = -FloatAtMost(-parameters->Opacity.LastNonZero());
-  k.GradientNeeded =
-    parameters->Shade || (parameters->UseGradientOpacity && !k.GradientOpacityConstant);
   for (int r = 0; r < 3; ++r)
   {
     for (int c = 0; c < 3; ++c)
@@ -128,6 +187,13 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
     }
   }
   k.SortedIsoValues = UsedIsoValues(*parameters);
+  k.NormalShading.clear();
+  if (QuantizedNormalsApply(*field, *parameters))
+  {
+    k.NormalShading = NormalShadingTable(*parameters);
+  }
+  k.GradientNeeded = (parameters->Shade && k.NormalShading.empty()) ||
+    (parameters->UseGradientOpacity && !k.GradientOpacityConstant);
   return true;
 }
 
@@ -181,6 +247,55 @@ float IntegerPower(float x, int n)
     n >>= 1;
   }
   return result;
+}
+
+/// The trilinear interpolation at fractions f of the shading factors of 8 corner normals
+/// (corner n: x offset n & 1, y (n >> 1) & 1, z (n >> 2) & 1).
+PARC_HOT_INLINE void InterpolateFactors(const RayCaster::ShadingFactors* table,
+  const std::uint16_t codes[8], const float f[3], float diffuse[4], float specular[4])
+{
+#if defined(__SSE2__)
+  const __m128 fx = _mm_set1_ps(f[0]), fy = _mm_set1_ps(f[1]), fz = _mm_set1_ps(f[2]);
+  __m128 d[8], s[8];
+  for (int n = 0; n < 8; ++n)
+  {
+    d[n] = _mm_load_ps(table[codes[n]].Diffuse);
+    s[n] = _mm_load_ps(table[codes[n]].Specular);
+  }
+  for (int n = 0; n < 8; n += 2) // along x
+  {
+    d[n] = _mm_add_ps(d[n], _mm_mul_ps(fx, _mm_sub_ps(d[n + 1], d[n])));
+    s[n] = _mm_add_ps(s[n], _mm_mul_ps(fx, _mm_sub_ps(s[n + 1], s[n])));
+  }
+  for (int n = 0; n < 8; n += 4) // along y
+  {
+    d[n] = _mm_add_ps(d[n], _mm_mul_ps(fy, _mm_sub_ps(d[n + 2], d[n])));
+    s[n] = _mm_add_ps(s[n], _mm_mul_ps(fy, _mm_sub_ps(s[n + 2], s[n])));
+  }
+  _mm_storeu_ps(diffuse, _mm_add_ps(d[0], _mm_mul_ps(fz, _mm_sub_ps(d[4], d[0]))));
+  _mm_storeu_ps(specular, _mm_add_ps(s[0], _mm_mul_ps(fz, _mm_sub_ps(s[4], s[0]))));
+#else
+  for (int c = 0; c < 4; ++c)
+  {
+    float d[8], s[8];
+    for (int n = 0; n < 8; ++n)
+    {
+      d[n] = table[codes[n]].Diffuse[c];
+      s[n] = table[codes[n]].Specular[c];
+    }
+    for (int step = 1; step < 8; step *= 2) // along x, y, z
+    {
+      const float t = f[step == 1 ? 0 : step == 2 ? 1 : 2];
+      for (int n = 0; n < 8; n += 2 * step)
+      {
+        d[n] = d[n] + t * (d[n + step] - d[n]);
+        s[n] = s[n] + t * (s[n + step] - s[n]);
+      }
+    }
+    diffuse[c] = d[0];
+    specular[c] = s[0];
+  }
+#endif
 }
 
 /// Appends an event, out of the sample loops (only several volumes keep events).
@@ -454,6 +569,21 @@ struct RayContext
   /// Shades rgb in place at ray parameter t with world gradient g (Blinn-Phong, two-sided,
   /// in float).
   PARC_HOT_INLINE void Shade(float rgb[3], double t, const Vec3f& g) const;
+  /// Shades rgb in place: sample j of the block (or the crossing at t, j =
+  /// NotALatticeSample) with world gradient g when haveGradient (else computed when needed).
+  PARC_HOT_INLINE void ShadeSample(
+    float rgb[3], double t, int j, const Vec3f& g, bool haveGradient)
+  {
+    if (!this->K.NormalShading.empty())
+    {
+      this->ShadeQuantized(rgb, t, j);
+      return;
+    }
+    this->Shade(rgb, t, haveGradient ? g : this->WorldGradient(t, j));
+  }
+  /// Shades rgb in place with the quantized normals around sample j (or the crossing at t,
+  /// j = NotALatticeSample): see parcNormalVolume.h.
+  void ShadeQuantized(float rgb[3], double t, int j) const;
   /// Adds the positional lights' terms at ray parameter t for unit normal n.
   void AddPositionalLights(double t, const Vec3f& n, float diffuse[3], float specular[3]) const;
 };
@@ -497,6 +627,42 @@ PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f
     {
       this->AddPositionalLights(t, n, diffuse, specular);
     }
+  }
+  const float ambient = static_cast<float>(this->P.Ambient);
+  for (int c = 0; c < 3; ++c)
+  {
+    rgb[c] = std::min(rgb[c] * (ambient + diffuse[c]) + specular[c], 1.f);
+  }
+}
+
+template <class View>
+void RayContext<View>::ShadeQuantized(float rgb[3], double t, int j) const
+{
+  const NormalVolume& normals = *this->P.Normals;
+  const RayCaster::ShadingFactors* table = this->K.NormalShading.data();
+  float diffuse[4], specular[4];
+  if (this->P.Interp == Interpolation::Nearest)
+  {
+    const int* dims = normals.GetDimensions();
+    const Vec3 p = this->IndexPosition(t);
+    int voxel[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const double x = std::floor(p[a] + 0.5); // the nearest voxel, as SampleNearest
+      voxel[a] = x > 0.0 ? std::min(static_cast<int>(x), dims[a] - 1) : 0;
+    }
+    const RayCaster::ShadingFactors& f = table[normals.At(voxel[0], voxel[1], voxel[2])];
+    std::copy_n(f.Diffuse, 4, diffuse);
+    std::copy_n(f.Specular, 4, specular);
+  }
+  else
+  {
+    const SampleLocation w = j != NotALatticeSample
+      ? this->Block.Location(j)
+      : this->Field.LocationOf(this->IndexPosition(t));
+    std::uint16_t codes[8];
+    normals.CellCorners(w.Cell, codes);
+    InterpolateFactors(table, codes, w.Fractions, diffuse, specular);
   }
   const float ambient = static_cast<float>(this->P.Ambient);
   for (int c = 0; c < 3; ++c)
@@ -591,7 +757,7 @@ struct CompositeFunction
         this->C.SampleColor(j, t, 0.0, rgb);
         if (this->C.P.Shade)
         {
-          this->C.Shade(rgb, t, haveGradient ? g : this->C.WorldGradient(t, j));
+          this->C.ShadeSample(rgb, t, j, g, haveGradient);
         }
         return this->C.Over(this->Out, t, rgb, a);
       });
@@ -773,7 +939,7 @@ struct IsoSurfaceFunction
     this->C.SampleColor(NotALatticeSample, t, v, rgb);
     if (this->C.P.Shade)
     {
-      this->C.Shade(rgb, t, this->C.WorldGradient(t, NotALatticeSample));
+      this->C.ShadeSample(rgb, t, NotALatticeSample, Vec3f(), false);
     }
     return this->C.Over(this->Out, t, rgb, a);
   }

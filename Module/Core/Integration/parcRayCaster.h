@@ -124,8 +124,11 @@ public:
 
   const CastParameters* GetParameters() const { return this->Params; }
   const ScalarField* GetField() const { return this->Field; }
-  /// Whether samples need gradients: shading, or a gradient opacity that is not constant.
+  /// Whether samples need gradients: exact shading, or a gradient opacity that is not
+  /// constant.
   bool NeedsGradient() const { return this->Constants.GradientNeeded; }
+  /// Whether shaded samples use the quantized normals (see CastParameters::Shading).
+  bool UsesQuantizedNormals() const { return !this->Constants.NormalShading.empty(); }
 
   /// A directional light as the shading uses it: colours times the material's
   /// coefficients, in float like every per-sample shading step.
@@ -137,6 +140,13 @@ public:
     std::size_t Index;       ///< in CastParameters::Lights
     Vec3 ShadowDirection;    ///< ToLight in double: the direction of shadow rays
     float ShadowAttenuation; ///< > 0 when the light casts shadows (with Occluders)
+  };
+  /// The diffuse and specular factors of the directional lights for one quantized normal
+  /// (the fourth entries are 0).
+  struct alignas(16) ShadingFactors
+  {
+    float Diffuse[4];
+    float Specular[4];
   };
   /// A positional light with what does not change during a render.
   struct PositionalLight
@@ -165,6 +175,9 @@ public:
     std::vector<DirectionalLight> DirectionalLights;
     std::vector<PositionalLight> PositionalLights;
     std::vector<double> SortedIsoValues;
+    /// Per normal code, its shading factors when shaded samples use the quantized normals
+    /// (CastParameters::Shading); empty for exact shading.
+    std::vector<ShadingFactors> NormalShading;
   };
 
 private:

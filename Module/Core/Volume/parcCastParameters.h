@@ -5,6 +5,7 @@
 #define parcCastParameters_h
 
 #include "parcMath.h"
+#include "parcNormalVolume.h"
 #include "parcRay.h"
 #include "parcScalarField.h"
 #include "parcTransferFunction.h"
@@ -27,6 +28,13 @@ enum class BlendMode
   AverageIntensity,
   Additive,
   IsoSurface
+};
+
+/// How shaded samples are lit (see CastParameters::Shading).
+enum class ShadingModel
+{
+  Exact,
+  QuantizedNormals
 };
 
 /// A light in world coordinates.
@@ -80,6 +88,14 @@ struct CastParameters
   bool Shade = false;
   double Ambient = 0.1, Diffuse = 0.7, Specular = 0.2, SpecularPower = 10.0;
   std::vector<Light> Lights;
+  /// Exact: Blinn-Phong of the gradient of the interpolated field at every shaded sample
+  /// or crossing. QuantizedNormals: the table shading of Normals (parcNormalVolume.h),
+  /// for the directional lights as seen from ShadingViewDirection; faster, less accurate.
+  /// QuantizedNormals falls back to Exact without Normals of the field's dimensions, and
+  /// with a positional or shadow-casting light.
+  ShadingModel Shading = ShadingModel::Exact;
+  const NormalVolume* Normals = nullptr; ///< must outlive the casts
+  Vec3 ShadingViewDirection{ 0.0, 0.0, 1.0 }; ///< unit, towards the eye (world)
   /// World -> voxel-index coordinates (affine). "World" is whatever frame the caller uses for
   /// rays, lights and planes alike; the mapper centres it on the camera.
   Matrix4 WorldToIndex;
@@ -89,6 +105,14 @@ struct CastParameters
   /// them is never taken, whatever the acceleration.
   Cropping Crop;
 };
+
+/// Whether every light of p can shade from quantized normals: directional, casting no
+/// shadow (see CastParameters::Shading).
+inline bool LightsAllowQuantizedNormals(const CastParameters& p)
+{
+  return std::all_of(p.Lights.begin(), p.Lights.end(),
+    [](const Light& light) { return !light.Positional && !(light.ShadowAttenuation > 0.0); });
+}
 
 /// The iso values the isosurface ray function uses, for the caster and the classification
 /// alike: sorted, the smallest MaxIsoValues.
