@@ -75,7 +75,7 @@ scene() { # title, file, options...
   echo
   echo "## Against vtkFixedPointVolumeRayCastMapper (issue 11)"
   echo
-  echo "Sample distance 0.5 voxel for both mappers, $(nproc) threads, wall time per frame of interleaved rounds (none, Auto, FixedPoint, repeated) after warm-up; the MRI head is dense and shaded or unshaded, the iron protein and the embryo are sparse."
+  echo "Sample distance 0.5 voxel for both mappers, $(nproc) threads, wall time per frame of interleaved rounds (none, Auto, FixedPoint, repeated) after warm-up; the MRI head is dense and shaded or unshaded, the iron protein and the embryo are sparse. Shaded scenes show this mapper with each shading model: exact (the default) and quantized normals (SetShadingModelToQuantizedNormals, FixedPoint's model)."
   for args in "$head --tf mri --shade --elevation -80 --azimuth 30" \
               "$head --tf mri --elevation -80 --azimuth 30" \
               "$data/ironProt_68x68x68_uint8.raw --tf $tf/iron-protein-cloud.txt" \
@@ -102,7 +102,7 @@ scene() { # title, file, options...
   echo
   echo "## Casting cost per sample (issue 11; goals: 10 ns per sample, 30 ns per contributing shaded sample)"
   echo
-  echo "MRI head, 400x400, sample distance 0.5 voxel, acceleration none; the unshaded cast per sample, and the shaded minus the unshaded cast per contributing sample, both per thread."
+  echo "MRI head, 400x400, sample distance 0.5 voxel, acceleration none; the unshaded cast per sample, and the shaded minus the unshaded cast per contributing sample for each shading model, both per thread."
   for threads in 1 "$(nproc)"; do
     echo; echo "### $threads thread(s)"; echo
     xrun "$here/build/bin/parc-render" "$head" --tf mri --elevation -80 --azimuth 30 --size 400 \
@@ -112,7 +112,7 @@ scene() { # title, file, options...
   echo
   echo "## Accuracy against time (issue 11)"
   echo
-  echo "MRI head, shaded, 400x400: RMSE in grey levels of the window image against a cast at 1/16 voxel, median of 3 interleaved frames per distance, $(nproc) threads. This mapper reaches at 2 voxels an error FixedPoint does not reach at 1/8 voxel."
+  echo "MRI head, shaded, 400x400: RMSE in grey levels of the window image against this mapper's exact cast at 1/16 voxel (the reference), and against each mapper's own cast at 1/16 voxel (its sampling error alone; the rest is its model: quantized normals, FixedPoint's fixed-point arithmetic and tables), median of 3 interleaved frames per distance, $(nproc) threads."
   echo
   xrun "$here/build/bin/parc-render" "$head" --tf mri --shade --elevation -80 --azimuth 30 --size 400 \
     --output "$here/out/benchmark.png" --accuracy-curve 3 | sed -n '/^| sample distance/,/^3 interleaved/p'

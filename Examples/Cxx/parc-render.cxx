@@ -63,15 +63,17 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
                         warm-up includes the frames on which Auto tries each pass
   --compare-fixed-point also render with vtkFixedPointVolumeRayCastMapper
   --versus-fixed-point R  R rounds of interleaved renders (this mapper with acceleration
-                        none, this mapper with auto, vtkFixedPointVolumeRayCastMapper at
-                        the same sample distance): minimum and median times (table)
-  --sample-cost R       R interleaved rounds of the scene unshaded and shaded, acceleration
-                        none: casting ns per sample per thread, and the extra ns per
-                        contributing shaded sample (table)
+                        none and auto, with each shading model when shaded, and
+                        vtkFixedPointVolumeRayCastMapper at the same sample distance):
+                        minimum and median times (table)
+  --sample-cost R       R interleaved rounds of the scene unshaded and shaded with each
+                        shading model, acceleration none: casting ns per sample per
+                        thread, and the extra ns per contributing shaded sample (table)
   --accuracy-curve R    accuracy against time at sample distances 2 to 1/8 voxel (the
                         smallest spacing): RMSE in grey levels of each mapper's window
-                        image against a reference cast at 1/16 voxel, and the median of
-                        R interleaved frames, this mapper (Auto) and FixedPoint (table)
+                        image against this mapper's exact cast at 1/16 voxel and against
+                        its own, and the median of R interleaved frames: this mapper
+                        (Auto, each shading model when shaded) and FixedPoint (table)
   --edit-cost R         R rounds of a transfer-function edit: the frame right after the
                         edit against the warm frame after it (minimum, median, ratio)
   --thread-scaling R    R interleaved rounds of one thread and all threads per acceleration
@@ -408,6 +410,21 @@ std::pair<double, double> MinMedian(std::vector<double> times)
   return { times.front(), times[times.size() / 2] };
 }
 
+/// vtkFixedPointVolumeRayCastMapper on image with parc's blend mode and last sample
+/// distance, one ray per pixel, no automatic adjustment.
+vtkSmartPointer<vtkFixedPointVolumeRayCastMapper> FixedPointLike(
+  vtkPARCVolumeMapper* parc, vtkImageData* image)
+{
+  auto fixed = vtkSmartPointer<vtkFixedPointVolumeRayCastMapper>::New();
+  fixed->SetInputData(image);
+  fixed->SetBlendMode(parc->GetBlendMode());
+  fixed->SetAutoAdjustSampleDistances(0);
+  fixed->SetLockSampleDistanceToInputSpacing(0);
+  fixed->SetSampleDistance(parc->GetLastSampleDistance());
+  fixed->SetImageSampleDistance(1.0);
+  return fixed;
+}
+
 /// A mapper like parc (the inputs and ray functions of every port, the sample distance
 /// and supercell size) in acceleration mode.
 vtkSmartPointer<vtkPARCVolumeMapper> CopyMapper(vtkPARCVolumeMapper* parc, int mode)
@@ -552,23 +569,39 @@ void ShadowTable(vtkRenderWindow* window, vtkRenderer* renderer, vtkVolume* prop
               "light passes: the first shadowed frame's\n", rounds);
 }
 
-/// rounds x (this mapper without acceleration, with Auto, vtkFixedPointVolumeRayCastMapper),
-/// interleaved after a warm-up of each (markdown table of wall times per frame).
+/// rounds x (this mapper without acceleration, with Auto, for each shading model when the
+/// scene is shaded, then vtkFixedPointVolumeRayCastMapper), interleaved after a warm-up of
+/// each (markdown table of wall times per frame).
 void VersusFixedPoint(vtkRenderWindow* window, vtkVolume* volume, vtkPARCVolumeMapper* parc,
   vtkImageData* image, int rounds)
 {
-  const auto none = CopyMapper(parc, vtkPARCVolumeMapper::ACCELERATION_NONE);
-  const auto automatic = CopyMapper(parc, vtkPARCVolumeMapper::ACCELERATION_AUTO);
-  vtkNew<vtkFixedPointVolumeRayCastMapper> fixed;
-  fixed->SetInputData(image);
-  fixed->SetBlendMode(parc->GetBlendMode());
-  fixed->SetAutoAdjustSampleDistances(0);
-  fixed->SetLockSampleDistanceToInputSpacing(0);
-  fixed->SetSampleDistance(parc->GetLastSampleDistance());
-  fixed->SetImageSampleDistance(1.0);
-  vtkVolumeMapper* mappers[3] = { none, automatic, fixed };
-  const char* names[3] = { "PARC, acceleration none", "PARC, Auto",
-    "vtkFixedPointVolumeRayCastMapper" };
+  std::vector<vtkSmartPointer<vtkVolumeMapper>> mappers;
+  std::vector<std::string> names;
+  const bool shaded = volume->GetProperty()->GetShade() != 0;
+  for (const int model : { vtkPARCVolumeMapper::SHADING_EXACT,
+         vtkPARCVolumeMapper::SHADING_QUANTIZED_NORMALS })
+  {
+    if (model == vtkPARCVolumeMapper::SHADING_QUANTIZED_NORMALS && !shaded)
+    {
+      break;
+    }
+    const std::string suffix = shaded
+      ? std::string(", ") + vtkPARCVolumeMapper::GetShadingModelAsString(model) + " shading"
+      : "";
+    for (const int mode : { vtkPARCVolumeMapper::ACCELERATION_NONE,
+           vtkPARCVolumeMapper::ACCELERATION_AUTO })
+    {
+      const auto m = CopyMapper(parc, mode);
+      m->SetShadingModel(model);
+      mappers.push_back(m);
+      names.push_back(std::string(mode == vtkPARCVolumeMapper::ACCELERATION_AUTO
+                          ? "PARC, Auto"
+                          : "PARC, acceleration none") +
+        suffix);
+    }
+  }
+  mappers.push_back(FixedPointLike(parc, image));
+  names.push_back("vtkFixedPointVolumeRayCastMapper");
   for (vtkVolumeMapper* m : mappers)
   {
     volume->SetMapper(m);
@@ -578,23 +611,25 @@ void VersusFixedPoint(vtkRenderWindow* window, vtkVolume* volume, vtkPARCVolumeM
     }
     window->Render();
   }
-  std::vector<double> times[3];
+  std::vector<std::vector<double>> times(mappers.size());
   for (int r = 0; r < rounds; ++r)
   {
-    for (int i = 0; i < 3; ++i)
+    for (std::size_t i = 0; i < mappers.size(); ++i)
     {
       volume->SetMapper(mappers[i]);
       times[i].push_back(TimedRender(window));
     }
   }
   volume->SetMapper(parc);
-  const double fixedMedian = MinMedian(times[2]).second;
+  const double fixedMedian = MinMedian(times.back()).second;
   std::printf("| mapper | min (s) | median (s) | FixedPoint median / median |\n|---|---|---|---|\n");
-  for (int i = 0; i < 3; ++i)
+  for (std::size_t i = 0; i < mappers.size(); ++i)
   {
     const auto t = MinMedian(times[i]);
-    std::printf("| %s | %.4f | %.4f | %.2fx |\n", names[i], t.first, t.second, fixedMedian / t.second);
+    std::printf("| %s | %.4f | %.4f | %.2fx |\n", names[i].c_str(), t.first, t.second,
+      fixedMedian / t.second);
   }
+  auto* automatic = vtkPARCVolumeMapper::SafeDownCast(mappers[1]);
   std::printf("Auto used %s; %d interleaved rounds after warm-up\n",
     vtkPARCVolumeMapper::GetAccelerationModeAsString(automatic->GetLastAccelerationMode()), rounds);
 }
@@ -681,43 +716,57 @@ void BudgetRotation(vtkRenderWindow* window, vtkRenderer* renderer, vtkVolume* v
 }
 
 /// Casting cost per sample (unshaded) and per contributing shaded sample (the shaded cast
-/// minus the unshaded one), acceleration none, rounds interleaved (markdown table).
+/// minus the unshaded one) for each shading model, acceleration none, rounds interleaved
+/// (markdown table).
 void SampleCost(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, vtkVolumeProperty* property,
   int rounds)
 {
   const int mode = mapper->GetAccelerationMode();
   const int shade = property->GetShade();
+  const int model = mapper->GetShadingModel();
   mapper->SetAccelerationModeToNone();
-  std::vector<double> casting[2];
-  vtkIdType samples[2] = { 0, 0 }, contributing[2] = { 0, 0 }, gradients = 0;
+  // Unshaded, shaded exactly, shaded with quantized normals.
+  constexpr int Configurations = 3;
+  std::vector<double> casting[Configurations];
+  vtkIdType samples = 0, contributing[Configurations] = { 0, 0, 0 }, gradients = 0;
   for (int r = 0; r <= rounds; ++r) // round 0 warms up
   {
-    for (int shaded = 0; shaded < 2; ++shaded)
+    for (int c = 0; c < Configurations; ++c)
     {
-      property->SetShade(shaded);
+      property->SetShade(c > 0);
+      mapper->SetShadingModel(c == 2 ? vtkPARCVolumeMapper::SHADING_QUANTIZED_NORMALS
+                                     : vtkPARCVolumeMapper::SHADING_EXACT);
       window->Render();
       if (r > 0)
       {
-        casting[shaded].push_back(mapper->GetLastCastingTime());
+        casting[c].push_back(mapper->GetLastCastingTime());
       }
-      samples[shaded] = mapper->GetLastSampleCount();
-      contributing[shaded] = mapper->GetLastContributingSampleCount();
-      gradients = shaded ? mapper->GetLastGradientCount() : gradients;
+      samples = c == 0 ? mapper->GetLastSampleCount() : samples;
+      contributing[c] = mapper->GetLastContributingSampleCount();
+      gradients = c == 1 ? mapper->GetLastGradientCount() : gradients;
     }
   }
   property->SetShade(shade);
+  mapper->SetShadingModel(model);
   mapper->SetAccelerationMode(mode);
   const int threads = vtkSMPTools::GetEstimatedNumberOfThreads();
-  const double unshaded = MinMedian(casting[0]).first, shaded = MinMedian(casting[1]).first;
-  const double perSample = 1e9 * unshaded * threads / std::max<vtkIdType>(samples[0], 1);
-  const double perShaded =
-    1e9 * (shaded - unshaded) * threads / std::max<vtkIdType>(contributing[1], 1);
-  std::printf("| casting, unshaded (s) | casting, shaded (s) | samples | contributing | gradients "
-              "| ns per sample per thread (unshaded) | extra ns per contributing shaded sample "
-              "per thread |\n|---|---|---|---|---|---|---|\n");
-  std::printf("| %.4f | %.4f | %lld | %lld | %lld | %.1f | %.1f |\n", unshaded, shaded,
-    static_cast<long long>(samples[0]), static_cast<long long>(contributing[1]),
-    static_cast<long long>(gradients), perSample, perShaded);
+  double minimum[Configurations];
+  for (int c = 0; c < Configurations; ++c)
+  {
+    minimum[c] = MinMedian(casting[c]).first;
+  }
+  const double perSample = 1e9 * minimum[0] * threads / std::max<vtkIdType>(samples, 1);
+  auto perShaded = [&](int c) {
+    return 1e9 * (minimum[c] - minimum[0]) * threads / std::max<vtkIdType>(contributing[c], 1);
+  };
+  std::printf("| casting, unshaded (s) | shaded, exact (s) | shaded, quantized normals (s) | "
+              "samples | contributing | gradients (exact) | ns per sample per thread "
+              "(unshaded) | extra ns per contributing shaded sample per thread: exact | "
+              "quantized normals |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("| %.4f | %.4f | %.4f | %lld | %lld | %lld | %.1f | %.1f | %.1f |\n", minimum[0],
+    minimum[1], minimum[2], static_cast<long long>(samples),
+    static_cast<long long>(contributing[1]), static_cast<long long>(gradients), perSample,
+    perShaded(1), perShaded(2));
   std::printf("minimum casting times of %d interleaved rounds, %d threads\n", rounds, threads);
 }
 
@@ -747,63 +796,91 @@ double RMSE(const std::vector<unsigned char>& a, const std::vector<unsigned char
 }
 
 /// Accuracy against time: for each sample distance (in voxels of the smallest spacing)
-/// this mapper (Auto) and vtkFixedPointVolumeRayCastMapper render the scene, rounds frames
-/// interleaved; RMSE against this mapper's cast at 1/16 voxel, and FixedPoint's against
-/// its own cast at 1/16 voxel (markdown table).
+/// this mapper (Auto; with each shading model when the scene is shaded) and
+/// vtkFixedPointVolumeRayCastMapper render the scene, rounds frames interleaved; each
+/// mapper's RMSE against this mapper's exact cast at 1/16 voxel (the reference) and against
+/// its own cast at 1/16 voxel (sampling error alone) (markdown table).
 void AccuracyCurve(vtkRenderWindow* window, vtkVolume* volume, vtkPARCVolumeMapper* parc,
   vtkImageData* image, int rounds)
 {
   const double* spacing = image->GetSpacing();
   const double voxel = std::min({ spacing[0], spacing[1], spacing[2] });
-  vtkNew<vtkFixedPointVolumeRayCastMapper> fixed;
-  fixed->SetInputData(image);
-  fixed->SetBlendMode(parc->GetBlendMode());
-  fixed->SetAutoAdjustSampleDistances(0);
-  fixed->SetLockSampleDistanceToInputSpacing(0);
-  fixed->SetImageSampleDistance(1.0);
-  vtkVolumeMapper* mappers[2] = { parc, fixed };
+  std::vector<vtkSmartPointer<vtkVolumeMapper>> mappers;
+  std::vector<std::string> names;
+  parc->SetShadingModelToExact();
+  mappers.push_back(parc);
+  names.push_back("PARC Auto");
+  if (volume->GetProperty()->GetShade())
+  {
+    const auto quantized = CopyMapper(parc, vtkPARCVolumeMapper::ACCELERATION_AUTO);
+    quantized->SetShadingModelToQuantizedNormals();
+    mappers.push_back(quantized);
+    names.back() += " (exact shading)";
+    names.push_back("PARC Auto (quantized normals)");
+  }
+  const auto fixed = FixedPointLike(parc, image);
+  mappers.push_back(fixed);
+  names.push_back("FixedPoint");
   auto setDistance = [&](double d) {
-    parc->SetSampleDistance(d * voxel);
+    for (vtkVolumeMapper* m : mappers)
+    {
+      if (auto* p = vtkPARCVolumeMapper::SafeDownCast(m))
+      {
+        p->SetSampleDistance(d * voxel);
+      }
+    }
     fixed->SetSampleDistance(d * voxel);
   };
   constexpr double ReferenceDistance = 1.0 / 16.0;
   setDistance(ReferenceDistance);
-  std::vector<unsigned char> references[2];
-  for (int i = 0; i < 2; ++i)
+  std::vector<std::vector<unsigned char>> references;
+  for (vtkVolumeMapper* m : mappers)
   {
-    volume->SetMapper(mappers[i]);
+    volume->SetMapper(m);
     window->Render();
-    references[i] = WindowPixels(window);
+    references.push_back(WindowPixels(window));
   }
-  std::printf("| sample distance (voxels) | PARC Auto median (s) | PARC RMSE | FixedPoint median "
-              "(s) | FixedPoint RMSE against PARC's reference | FixedPoint RMSE against its own "
-              "|\n|---|---|---|---|---|---|\n");
+  std::printf("| sample distance (voxels) |");
+  for (const std::string& name : names)
+  {
+    std::printf(" %s median (s) | RMSE | RMSE against its own |", name.c_str());
+  }
+  std::printf("\n|---|");
+  for (std::size_t i = 0; i < mappers.size(); ++i)
+  {
+    std::printf("---|---|---|");
+  }
+  std::printf("\n");
   for (double d : { 2.0, 1.0, 0.5, 0.25, 0.125 })
   {
     setDistance(d);
-    std::vector<double> times[2];
-    std::vector<unsigned char> pixels[2];
-    for (int i = 0; i < 2; ++i) // warm-up, and Auto's trials
+    std::vector<std::vector<double>> times(mappers.size());
+    std::vector<std::vector<unsigned char>> pixels;
+    for (vtkVolumeMapper* m : mappers) // warm-up, and Auto's trials
     {
-      volume->SetMapper(mappers[i]);
-      if (auto* p = vtkPARCVolumeMapper::SafeDownCast(mappers[i]))
+      volume->SetMapper(m);
+      if (auto* p = vtkPARCVolumeMapper::SafeDownCast(m))
       {
         WarmUp(window, p);
       }
       window->Render();
-      pixels[i] = WindowPixels(window);
+      pixels.push_back(WindowPixels(window));
     }
     for (int r = 0; r < rounds; ++r)
     {
-      for (int i = 0; i < 2; ++i)
+      for (std::size_t i = 0; i < mappers.size(); ++i)
       {
         volume->SetMapper(mappers[i]);
         times[i].push_back(TimedRender(window));
       }
     }
-    std::printf("| %g | %.4f | %.2f | %.4f | %.2f | %.2f |\n", d, MinMedian(times[0]).second,
-      RMSE(pixels[0], references[0]), MinMedian(times[1]).second, RMSE(pixels[1], references[0]),
-      RMSE(pixels[1], references[1]));
+    std::printf("| %g |", d);
+    for (std::size_t i = 0; i < mappers.size(); ++i)
+    {
+      std::printf(" %.4f | %.2f | %.2f |", MinMedian(times[i]).second,
+        RMSE(pixels[i], references[0]), RMSE(pixels[i], references[i]));
+    }
+    std::printf("\n");
   }
   std::printf("%d interleaved rounds per distance, Auto used %s at the last\n", rounds,
     vtkPARCVolumeMapper::GetAccelerationModeAsString(parc->GetLastAccelerationMode()));
