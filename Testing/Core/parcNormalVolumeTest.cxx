@@ -157,51 +157,56 @@ TEST(NormalVolume, BuildIsTheSameForOneAndManyThreads)
 
 // The table shading replaces the gradient: no gradient is evaluated, the image is close to
 // the exact model's but not the same, and it does not depend on the segment source or the
-// number of threads.
+// number of threads; with linear and nearest interpolation.
 TEST(NormalVolume, QuantizedShadingIsCloseToExactAndTheSameForEverySource)
 {
   const parc::ScalarField field = parctest::Blobs();
   NormalVolume normals;
   normals.Build(field);
-  const auto exactParameters = ShadedBlobParameters(parc::ShadingModel::Exact, nullptr);
-  const auto quantizedParameters =
-    ShadedBlobParameters(parc::ShadingModel::QuantizedNormals, &normals);
-  parc::CastStatistics exactStats, wholeStats, oracleStats, oneThreadStats;
-  bool quantized = false;
-  const auto exact = CastBlobs(field, exactParameters, parc::WholeRaySource(), exactStats);
-  vtkSMPTools::Initialize(4);
-  const auto whole =
-    CastBlobs(field, quantizedParameters, parc::WholeRaySource(), wholeStats, &quantized);
-  EXPECT_TRUE(quantized);
-  EXPECT_EQ(wholeStats.GradientEvaluations, 0u);
-  EXPECT_GT(exactStats.GradientEvaluations, 1000u);
-
-  parc::RangePyramid pyramid;
-  pyramid.Build(field);
-  parc::ContributionRule rule;
-  rule.Set(quantizedParameters, field.GetRange());
-  parc::SupercellGrid grid;
-  const double size[3] = { 2.0, 2.0, 2.0 };
-  ASSERT_TRUE(grid.Configure(pyramid.GetCellDimensions(), size));
-  grid.Classify(pyramid, rule, quantizedParameters.Interp);
-  const parc::SegmentOracle oracle(grid, quantizedParameters.WorldToIndex);
-  const auto oracleImage = CastBlobs(field, quantizedParameters, oracle, oracleStats);
-  EXPECT_TRUE(SameBits(whole, oracleImage));
-  EXPECT_LT(oracleStats.Samples, wholeStats.Samples);
-  vtkSMPTools::Initialize(1);
-  EXPECT_TRUE(SameBits(whole, CastBlobs(field, quantizedParameters, parc::WholeRaySource(),
-    oneThreadStats)));
-
-  double sum = 0.0, largest = 0.0;
-  for (std::size_t i = 0; i < exact.size(); ++i)
+  for (const parc::Interpolation interpolation :
+    { parc::Interpolation::Linear, parc::Interpolation::Nearest })
   {
-    const double d = std::abs(exact[i] - whole[i]);
-    sum += d;
-    largest = std::max(largest, d);
+    SCOPED_TRACE(interpolation == parc::Interpolation::Linear ? "linear" : "nearest");
+    auto exactParameters = ShadedBlobParameters(parc::ShadingModel::Exact, nullptr);
+    auto quantizedParameters = ShadedBlobParameters(parc::ShadingModel::QuantizedNormals, &normals);
+    exactParameters.Interp = quantizedParameters.Interp = interpolation;
+    parc::CastStatistics exactStats, wholeStats, oracleStats, oneThreadStats;
+    bool quantized = false;
+    const auto exact = CastBlobs(field, exactParameters, parc::WholeRaySource(), exactStats);
+    vtkSMPTools::Initialize(4);
+    const auto whole =
+      CastBlobs(field, quantizedParameters, parc::WholeRaySource(), wholeStats, &quantized);
+    EXPECT_TRUE(quantized);
+    EXPECT_EQ(wholeStats.GradientEvaluations, 0u);
+    EXPECT_GT(exactStats.GradientEvaluations, 1000u);
+
+    parc::RangePyramid pyramid;
+    pyramid.Build(field);
+    parc::ContributionRule rule;
+    rule.Set(quantizedParameters, field.GetRange());
+    parc::SupercellGrid grid;
+    const double size[3] = { 2.0, 2.0, 2.0 };
+    ASSERT_TRUE(grid.Configure(pyramid.GetCellDimensions(), size));
+    grid.Classify(pyramid, rule, interpolation);
+    const parc::SegmentOracle oracle(grid, quantizedParameters.WorldToIndex);
+    const auto oracleImage = CastBlobs(field, quantizedParameters, oracle, oracleStats);
+    EXPECT_TRUE(SameBits(whole, oracleImage));
+    EXPECT_LT(oracleStats.Samples, wholeStats.Samples);
+    vtkSMPTools::Initialize(1);
+    EXPECT_TRUE(SameBits(whole,
+      CastBlobs(field, quantizedParameters, parc::WholeRaySource(), oneThreadStats)));
+
+    double sum = 0.0, largest = 0.0;
+    for (std::size_t i = 0; i < exact.size(); ++i)
+    {
+      const double d = std::abs(exact[i] - whole[i]);
+      sum += d;
+      largest = std::max(largest, d);
+    }
+    EXPECT_GT(largest, 0.0) << "the quantized model is in use";
+    EXPECT_LT(sum / exact.size(), 0.01);
+    EXPECT_LT(largest, 0.15);
   }
-  EXPECT_GT(largest, 0.0) << "the quantized model is in use";
-  EXPECT_LT(sum / exact.size(), 0.01);
-  EXPECT_LT(largest, 0.15);
 }
 
 // Lights that the table cannot hold (positional, shadow-casting) and normals of another

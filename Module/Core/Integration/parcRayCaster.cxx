@@ -643,14 +643,8 @@ void RayContext<View>::ShadeQuantized(float rgb[3], double t, int j) const
   float diffuse[4], specular[4];
   if (this->P.Interp == Interpolation::Nearest)
   {
-    const int* dims = normals.GetDimensions();
-    const Vec3 p = this->IndexPosition(t);
     int voxel[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      const double x = std::floor(p[a] + 0.5); // the nearest voxel, as SampleNearest
-      voxel[a] = x > 0.0 ? std::min(static_cast<int>(x), dims[a] - 1) : 0;
-    }
+    NearestVoxel(this->IndexPosition(t), normals.GetDimensions(), voxel);
     const RayCaster::ShadingFactors& f = table[normals.At(voxel[0], voxel[1], voxel[2])];
     std::copy_n(f.Diffuse, 4, diffuse);
     std::copy_n(f.Specular, 4, specular);

@@ -67,6 +67,21 @@ constexpr ScalarType ScalarTypeOf()
   }
 }
 
+/// The voxel nearest to index coordinates p in a box of dims voxels (ties round up;
+/// clamped to the box).
+inline void NearestVoxel(const Vec3& p, const int dims[3], int voxel[3])
+{
+  for (int a = 0; a < 3; ++a)
+  {
+    double x = std::floor(p[a] + 0.5);
+    if (!(x > 0.0))
+    {
+      x = 0.0;
+    }
+    voxel[a] = std::min(static_cast<int>(x), dims[a] - 1);
+  }
+}
+
 /// Where a sample lies: its cell, its fractions in the cell and the cell's first voxel.
 struct SampleLocation
 {
@@ -217,15 +232,7 @@ public:
   float SampleNearest(const Vec3& p) const
   {
     int idx[3];
-    for (int a = 0; a < 3; ++a)
-    {
-      double x = std::floor(p[a] + 0.5);
-      if (!(x > 0.0))
-      {
-        x = 0.0;
-      }
-      idx[a] = std::min(static_cast<int>(x), this->Dims[a] - 1);
-    }
+    NearestVoxel(p, this->Dims, idx);
     return this->Value(idx[0], idx[1], idx[2]);
   }
   float Sample(const Vec3& p, Interpolation mode) const
