@@ -1714,6 +1714,7 @@ vtkPARCVolumeMapper::vtkVolumeState::Memory() const
   return { { "scalar copy", this->Field.GetMemorySize() },
     { "mask copy", this->Mask.GetMemorySize() },
     { "quantized normals", this->Normals.GetMemorySize() },
+    { "normal shading table", this->Caster.GetShadingTableMemorySize() },
     { "range pyramid", this->Plan.GetPyramidMemorySize() },
     { "supercell flags", this->Plan.GetGrid().GetMemorySize() },
     { "depth model", this->Plan.GetDepthModelMemorySize() },

@@ -187,11 +187,9 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
     }
   }
   k.SortedIsoValues = UsedIsoValues(*parameters);
-  k.NormalShading.clear();
-  if (QuantizedNormalsApply(*field, *parameters))
-  {
-    k.NormalShading = NormalShadingTable(*parameters);
-  }
+  k.NormalShading = QuantizedNormalsApply(*field, *parameters)
+    ? NormalShadingTable(*parameters)
+    : std::vector<ShadingFactors>(); // frees the table of an earlier render
   k.GradientNeeded = (parameters->Shade && k.NormalShading.empty()) ||
     (parameters->UseGradientOpacity && !k.GradientOpacityConstant);
   return true;

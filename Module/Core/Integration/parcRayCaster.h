@@ -129,6 +129,11 @@ public:
   bool NeedsGradient() const { return this->Constants.GradientNeeded; }
   /// Whether shaded samples use the quantized normals (see CastParameters::Shading).
   bool UsesQuantizedNormals() const { return !this->Constants.NormalShading.empty(); }
+  /// Bytes of the quantized normals' shading table (0 for exact shading).
+  std::size_t GetShadingTableMemorySize() const
+  {
+    return this->Constants.NormalShading.capacity() * sizeof(ShadingFactors);
+  }
 
   /// A directional light as the shading uses it: colours times the material's
   /// coefficients, in float like every per-sample shading step.
