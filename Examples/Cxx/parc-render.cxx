@@ -1145,14 +1145,7 @@ int main(int argc, char* argv[])
     blend != vtkVolumeMapper::AVERAGE_INTENSITY_BLEND;
   if (o.Compare && fixedSupports)
   {
-    vtkNew<vtkFixedPointVolumeRayCastMapper> fixed;
-    fixed->SetInputData(image);
-    fixed->SetBlendMode(blend);
-    fixed->SetAutoAdjustSampleDistances(0);
-    fixed->SetLockSampleDistanceToInputSpacing(0);
-    fixed->SetSampleDistance(mapper->GetLastSampleDistance());
-    fixed->SetImageSampleDistance(1.0);
-    volume->SetMapper(fixed);
+    volume->SetMapper(FixedPointLike(mapper, image));
     window->Render();
     fixedWall = 0.0;
     for (int r = 0; r < o.Repeat; ++r)

@@ -75,6 +75,16 @@ std::vector<RayCaster::ShadingFactors> NormalShadingTable(const CastParameters& 
 {
   std::vector<RayCaster::ShadingFactors> table(NormalVolume::Count);
   const Vec3 toEye = p.ShadingViewDirection;
+  struct LightDirections
+  {
+    Vec3 ToLight, Half;
+  };
+  std::vector<LightDirections> directions;
+  for (const Light& light : p.Lights)
+  {
+    const Vec3 toLight = Normalized(light.Position - light.FocalPoint);
+    directions.push_back({ toLight, Normalized(toLight + toEye) });
+  }
   for (std::size_t code = 0; code < table.size(); ++code)
   {
     RayCaster::ShadingFactors& f = table[code];
@@ -94,13 +104,13 @@ std::vector<RayCaster::ShadingFactors> NormalShadingTable(const CastParameters& 
     n = Normalized(n);
     n = Dot(n, toEye) > 0.0 ? n : -n;
     double diffuse[3] = { 0.0, 0.0, 0.0 }, specular[3] = { 0.0, 0.0, 0.0 };
-    for (const Light& light : p.Lights)
+    for (std::size_t i = 0; i < p.Lights.size(); ++i)
     {
-      const Vec3 toLight = Normalized(light.Position - light.FocalPoint);
-      const double ndl = Dot(n, toLight);
+      const Light& light = p.Lights[i];
+      const double ndl = Dot(n, directions[i].ToLight);
       if (ndl > 0.0)
       {
-        const double ndh = Dot(n, Normalized(toLight + toEye));
+        const double ndh = Dot(n, directions[i].Half);
         const double spec = ndh > 0.0 ? std::pow(ndh, p.SpecularPower) : 0.0;
         for (int c = 0; c < 3; ++c)
         {
