@@ -76,6 +76,9 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
                         (Auto, each shading model when shaded) and FixedPoint (table)
   --edit-cost R         R rounds of a transfer-function edit: the frame right after the
                         edit against the warm frame after it (minimum, median, ratio)
+  --auto-trials R       R rounds of a fresh mapper in Auto: each frame until Auto has
+                        settled (its mode and wall time), then 3 settled frames; the
+                        slowest trial frame against the settled one (table)
   --thread-scaling R    R interleaved rounds of one thread and all threads per acceleration
                         mode: median frame times and their ratio (table)
   --threads N           threads for vtkSMPTools (default: all cores)
@@ -113,7 +116,7 @@ struct Options
   bool HasIso = false, Shade = false, Parallel = false, Compare = false, Json = false;
   bool HasPosition = false, HasFocal = false, CompareAcceleration = false, Memory = false;
   double BudgetRate = 0.0;
-  int ShadowTableRounds = 0, Versus = 0, SampleCost = 0, Threads = 0, Accuracy = 0, EditCost = 0, ThreadScaling = 0;
+  int ShadowTableRounds = 0, Versus = 0, SampleCost = 0, Threads = 0, Accuracy = 0, EditCost = 0, ThreadScaling = 0, AutoTrials = 0;
   double Supercell[3] = { 2, 2, 2 };
   std::vector<double> Sweep;
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
@@ -202,6 +205,7 @@ Options Parse(int argc, char* argv[])
     else if (a == "--sample-cost") { o.SampleCost = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--accuracy-curve") { o.Accuracy = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--edit-cost") { o.EditCost = static_cast<int>(ToNumber(a, value())); }
+    else if (a == "--auto-trials") { o.AutoTrials = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--thread-scaling") { o.ThreadScaling = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--threads") { o.Threads = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--memory") { o.Memory = true; }
@@ -261,10 +265,10 @@ Options Parse(int argc, char* argv[])
     Fail("--budget takes a positive rate in frames per second");
   }
   if (o.Versus < 0 || o.SampleCost < 0 || o.Threads < 0 || o.Accuracy < 0 || o.EditCost < 0 ||
-    o.ThreadScaling < 0)
+    o.ThreadScaling < 0 || o.AutoTrials < 0)
   {
     Fail("--versus-fixed-point, --sample-cost, --accuracy-curve, --edit-cost, "
-         "--thread-scaling and --threads take a positive number");
+         "--thread-scaling, --auto-trials and --threads take a positive number");
   }
   return o;
 }
@@ -920,6 +924,57 @@ void EditCost(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, vtkVolumePro
   std::printf("\n");
 }
 
+/// Auto's trial frames: rounds times a fresh mapper like mapper in Auto renders until it has
+/// settled (its first frame also builds everything), then 3 more frames. Per round: the
+/// modes and wall times of the frames, and the slowest frame after the first against the
+/// median settled frame (markdown table).
+void AutoTrialFrames(vtkRenderWindow* window, vtkVolume* volume, vtkPARCVolumeMapper* mapper,
+  int rounds)
+{
+  constexpr int MaxFrames = 12, SettledFrames = 3;
+  std::printf("| round | frames: mode (s) | first frame (s) | settled (s) | slowest trial "
+              "/ settled |\n|---|---|---|---|---|\n");
+  std::vector<double> ratios;
+  for (int r = 0; r < rounds; ++r)
+  {
+    const auto fresh = CopyMapper(mapper, vtkPARCVolumeMapper::ACCELERATION_AUTO);
+    volume->SetMapper(fresh);
+    std::vector<double> times;
+    std::string frames;
+    int settledAfter = -1;
+    for (int f = 0; f < MaxFrames; ++f)
+    {
+      if (settledAfter >= 0 && static_cast<int>(times.size()) - settledAfter >= SettledFrames)
+      {
+        break;
+      }
+      times.push_back(TimedRender(window));
+      frames += std::string(f > 0 ? ", " : "") +
+        vtkPARCVolumeMapper::GetAccelerationModeAsString(fresh->GetLastAccelerationMode()) +
+        " (" + std::to_string(times.back()).substr(0, 6) + ")";
+      if (settledAfter < 0 && fresh->GetAutoTrialsRemaining() == 0)
+      {
+        settledAfter = static_cast<int>(times.size());
+      }
+    }
+    if (settledAfter < 0)
+    {
+      settledAfter = static_cast<int>(times.size());
+    }
+    const double settled = MinMedian(std::vector<double>(times.begin() + settledAfter, times.end())).second;
+    const double slowest = settledAfter > 1
+      ? *std::max_element(times.begin() + 1, times.begin() + settledAfter)
+      : settled;
+    ratios.push_back(slowest / settled);
+    std::printf("| %d | %s | %.4f | %.4f | %.2fx |\n", r + 1, frames.c_str(), times[0], settled,
+      ratios.back());
+  }
+  std::printf("slowest trial frame / settled frame: at most %.2fx over %d rounds (the first "
+              "frame, which builds, not counted)\n",
+    *std::max_element(ratios.begin(), ratios.end()), rounds);
+  volume->SetMapper(mapper);
+}
+
 /// Scaling with threads: per acceleration mode, rounds frames with one thread interleaved
 /// with frames with all threads (markdown table of medians and their ratio).
 void ThreadScaling(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, int rounds)
@@ -1192,6 +1247,10 @@ int main(int argc, char* argv[])
   if (o.ThreadScaling > 0)
   {
     ThreadScaling(window, mapper, o.ThreadScaling);
+  }
+  if (o.AutoTrials > 0)
+  {
+    AutoTrialFrames(window, volume, mapper, o.AutoTrials);
   }
   if (o.ShadowTableRounds > 0)
   {

@@ -1178,9 +1178,14 @@ void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
       : 1.0 / static_cast<double>(this->Rendered.size());
     const bool setUp = volume.Plan.GetModelBuilds() != before[v].ModelBuilds ||
       volume.Rasterizer->GetUploadCount() != before[v].Uploads;
+    parc::FrameMeasure frame;
+    frame.Projection = volume.ProjectionTime;
+    frame.Casting = share * this->CastingTime;
+    frame.Samples = static_cast<double>(volume.Stats.Samples);
+    frame.Contributing = static_cast<double>(volume.Stats.ContributingSamples);
+    frame.Timing = volume.Stats.Timing;
     volume.Plan.Auto.Record(volume.Plan.GetModelVersion(),
-      volume.Plan.GetGrid().GetNumberOfContributing(), volume.ProjectionTime,
-      share * this->CastingTime, completed && !setUp);
+      volume.Plan.GetGrid().GetNumberOfContributing(), frame, completed && !setUp);
   }
 }
 

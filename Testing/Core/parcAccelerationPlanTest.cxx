@@ -85,3 +85,109 @@ TEST(AccelerationPlan, ColourModelsHaveVersionsOfTheirOwn)
   EXPECT_EQ(std::unique(versions.begin(), versions.end()), versions.end());
   EXPECT_EQ(plan.GetColorModel(1, false).MajorAxis, 1);
 }
+
+using parc::AutoTrials;
+using parc::FrameMeasure;
+using parc::RayCostFit;
+
+namespace
+{
+/// A fit of rays whose times follow t = 100 ns + sample s + 40 ns k exactly; each ray's
+/// unaccelerated samples are twice its samples.
+RayCostFit ExactFit(double sample, int rays = 1000)
+{
+  RayCostFit fit;
+  for (int i = 0; i < rays; ++i)
+  {
+    const double s = 100 + i % 301, k = (7 * i) % 151;
+    fit.Add(s, k, 100e-9 + sample * s + 40e-9 * k, 2.0 * s);
+  }
+  return fit;
+}
+
+/// A frame measure of the given times over samples and contributing samples, with fit.
+FrameMeasure Frame(double projection, double casting, double samples, const RayCostFit& fit)
+{
+  FrameMeasure frame;
+  frame.Projection = projection;
+  frame.Casting = casting;
+  frame.Samples = samples;
+  frame.Contributing = 0.5 * samples;
+  frame.Timing = fit;
+  return frame;
+}
+}
+
+TEST(RayCostFit, RecoversTheCostOfASampleAndRefusesDegenerateRays)
+{
+  double b = 0.0;
+  ASSERT_TRUE(ExactFit(7e-9).SampleCost(b));
+  EXPECT_NEAR(b, 7e-9, 1e-13);
+  EXPECT_FALSE(ExactFit(7e-9, 10).SampleCost(b)) << "too few rays";
+  RayCostFit proportional; // k = s / 2 on every ray: b and c cannot be told apart
+  for (int i = 0; i < 100; ++i)
+  {
+    proportional.Add(2.0 * i, i, 1e-6 * i, 0.0);
+  }
+  b = -1.0;
+  EXPECT_FALSE(proportional.SampleCost(b));
+  EXPECT_EQ(b, -1.0);
+}
+
+TEST(AutoTrials, TriesOnlyThePassesPredictedToWin)
+{
+  AutoTrials autoTrials;
+  EXPECT_EQ(autoTrials.Choose(1, 100, 200, 200), AutoTrials::Depth) << "depth first";
+  EXPECT_EQ(autoTrials.Remaining(), AutoTrials::Count);
+  // Depth: a dear pass (0.1 s) and cheap empty samples: None, which adds as many samples
+  // as Depth takes (see ExactFit), is predicted at about 0.02 + 0.01 s; Color's projection
+  // alone (1.75 x 0.1 s) is predicted slower than Depth, and Both slower still.
+  const RayCostFit fit = ExactFit(10e-9);
+  const double samples = fit.Samples() * RayCostFit::ColumnStride;
+  autoTrials.Record(1, 100, Frame(0.1, 0.02, samples, fit), true);
+  EXPECT_EQ(autoTrials.Remaining(), 1);
+  ASSERT_EQ(autoTrials.Choose(1, 100, 200, 200), AutoTrials::None);
+  RayCostFit noneFit = ExactFit(10e-9);
+  autoTrials.Record(1, 100, Frame(0.0, 0.03, 2.0 * samples, noneFit), true);
+  EXPECT_EQ(autoTrials.Remaining(), 0) << "settled: Color and Both are predicted slower";
+  for (int frame = 0; frame < 3; ++frame)
+  {
+    EXPECT_EQ(autoTrials.Choose(1, 100, 200, 200), AutoTrials::None);
+    autoTrials.Record(1, 100, Frame(0.0, 0.03, 2.0 * samples, noneFit), true);
+  }
+  EXPECT_FALSE(autoTrials.Estimates[AutoTrials::Color].Measured);
+  EXPECT_FALSE(autoTrials.Estimates[AutoTrials::Both].Measured);
+  // A new image size is predicted from the same measurements: no trial.
+  EXPECT_EQ(autoTrials.Choose(2, 100, 400, 400), AutoTrials::None);
+  EXPECT_EQ(autoTrials.Remaining(), 0);
+}
+
+TEST(AutoTrials, TriesAPassPredictedFasterAndLearnsTheColourProjection)
+{
+  AutoTrials autoTrials;
+  autoTrials.Choose(1, 100, 200, 200);
+  // Depth: a cheap pass and dear empty samples inside its segments: Color, which is
+  // predicted to skip half of them, is tried; None is predicted slower.
+  const RayCostFit fit = ExactFit(40e-9);
+  const double samples = fit.Samples() * RayCostFit::ColumnStride;
+  autoTrials.Record(1, 100, Frame(0.005, 0.2, samples, fit), true);
+  ASSERT_EQ(autoTrials.Choose(1, 100, 200, 200), AutoTrials::Color);
+  autoTrials.Record(1, 100, Frame(0.02, 0.05, 0.4 * samples, fit), true);
+  EXPECT_DOUBLE_EQ(autoTrials.ColorProjectionRatio, 0.02 / 0.005);
+  // Both: both projections and at best Color's casting, 0.075 s against Color's 0.07 s.
+  EXPECT_EQ(autoTrials.Remaining(), 0);
+  EXPECT_EQ(autoTrials.Choose(1, 100, 200, 200), AutoTrials::Color);
+}
+
+TEST(AutoTrials, WithoutTimedRaysEveryPassIsTriedInTurn)
+{
+  AutoTrials autoTrials;
+  const int order[] = { AutoTrials::Depth, AutoTrials::Color, AutoTrials::Both, AutoTrials::None };
+  for (int c : order)
+  {
+    ASSERT_EQ(autoTrials.Choose(1, 100, 200, 200), c);
+    autoTrials.Record(1, 100, Frame(0.01, 0.01 * (c + 1), 1000.0, RayCostFit()), true);
+  }
+  EXPECT_EQ(autoTrials.Remaining(), 0);
+  EXPECT_EQ(autoTrials.Choose(1, 100, 200, 200), AutoTrials::Depth) << "the fastest";
+}

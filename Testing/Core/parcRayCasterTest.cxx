@@ -454,6 +454,11 @@ TEST(RayCaster, SparseSegmentsGiveBitIdenticalImages)
       EXPECT_LT(s2.Samples, s1.Samples);
       EXPECT_EQ(s1.ContributingSamples, s2.ContributingSamples);
       EXPECT_GT(s1.ContributingSamples, 0u);
+      // Both casts know the samples of the unaccelerated one (early termination included).
+      EXPECT_EQ(s1.UnacceleratedSamples, s1.Samples);
+      EXPECT_EQ(s2.UnacceleratedSamples, s1.Samples);
+      // Every fourth column is timed.
+      EXPECT_EQ(s2.Timing.Rays(), 12.0 * 40.0);
     }
   }
 }

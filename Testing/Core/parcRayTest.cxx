@@ -263,3 +263,11 @@ TEST(Camera, MayMeetBoxRejectsOnlyBoxesNoRayMeetsPerspective)
   EXPECT_FALSE(cameras[0].MayMeetBox(identity, Vec3{ -30, -2, -2 }, Vec3{ -20, 2, 2 }));
   EXPECT_TRUE(cameras[0].MayMeetBox(identity, corners[0], corners[7]));
 }
+
+TEST(Ray, LatticeSampleCountCountsTheSamplesOfAnInterval)
+{
+  EXPECT_EQ(parc::LatticeSampleCount(0.3, 2.0, 0.5), 4); // 0.5, 1, 1.5, 2
+  EXPECT_EQ(parc::LatticeSampleCount(-1.0, 1.0, 0.5), 5);
+  EXPECT_EQ(parc::LatticeSampleCount(0.6, 0.9, 0.5), 0);
+  EXPECT_EQ(parc::LatticeSampleCount(2.0, 1.0, 0.5), 0);
+}

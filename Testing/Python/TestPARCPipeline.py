@@ -89,10 +89,11 @@ class TestPARCPipeline(unittest.TestCase):
         self.assertTrue((green[:, [0, 2]] == black[:, [0, 2]]).all())
         self.assertGreater(white[:, 0].sum(), green[:, 0].sum() + 1.0, "highlights show")
 
-    def test_auto_tries_each_pass(self):
-        """Auto tries depth, colour, both and none in turn (a frame that also builds or
-        uploads a model is tried again), then keeps one; every frame gives the same float
-        image; neither a transfer-function edit nor a new ray image size brings new trials."""
+    def test_auto_settles(self):
+        """Auto starts with depth (a frame that also builds or uploads a model is tried
+        again), tries in turn only the passes its measurements predict faster, then keeps
+        one; every frame gives the same float image; neither a transfer-function edit nor a
+        new ray image size brings new trials."""
         mapper, window = make_scene()
         volume = window.GetRenderers().GetFirstRenderer().GetVolumes().GetItemAsObject(0)
         opacity = volume.GetProperty().GetScalarOpacity()
@@ -112,8 +113,8 @@ class TestPARCPipeline(unittest.TestCase):
                 break
         self.assertLess(mapper.GetLastContributingSupercellCount(), mapper.GetLastSupercellCount())
         self.assertEqual(mapper.GetAutoTrialsRemaining(), 0, used)
-        self.assertEqual(sorted(set(used), key=order.index), order, used)
-        self.assertEqual(used, sorted(used, key=order.index), "trials in order")
+        self.assertEqual(used[0], "DepthBuffer", used)
+        self.assertTrue(set(used) <= set(order), used)
         for _ in range(3):
             window.Render()
             chosen = vtkPARCVolumeMapper.GetAccelerationModeAsString(mapper.GetLastAccelerationMode())

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace parc
 {
@@ -23,53 +24,148 @@ int AutoTrials::Choose(std::uint64_t modelVersion, std::size_t contributing, int
 {
   this->Size[0] = width;
   this->Size[1] = height;
-  this->Chosen = -1;
-  for (int i = 0; i < Count; ++i)
-  {
-    const Estimate& e = this->Estimates[i];
-    if (!e.Measured)
-    {
-      if (allowTrials)
-      {
-        this->Chosen = i;
-        return i;
-      }
-      continue;
-    }
-    if (this->Chosen < 0 ||
-      this->Predict(e, modelVersion, contributing) <
-        this->Predict(this->Estimates[this->Chosen], modelVersion, contributing))
-    {
-      this->Chosen = i;
-    }
-  }
-  this->Chosen = std::max(this->Chosen, 0);
+  this->LastModelVersion = modelVersion;
+  this->LastContributing = contributing;
+  const bool trials = allowTrials && !this->Settled;
+  this->Chosen = std::max(this->Best(modelVersion, contributing, trials), 0);
+  // The first frame that may try a pass but needs none ends the trials.
+  this->Settled = this->Settled || (trials && this->Estimates[this->Chosen].Measured);
   return this->Chosen;
 }
 
-double AutoTrials::Predict(
+int AutoTrials::Best(std::uint64_t modelVersion, std::size_t contributing, bool predictions,
+  double* seconds) const
+{
+  int best = -1;
+  double least = 0.0;
+  for (int c = 0; c < Count; ++c)
+  {
+    const Estimate& e = this->Estimates[c];
+    double t = 0.0;
+    if (e.Measured)
+    {
+      t = this->Predict(e, modelVersion, contributing);
+    }
+    else if (!predictions)
+    {
+      continue;
+    }
+    else if (!this->PredictUnmeasured(c, modelVersion, contributing, t))
+    {
+      t = -std::numeric_limits<double>::infinity(); // nothing to predict from: try it
+    }
+    if (best < 0 || t < least)
+    {
+      best = c;
+      least = t;
+    }
+  }
+  if (seconds)
+  {
+    *seconds = least;
+  }
+  return best;
+}
+
+double AutoTrials::ProjectionOf(
   const Estimate& e, std::uint64_t modelVersion, std::size_t contributing) const
 {
   const double scale = (e.ModelVersion == modelVersion || e.Contributing == 0)
     ? 1.0
     : static_cast<double>(contributing) / static_cast<double>(e.Contributing);
-  const double rays = static_cast<double>(this->Size[0]) * this->Size[1];
-  const double raysScale = e.Rays > 0.0 ? rays / e.Rays : 1.0;
-  return raysScale * (scale * e.Projection + e.Casting);
+  return this->RaysScale(e) * scale * e.Projection;
 }
 
-void AutoTrials::Record(std::uint64_t modelVersion, std::size_t contributing, double projection,
-  double casting, bool representative)
+double AutoTrials::RaysScale(const Estimate& e) const
+{
+  const double rays = static_cast<double>(this->Size[0]) * this->Size[1];
+  return e.Rays > 0.0 ? rays / e.Rays : 1.0;
+}
+
+double AutoTrials::Predict(
+  const Estimate& e, std::uint64_t modelVersion, std::size_t contributing) const
+{
+  return this->ProjectionOf(e, modelVersion, contributing) + this->RaysScale(e) * e.Casting;
+}
+
+bool AutoTrials::PredictUnmeasured(
+  int c, std::uint64_t modelVersion, std::size_t contributing, double& seconds) const
+{
+  const Estimate& depth = this->Estimates[Depth];
+  if (this->SampleSeconds <= 0.0 || !depth.Measured)
+  {
+    return false;
+  }
+  if (c == None)
+  {
+    Estimate none = depth;
+    none.Projection = 0.0;
+    none.Casting += (this->UnacceleratedSamples - depth.Samples) * this->SampleSeconds;
+    seconds = this->Predict(none, modelVersion, contributing);
+    return true;
+  }
+  // Colour: Depth's samples less half of those that contribute nothing.
+  const Estimate& measuredColor = this->Estimates[Color];
+  Estimate color = depth;
+  color.Projection *= this->ColorProjectionRatio;
+  color.Casting = std::max(
+    depth.Casting - 0.5 * (depth.Samples - depth.ContributingSamples) * this->SampleSeconds, 0.0);
+  if (c == Color)
+  {
+    seconds = this->Predict(color, modelVersion, contributing);
+    return true;
+  }
+  // Both passes, and at best the faster casting of the two.
+  const Estimate& colorPart = measuredColor.Measured ? measuredColor : color;
+  seconds = this->ProjectionOf(depth, modelVersion, contributing) +
+    this->ProjectionOf(colorPart, modelVersion, contributing) +
+    std::min(this->RaysScale(depth) * depth.Casting, this->RaysScale(colorPart) * colorPart.Casting);
+  return true;
+}
+
+void AutoTrials::RecordSampleCost(const FrameMeasure& frame)
+{
+  const RayCostFit& fit = frame.Timing;
+  if (fit.Rays() == 0.0)
+  {
+    this->SampleSeconds = 0.0; // not timed: no predictions
+    return;
+  }
+  // The timed rays' thread-seconds, scaled to all rays, against the wall time.
+  const double threadSeconds = fit.Sums[3] * RayCostFit::ColumnStride;
+  double b = 0.0;
+  if (fit.SampleCost(b) && b > 0.0 && threadSeconds > 0.0)
+  {
+    this->SampleSeconds = b * frame.Casting / threadSeconds;
+  }
+  else if (frame.Samples > 0.0)
+  {
+    this->SampleSeconds = NonContributingShare * frame.Casting / frame.Samples;
+  }
+  this->UnacceleratedSamples =
+    frame.Samples + (fit.Unaccelerated - fit.Samples()) * RayCostFit::ColumnStride;
+}
+
+void AutoTrials::Record(std::uint64_t modelVersion, std::size_t contributing,
+  const FrameMeasure& frame, bool representative)
 {
   if (this->Chosen >= 0 && representative)
   {
     Estimate& e = this->Estimates[this->Chosen];
     const double rays = static_cast<double>(this->Size[0]) * this->Size[1];
     if (!e.Measured || e.ModelVersion != modelVersion || e.ViewVersion != this->ViewVersion ||
-      e.Rays != rays || projection + casting < e.Projection + e.Casting)
+      e.Rays != rays || frame.Projection + frame.Casting < e.Projection + e.Casting)
     {
-      e = { true, modelVersion, this->ViewVersion, contributing,
-        static_cast<double>(this->Size[0]) * this->Size[1], projection, casting };
+      e = { true, modelVersion, this->ViewVersion, contributing, rays, frame.Projection,
+        frame.Casting, frame.Samples, frame.Contributing };
+    }
+    this->RecordSampleCost(frame);
+    const Estimate& depth = this->Estimates[Depth];
+    const Estimate& color = this->Estimates[Color];
+    if (depth.Measured && color.Measured && depth.ModelVersion == color.ModelVersion &&
+      depth.Projection > 0.0)
+    {
+      this->ColorProjectionRatio = color.Projection / depth.Projection;
     }
   }
   this->Chosen = -1;
@@ -77,8 +173,24 @@ void AutoTrials::Record(std::uint64_t modelVersion, std::size_t contributing, do
 
 int AutoTrials::Remaining() const
 {
-  return static_cast<int>(std::count_if(this->Estimates, this->Estimates + Count,
-    [](const Estimate& e) { return !e.Measured; }));
+  if (this->Settled)
+  {
+    return 0;
+  }
+  double best = std::numeric_limits<double>::infinity();
+  this->Best(this->LastModelVersion, this->LastContributing, false, &best);
+  int remaining = 0;
+  for (int c = 0; c < Count; ++c)
+  {
+    double t = -std::numeric_limits<double>::infinity();
+    const bool unmeasured = !this->Estimates[c].Measured;
+    if (unmeasured)
+    {
+      this->PredictUnmeasured(c, this->LastModelVersion, this->LastContributing, t);
+    }
+    remaining += unmeasured && t < best;
+  }
+  return remaining;
 }
 
 void AccelerationPlan::SetMergeFaces(bool merge)

@@ -14,6 +14,7 @@
 #include "parcClassification.h"
 #include "parcMath.h"
 #include "parcPolygonModel.h"
+#include "parcStatistics.h"
 #include "parcSupercellGrid.h"
 
 #include <cstddef>
@@ -22,22 +23,51 @@
 namespace parc
 {
 
-/// Auto: each candidate pass (0 to Count - 1, the caller's numbering; the last is "no pass")
-/// is tried on one frame when the ray image size is new; then every frame takes the
-/// candidate with the least predicted time. A candidate's estimate is its fastest
-/// representative frame (projection + casting) for the current classification and view,
-/// or, from an earlier classification, that frame with its projection scaled by the number
-/// of PC supercells (the models grow with it). So an edit of a transfer function brings no
-/// trial frames: a candidate runs again only when it is predicted to be the fastest, and
-/// its estimate is then measured afresh. After the view turns or moves markedly, the next
-/// frame of a candidate replaces its estimate (a view can make any pass dearer or cheaper).
+/// What Auto measures of a frame: its times and counts (see CastStatistics).
+struct FrameMeasure
+{
+  double Projection = 0.0; ///< seconds of the passes
+  double Casting = 0.0;    ///< seconds of casting (wall)
+  double Samples = 0.0;
+  double Contributing = 0.0;
+  RayCostFit Timing;
+};
+
+/// Auto: the candidate passes are Depth, Color, Both and None (no pass). A candidate's
+/// estimate is its fastest representative frame (projection + casting) for the current
+/// classification and view or, from an earlier classification, that frame with its
+/// projection scaled by the number of PC supercells (the models grow with it); both times
+/// scale with the ray-image pixels. A candidate not measured yet gets a prediction from
+/// the frames measured: None from the samples its rays would add (RayCostFit's
+/// unaccelerated samples) at the measured cost of a non-contributing sample; Color from
+/// Depth's projection times the ratio of colour to depth projection (learned, a prior
+/// until measured) and Depth's casting less half its non-contributing samples; Both from
+/// the projections of Depth and Color and the faster casting of the two. Each frame takes
+/// the candidate with the least estimate or prediction (Depth first), so a candidate is
+/// tried only when it is predicted to win: no trial of a mode that is surely slow. The
+/// first frame that may try a candidate but chooses a measured one ends the trials: an
+/// edit, a new image size or a new view brings none. After the view turns or moves
+/// markedly, the next frame of a measured candidate replaces its estimate.
 struct AutoTrials
 {
-  static constexpr int Count = 4;
+  enum Candidate
+  {
+    Depth = 0,
+    Color = 1,
+    Both = 2,
+    None = 3,
+    Count = 4
+  };
   /// A view change that makes the estimates stale: the view direction turns by more than
   /// this angle (cosine), or the volume's distance from the eye changes by this fraction.
   static constexpr double SameDirection = 0.985; // about 10 degrees
   static constexpr double SameDistance = 0.2;
+  /// Colour projection time over depth projection time before one is measured (llvmpipe
+  /// gave 1.6 to 3.9, median 1.9, on the benchmark's scenes).
+  static constexpr double PriorColorProjectionRatio = 1.75;
+  /// A non-contributing sample's share of the mean cost of a sample, when the frame's rays
+  /// do not determine it.
+  static constexpr double NonContributingShare = 0.5;
   struct Estimate
   {
     bool Measured = false;
@@ -46,6 +76,7 @@ struct AutoTrials
     std::size_t Contributing = 0;   ///< PC supercells of that frame's classification
     double Rays = 0.0;              ///< ray-image pixels of that frame
     double Projection = 0.0, Casting = 0.0;
+    double Samples = 0.0, ContributingSamples = 0.0; ///< of that frame
   };
   int Size[2] = { 0, 0 }; ///< the ray image of the current frame
   Estimate Estimates[Count];
@@ -53,24 +84,45 @@ struct AutoTrials
   std::uint64_t ViewVersion = 0;
   Vec3 Direction;        ///< view direction at the last view change
   double Distance = 0.0; ///< the volume's distance from the eye then
+  /// The latest representative frame's unaccelerated samples and the wall seconds one more
+  /// non-contributing sample adds to it (0: not measured).
+  double UnacceleratedSamples = 0.0, SampleSeconds = 0.0;
+  double ColorProjectionRatio = PriorColorProjectionRatio;
+  bool Settled = false; ///< the trials are over
 
   /// Notes the view: direction, and the volume's distance from the eye.
   void SetView(const Vec3& direction, double distance);
-  /// The candidate for this frame: one not measured yet when trials are allowed, else the
-  /// one predicted fastest (the first candidate when none is measured). A prediction
-  /// scales a measured frame's projection by the PC supercells and both its times by the
-  /// ray-image pixels, so a new image size (as render-time budgets make) needs no trials.
+  /// The candidate for this frame: the one with the least estimate or prediction (a
+  /// prediction only when trials are allowed and not over; Depth when nothing is measured).
   int Choose(std::uint64_t modelVersion, std::size_t contributing, int width, int height,
     bool allowTrials = true);
-  /// The times of the frame Choose chose. A frame that was aborted or also did set-up work
-  /// (building or uploading a model) does not count.
-  void Record(std::uint64_t modelVersion, std::size_t contributing, double projection,
-    double casting, bool representative);
-  /// Candidates not measured yet.
+  /// The times and counts of the frame Choose chose. A frame that was aborted or also did
+  /// set-up work (building or uploading a model) does not count.
+  void Record(std::uint64_t modelVersion, std::size_t contributing, const FrameMeasure& frame,
+    bool representative);
+  /// Candidates not measured yet that are predicted to beat the measured ones (every
+  /// candidate while none is measured; none once settled): the trials still to come.
   int Remaining() const;
 
 private:
+  /// The estimate of a measured candidate for this frame, and its projection part.
   double Predict(const Estimate& e, std::uint64_t modelVersion, std::size_t contributing) const;
+  double ProjectionOf(
+    const Estimate& e, std::uint64_t modelVersion, std::size_t contributing) const;
+  /// The ray-image pixels of this frame over those of e's.
+  double RaysScale(const Estimate& e) const;
+  /// Notes the frame's unaccelerated samples and the cost of a non-contributing sample.
+  void RecordSampleCost(const FrameMeasure& frame);
+  /// The prediction for candidate c, not measured: false when there is none yet (Depth is
+  /// measured first, and a frame without timed rays predicts nothing).
+  bool PredictUnmeasured(int c, std::uint64_t modelVersion, std::size_t contributing,
+    double& seconds) const;
+  /// The least estimate or, with predictions, prediction (-inf for a candidate without
+  /// one: it is tried); the candidate, or -1 when there is none.
+  int Best(std::uint64_t modelVersion, std::size_t contributing, bool predictions,
+    double* seconds = nullptr) const;
+  std::uint64_t LastModelVersion = 0; ///< of the latest Choose
+  std::size_t LastContributing = 0;
 };
 
 class AccelerationPlan

@@ -34,6 +34,12 @@ bool ClipToBox(const Vec3& o, const Vec3& d, const Vec3& lo, const Vec3& hi, dou
   return t0 <= t1;
 }
 
+long LatticeSampleCount(double tEnter, double tExit, double dt)
+{
+  const double count = std::floor(tExit / dt) - std::ceil(tEnter / dt) + 1.0;
+  return count > 0.0 ? static_cast<long>(count) : 0;
+}
+
 void SegmentsToLatticeRanges(const std::vector<Segment>& segments, double tEnter, double tExit,
   double dt, std::vector<LatticeRange>& ranges)
 {

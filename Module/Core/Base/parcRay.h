@@ -73,6 +73,9 @@ void CroppedIntervals(const Vec3& o, const Vec3& d, const Cropping& cropping, do
 void IntersectLatticeRanges(
   std::vector<LatticeRange>& ranges, const std::vector<Segment>& intervals, double dt);
 
+/// The number of lattice samples k dt in [tEnter, tExit].
+long LatticeSampleCount(double tEnter, double tExit, double dt);
+
 /// The lattice indices to visit for segments already clipped to [tEnter, tExit]: each
 /// segment [a, b] becomes [floor(a/dt) - 1, ceil(b/dt) + 1] (one lattice step of slack on
 /// each side, so a crossing between the last sample before a segment and its first sample

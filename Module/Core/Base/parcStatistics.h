@@ -7,7 +7,52 @@
 namespace parc
 {
 
-/// Counters of one render; summed over threads (order-independent integers).
+/// A least-squares fit t = a + b s + c k of the casting time t of a ray against its
+/// lattice samples s and contributing samples k, over a subset of a render's rays. It
+/// measures what one more non-contributing sample costs (b), the samples a pass skips or
+/// adds, for Auto's predictions. The one measurement among the counters: it never affects
+/// an image.
+struct RayCostFit
+{
+  /// The primary rays of every this many pixel columns (x = 0, ColumnStride, ...) are
+  /// timed.
+  static constexpr int ColumnStride = 4;
+  /// Sums over the timed rays of 1, s, k, t, s s, s k, k k, s t, k t.
+  double Sums[9] = { 0, 0, 0, 0, 0, 0, 0, 0, 0 };
+  /// The unaccelerated samples (CastStatistics) of the timed columns' rays, cast or not.
+  double Unaccelerated = 0.0;
+
+  /// A timed ray of s samples, k contributing, t seconds and u unaccelerated samples.
+  void Add(double s, double k, double t, double u)
+  {
+    const double terms[9] = { 1.0, s, k, t, s * s, s * k, k * k, s * t, k * t };
+    for (int i = 0; i < 9; ++i)
+    {
+      this->Sums[i] += terms[i];
+    }
+    this->Unaccelerated += u;
+  }
+  /// A ray of the timed columns that was not cast (no segment), of u unaccelerated samples.
+  void AddUncast(double u) { this->Unaccelerated += u; }
+  RayCostFit& operator+=(const RayCostFit& o)
+  {
+    for (int i = 0; i < 9; ++i)
+    {
+      this->Sums[i] += o.Sums[i];
+    }
+    this->Unaccelerated += o.Unaccelerated;
+    return *this;
+  }
+  double Rays() const { return this->Sums[0]; }
+  /// Samples of the timed rays.
+  double Samples() const { return this->Sums[1]; }
+  /// b, the seconds one more non-contributing sample adds to a ray on one thread; false
+  /// (b untouched) when the rays do not determine it: too few, or samples and contributing
+  /// samples in a fixed proportion.
+  bool SampleCost(double& b) const;
+};
+
+/// Counters of one render; summed over threads (order-independent integers, and the fit).
 struct CastStatistics
 {
   std::uint64_t Rays = 0;                ///< rays that met the volume's box
@@ -22,6 +67,10 @@ struct CastStatistics
   std::uint64_t ShadowRays = 0;
   std::uint64_t ShadowSamples = 0; ///< lattice samples taken along shadow rays
   std::uint64_t ShadowCells = 0;   ///< cells crossed by them (paper, Table 3)
+  /// Lattice samples the rays have between where they enter and leave the field: the
+  /// samples of a cast without acceleration (before cropping).
+  std::uint64_t UnacceleratedSamples = 0;
+  RayCostFit Timing; ///< of every fourth ray along image rows
 
   CastStatistics& operator+=(const CastStatistics& o)
   {
@@ -35,9 +84,41 @@ struct CastStatistics
     this->ShadowRays += o.ShadowRays;
     this->ShadowSamples += o.ShadowSamples;
     this->ShadowCells += o.ShadowCells;
+    this->UnacceleratedSamples += o.UnacceleratedSamples;
+    this->Timing += o.Timing;
     return *this;
   }
 };
+
+inline bool RayCostFit::SampleCost(double& b) const
+{
+  // The normal equations of (a, b, c): M x = r, solved by Cramer's rule.
+  const double* q = this->Sums;
+  const double m[3][3] = { { q[0], q[1], q[2] }, { q[1], q[4], q[5] }, { q[2], q[5], q[6] } };
+  const double r[3] = { q[3], q[7], q[8] };
+  const auto det = [](const double (&a)[3][3]) {
+    return a[0][0] * (a[1][1] * a[2][2] - a[1][2] * a[2][1]) -
+      a[0][1] * (a[1][0] * a[2][2] - a[1][2] * a[2][0]) +
+      a[0][2] * (a[1][0] * a[2][1] - a[1][1] * a[2][0]);
+  };
+  const double d = det(m);
+  // Degenerate: fewer rays than unknowns, or s and k (nearly) proportional; the scale of
+  // the determinant is that of the product of the diagonal.
+  if (q[0] < 16.0 || !(d > 1e-9 * m[0][0] * m[1][1] * m[2][2]))
+  {
+    return false;
+  }
+  double mb[3][3];
+  for (int i = 0; i < 3; ++i)
+  {
+    for (int j = 0; j < 3; ++j)
+    {
+      mb[i][j] = j == 1 ? r[i] : m[i][j];
+    }
+  }
+  b = det(mb) / d;
+  return true;
+}
 
 } // namespace parc
 

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -1042,11 +1043,15 @@ std::uint64_t CellsCrossed(const Vec3& a, const Vec3& b)
   return n;
 }
 
+/// What Run returns for a ray its function did not stop.
+constexpr long NotStopped = std::numeric_limits<long>::max();
+
 /// Visits the lattice samples of ranges in order, in blocks, and counts them; returns the
-/// last one visited.
+/// last one visited (stopped: whether the ray function stopped the ray there).
 template <class Function>
-long Walk(const std::vector<LatticeRange>& ranges, Function& fn)
+long Walk(const std::vector<LatticeRange>& ranges, Function& fn, bool& stopped)
 {
+  stopped = false;
   long previous = std::numeric_limits<long>::min();
   for (const LatticeRange& r : ranges)
   {
@@ -1060,6 +1065,7 @@ long Walk(const std::vector<LatticeRange>& ranges, Function& fn)
       previous = k0 + visited - 1;
       if (!more)
       {
+        stopped = true;
         return previous;
       }
       k0 += n;
@@ -1069,11 +1075,13 @@ long Walk(const std::vector<LatticeRange>& ranges, Function& fn)
 }
 
 /// Casts fn over ranges into rgba (and a whole-ray result into the events, when kept) and
-/// counts the cells the visited stretches crossed.
+/// counts the cells the visited stretches crossed; returns the lattice index of the sample
+/// where fn stopped the ray, or NotStopped.
 template <class Function>
-void Run(Function&& fn, const std::vector<LatticeRange>& ranges, float rgba[4])
+long Run(Function&& fn, const std::vector<LatticeRange>& ranges, float rgba[4])
 {
-  const long last = Walk(ranges, fn);
+  bool stopped;
+  const long last = Walk(ranges, fn, stopped);
   fn.Finish(rgba);
   const auto& c = fn.C;
   if constexpr (std::decay_t<Function>::WholeRay)
@@ -1092,6 +1100,7 @@ void Run(Function&& fn, const std::vector<LatticeRange>& ranges, float rgba[4])
     c.Stats.Cells +=
       CellsCrossed(c.IndexPosition(r.First * c.Dt), c.IndexPosition(std::min(r.Last, last) * c.Dt));
   }
+  return stopped ? last : NotStopped;
 }
 
 } // namespace
@@ -1107,15 +1116,22 @@ void RayCaster::CastRay(const RayQuery& query, const SegmentSource& source,
   });
 }
 
+std::uint64_t RayCaster::UnacceleratedSamples(const Ray& ray) const
+{
+  double tEnter, tExit;
+  return this->ClipRay(ray, tEnter, tExit)
+    ? LatticeSampleCount(tEnter, tExit, this->Params->SampleDistance)
+    : 0;
+}
+
 bool RayCaster::RangesOf(const RayQuery& query, const SegmentSource& source,
   std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, Vec3& indexOrigin,
-  Vec3& indexDirection, std::size_t& sourceSegments, double& tEnter) const
+  Vec3& indexDirection, std::size_t& sourceSegments, double& tEnter, double& tExit) const
 {
   const Ray& ray = query.Path;
   const Matrix4& w2i = this->Params->WorldToIndex;
   indexOrigin = w2i.TransformPoint(ray.Origin);
   indexDirection = w2i.TransformVector(ray.Direction);
-  double tExit;
   if (!ClipToField(*this->Field, *this->Params, indexOrigin, indexDirection, ray, tEnter, tExit))
   {
     return false;
@@ -1155,9 +1171,9 @@ float RayCaster::TransmittanceIn(const View& field, const RayQuery& query,
   shadow.Path.TMin = std::max(shadow.Path.TMin, 0.5 * p.SampleDistance); // from k = 1
   Vec3 indexOrigin, indexDirection;
   std::size_t sourceSegments = 0;
-  double tEnter;
+  double tEnter, tExit;
   if (!this->RangesOf(shadow, source, scratch.Segments, scratch.Ranges, indexOrigin,
-        indexDirection, sourceSegments, tEnter) ||
+        indexDirection, sourceSegments, tEnter, tExit) ||
     scratch.Ranges.empty())
   {
     return 1.f;
@@ -1225,16 +1241,26 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
   }
   Vec3 indexOrigin, indexDirection;
   std::size_t sourceSegments = 0;
-  double tEnter;
-  if (!this->RangesOf(
-        query, source, segments, ranges, indexOrigin, indexDirection, sourceSegments, tEnter))
+  double tEnter, tExit;
+  if (!this->RangesOf(query, source, segments, ranges, indexOrigin, indexDirection,
+        sourceSegments, tEnter, tExit))
   {
     return;
   }
   ++stats.Rays;
   stats.Segments += sourceSegments;
+  // Without acceleration the ray would take the same samples up to the same stop.
+  long stop = NotStopped;
+  auto countUnaccelerated = [&]() {
+    const double dt = this->Params->SampleDistance;
+    const long count = LatticeSampleCount(tEnter, tExit, dt);
+    stats.UnacceleratedSamples += stop == NotStopped
+      ? count
+      : std::min(count, stop - static_cast<long>(std::ceil(tEnter / dt)) + 1);
+  };
   if (ranges.empty() && !this->CastsEveryRay())
   {
+    countUnaccelerated();
     return;
   }
   using Context = RayContext<View>;
@@ -1253,24 +1279,26 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
   switch (this->Params->Blend)
   {
     case BlendMode::Composite:
-      Run(CompositeFunction<Context>{ context, {} }, ranges, rgba);
+      stop = Run(CompositeFunction<Context>{ context, {} }, ranges, rgba);
       break;
     case BlendMode::MaximumIntensity:
-      Run(ExtremeFunction<Context, 1>{ context }, ranges, rgba);
+      stop = Run(ExtremeFunction<Context, 1>{ context }, ranges, rgba);
       break;
     case BlendMode::MinimumIntensity:
-      Run(ExtremeFunction<Context, -1>{ context }, ranges, rgba);
+      stop = Run(ExtremeFunction<Context, -1>{ context }, ranges, rgba);
       break;
     case BlendMode::AverageIntensity:
-      Run(AverageFunction<Context>{ context }, ranges, rgba);
+      stop = Run(AverageFunction<Context>{ context }, ranges, rgba);
       break;
     case BlendMode::Additive:
-      Run(AdditiveFunction<Context>{ context }, ranges, rgba);
+      stop = Run(AdditiveFunction<Context>{ context }, ranges, rgba);
       break;
     case BlendMode::IsoSurface:
-      Run(IsoSurfaceFunction<Context>{ context, this->Constants.SortedIsoValues, {} }, ranges, rgba);
+      stop = Run(IsoSurfaceFunction<Context>{ context, this->Constants.SortedIsoValues, {} },
+        ranges, rgba);
       break;
   }
+  countUnaccelerated();
   if (firstHit)
   {
     *firstHit = context.FirstHit;
@@ -1291,12 +1319,25 @@ struct RayScratch
   ShadowScratch Shadows;
 };
 
+/// The ray of pixel (px, py), ending at the opaque geometry of depth (optional).
+Ray PixelRay(const Camera& view, const float* depth, int px, int py)
+{
+  Ray ray = view.MakeRay(px, py);
+  const std::size_t pixel = static_cast<std::size_t>(py) * view.Width + px;
+  if (depth && depth[pixel] < 1.f)
+  {
+    ray.TMax = std::min(ray.TMax, view.DepthToParameter(ray, px, py, depth[pixel]));
+  }
+  return ray;
+}
+
 /// Casts the tiles of one band of rows; vtkSMPTools functor.
-template <class Cast, class MayHave>
+template <class Cast, class MayHave, class Skip>
 struct TileCaster
 {
   const Cast& CastOne;       ///< casts one ray: (query, scratch, rgba)
   const MayHave& MayHaveRay; ///< (px, py): false when the pixel's ray surely gets nothing
+  const Skip& SkipOne;       ///< (px, py, scratch): for each pixel whose ray is not cast
   const Camera& View;
   const float* Depth;
   float* Image;
@@ -1318,19 +1359,15 @@ struct TileCaster
       {
         for (int px = tx * TileSize; px < x1; ++px)
         {
-          const std::size_t pixel = static_cast<std::size_t>(py) * this->View.Width + px;
+          float* rgba = this->Image + 4 * (static_cast<std::size_t>(py) * this->View.Width + px);
           if (!this->MayHaveRay(px, py))
           {
-            std::fill_n(this->Image + 4 * pixel, 4, 0.f);
+            std::fill_n(rgba, 4, 0.f);
+            this->SkipOne(px, py, scratch);
             continue;
           }
-          Ray ray = this->View.MakeRay(px, py);
-          if (this->Depth && this->Depth[pixel] < 1.f)
-          {
-            ray.TMax =
-              std::min(ray.TMax, this->View.DepthToParameter(ray, px, py, this->Depth[pixel]));
-          }
-          this->CastOne(RayQuery::AtPixel(ray, px, py), scratch, this->Image + 4 * pixel);
+          const Ray ray = PixelRay(this->View, this->Depth, px, py);
+          this->CastOne(RayQuery::AtPixel(ray, px, py), scratch, rgba);
         }
       }
     }
@@ -1340,16 +1377,17 @@ struct TileCaster
 
 /// Casts a whole image in bands of tile rows (see RayCaster::CastImage); reduce(scratch)
 /// gathers each thread's statistics.
-template <class Cast, class MayHave, class Reduce>
+template <class Cast, class MayHave, class Skip, class Reduce>
 bool CastTiles(const Camera& view, const float* depth, const Cast& castOne,
-  const MayHave& mayHave, float* rgba, const Reduce& reduce,
+  const MayHave& mayHave, const Skip& skipOne, float* rgba, const Reduce& reduce,
   const std::function<bool(double)>& progress)
 {
   // Every pixel of a cast band is written by its tile (zero when no ray is cast).
   const int tilesX = (view.Width + TileSize - 1) / TileSize;
   const int tilesY = (view.Height + TileSize - 1) / TileSize;
   bool completed = true;
-  TileCaster<Cast, MayHave> caster{ castOne, mayHave, view, depth, rgba, tilesX, 0, {} };
+  TileCaster<Cast, MayHave, Skip> caster{ castOne, mayHave, skipOne, view, depth, rgba, tilesX,
+    0, {} };
   for (int row = 0; row < tilesY; row += TileRowsPerBand)
   {
     const int rows = std::min(TileRowsPerBand, tilesY - row);
@@ -1369,6 +1407,12 @@ bool CastTiles(const Camera& view, const float* depth, const Cast& castOne,
     reduce(scratch);
   }
   return completed;
+}
+
+/// Whether the ray of pixel column px is one of those RayCostFit times.
+bool TimedColumn(int px)
+{
+  return (px % RayCostFit::ColumnStride) == 0;
 }
 }
 
@@ -1391,13 +1435,32 @@ bool RayCaster::CastImageIn(const View& field, const Camera& view, const float* 
     {
       scratch.Differences.resize(DifferenceCacheCells);
     }
+    const bool timed = TimedColumn(query.Pixel[0]);
+    const CastStatistics before = timed ? scratch.Stats : CastStatistics();
+    const auto start = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
     this->CastRayIn(field, query, source, scratch.Segments, scratch.Ranges, pixel,
       scratch.Stats, nullptr, nullptr, &scratch.Differences, &scratch.Shadows);
+    if (timed)
+    {
+      const CastStatistics& after = scratch.Stats;
+      scratch.Stats.Timing.Add(static_cast<double>(after.Samples - before.Samples),
+        static_cast<double>(after.ContributingSamples - before.ContributingSamples),
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+        static_cast<double>(after.UnacceleratedSamples - before.UnacceleratedSamples));
+    }
   };
   const bool everyRay = this->CastsEveryRay();
   auto mayHave = [&](int px, int py) { return everyRay || source.MayHaveSegments(px, py); };
+  // The samples a ray not cast would have without acceleration, on the timed columns.
+  auto skipOne = [&](int px, int py, RayScratch& scratch) {
+    if (TimedColumn(px))
+    {
+      scratch.Stats.Timing.AddUncast(
+        static_cast<double>(this->UnacceleratedSamples(PixelRay(view, depth, px, py))));
+    }
+  };
   auto reduce = [&stats](const RayScratch& scratch) { stats += scratch.Stats; };
-  return CastTiles(view, depth, castOne, mayHave, rgba, reduce, progress);
+  return CastTiles(view, depth, castOne, mayHave, skipOne, rgba, reduce, progress);
 }
 
 //------------------------------------------------------------------------------
@@ -1473,13 +1536,14 @@ bool SceneCaster::CastImage(const Camera& view, const float* depth, float* rgba,
       });
   };
   stats.assign(n, CastStatistics());
+  auto skipOne = [](int, int, RayScratch&) {}; // Auto's fit is the single volume's
   auto reduce = [&stats](const RayScratch& scratch) {
     for (std::size_t v = 0; v < scratch.MemberStats.size(); ++v)
     {
       stats[v] += scratch.MemberStats[v];
     }
   };
-  return CastTiles(view, depth, castOne, mayHave, rgba, reduce, progress);
+  return CastTiles(view, depth, castOne, mayHave, skipOne, rgba, reduce, progress);
 }
 
 } // namespace parc

@@ -102,6 +102,9 @@ public:
   /// be blocked; samples and cells are counted as shadow samples and cells in stats.
   float Transmittance(const RayQuery& query, const SegmentSource& source,
     ShadowScratch& scratch, CastStatistics& stats) const;
+  /// The lattice samples of ray (world coordinates) between where it enters and leaves the
+  /// field inside the clipping planes: what casting it without acceleration would take.
+  std::uint64_t UnacceleratedSamples(const Ray& ray) const;
 
   /// A whole image into rgba (4 floats a pixel, rows bottom to top), in parallel over
   /// tiles with vtkSMPTools; depth (may be null) holds each pixel's window depth of the
@@ -188,11 +191,11 @@ public:
 private:
   /// The lattice ranges of query.Path to cast: its part inside the field, the clipping
   /// planes and the cropping where source gives segments (sourceSegments of them); tEnter
-  /// is where the ray enters the field inside the planes. False when the ray misses the
-  /// field (source is not asked).
+  /// and tExit are where the ray enters and leaves the field inside the planes. False when
+  /// the ray misses the field (source is not asked).
   bool RangesOf(const RayQuery& query, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, Vec3& indexOrigin,
-    Vec3& indexDirection, std::size_t& sourceSegments, double& tEnter) const;
+    Vec3& indexDirection, std::size_t& sourceSegments, double& tEnter, double& tExit) const;
   /// differences (optional): a thread's cache of cell differences for gradients, a power
   /// of two of them, shared by the rays of one image.
   template <class View>
