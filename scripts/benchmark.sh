@@ -128,6 +128,21 @@ scene() { # title, file, options...
       --output "$here/out/benchmark.png" --edit-cost 8 | sed -n '/^| frame/,/^edit frame/p'
   done
   echo
+  echo "## Auto's trial frames (issue 11; goal: no trial frame slower than 1.2x the settled one)"
+  echo
+  echo "A fresh mapper in Auto, 3 rounds per scene, 400x400: every frame until Auto has settled, then 3 settled frames. Depth comes first; a mode is tried only when the measured frames predict it faster. The first frame also builds the classification and the models and is not counted."
+  for args in "$head --tf mri --shade --elevation -80 --azimuth 30" \
+              "$head --blend iso --iso 60 --elevation -80 --azimuth 30" \
+              "$head --tf $tf/mri-scalp.txt --elevation -80 --azimuth 30" \
+              "$data/bolt_70x123x66_uint8.raw --blend mip" \
+              "$data/embryo_256x256x256_uint8.raw --blend iso --iso 80"; do
+    set -- $args
+    [ -f "$1" ] || continue
+    echo; echo "### $(basename "$1") $(echo "${*:2}" | sed "s|$here/||g"), 400x400"; echo
+    xrun "$here/build/bin/parc-render" "$@" --size 400 --sample-distance 0.5 \
+      --output "$here/out/benchmark.png" --auto-trials 3 | sed -n '/^| round/,/^slowest/p'
+  done
+  echo
   echo "## Threads (issue 11; goal: 2 threads at least 1.8x in every mode)"
   echo
   echo "One caster thread against $(nproc), interleaved, median of 7 frames each; llvmpipe runs the GL passes on every core in both."

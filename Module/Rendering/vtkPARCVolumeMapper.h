@@ -134,12 +134,16 @@ public:
    * faces into bit planes and casts only inside the planes a ray's bits name; Both
    * intersects the two. Auto picks per volume, ray function and view: no pass when every
    * supercell may contribute (none can help), no sample when none may, and otherwise the
-   * fastest of DepthBuffer, ColorBuffer, Both and None, measured: each is tried on one
-   * still frame (GetAutoTrialsRemaining; interactive frames of a render-time budget try
-   * none), then every frame uses the one predicted fastest. A prediction is the mode's
-   * fastest frame for the current classification or, after a transfer-function edit, its
-   * last frame with the projection scaled by the number of PC supercells, and both times
-   * scaled by the ray-image pixels; an edit or a new image size brings no trial frames.
+   * fastest of DepthBuffer, ColorBuffer, Both and None, measured: DepthBuffer first, then
+   * a mode is tried on a still frame only when the measured frames predict it faster
+   * (GetAutoTrialsRemaining; interactive frames of a render-time budget try none). None is
+   * predicted from the samples the rays would take without acceleration and the measured
+   * cost of a sample that contributes nothing, ColorBuffer from the depth pass's time and
+   * samples, Both from both passes. The first still frame that needs no trial ends the
+   * trials; then every frame uses the mode predicted fastest: its fastest frame for the
+   * current classification or, after a transfer-function edit, its last frame with the
+   * projection scaled by the number of PC supercells, and both times scaled by the
+   * ray-image pixels; an edit or a new image size brings no trial frames.
    * After the view turns or moves markedly, or the image size changes, a mode's next frame
    * replaces its estimate.
    * GetLastAccelerationMode says which mode a frame used. The image is bit-identical in
