@@ -116,7 +116,8 @@ struct Options
   bool HasIso = false, Shade = false, Parallel = false, Compare = false, Json = false;
   bool HasPosition = false, HasFocal = false, CompareAcceleration = false, Memory = false;
   double BudgetRate = 0.0;
-  int ShadowTableRounds = 0, Versus = 0, SampleCost = 0, Threads = 0, Accuracy = 0, EditCost = 0, ThreadScaling = 0, AutoTrials = 0;
+  int ShadowTableRounds = 0, Versus = 0, SampleCost = 0, Threads = 0, Accuracy = 0;
+  int EditCost = 0, ThreadScaling = 0, AutoTrials = 0;
   double Supercell[3] = { 2, 2, 2 };
   std::vector<double> Sweep;
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
@@ -961,7 +962,8 @@ void AutoTrialFrames(vtkRenderWindow* window, vtkVolume* volume, vtkPARCVolumeMa
     {
       settledAfter = static_cast<int>(times.size());
     }
-    const double settled = MinMedian(std::vector<double>(times.begin() + settledAfter, times.end())).second;
+    const double settled =
+      MinMedian(std::vector<double>(times.begin() + settledAfter, times.end())).second;
     const double slowest = settledAfter > 1
       ? *std::max_element(times.begin() + 1, times.begin() + settledAfter)
       : settled;

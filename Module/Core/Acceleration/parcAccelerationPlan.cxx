@@ -119,7 +119,8 @@ bool AutoTrials::PredictUnmeasured(
   const Estimate& colorPart = measuredColor.Measured ? measuredColor : color;
   seconds = this->ProjectionOf(depth, modelVersion, contributing) +
     this->ProjectionOf(colorPart, modelVersion, contributing) +
-    std::min(this->RaysScale(depth) * depth.Casting, this->RaysScale(colorPart) * colorPart.Casting);
+    std::min(
+      this->RaysScale(depth) * depth.Casting, this->RaysScale(colorPart) * colorPart.Casting);
   return true;
 }
 
@@ -132,7 +133,7 @@ void AutoTrials::RecordSampleCost(const FrameMeasure& frame)
     return;
   }
   // The timed rays' thread-seconds, scaled to all rays, against the wall time.
-  const double threadSeconds = fit.Sums[3] * RayCostFit::ColumnStride;
+  const double threadSeconds = fit.Seconds() * RayCostFit::ColumnStride;
   double b = 0.0;
   if (fit.SampleCost(b) && b > 0.0 && threadSeconds > 0.0)
   {

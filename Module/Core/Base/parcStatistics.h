@@ -44,8 +44,9 @@ struct RayCostFit
     return *this;
   }
   double Rays() const { return this->Sums[0]; }
-  /// Samples of the timed rays.
+  /// Samples and thread-seconds of the timed rays.
   double Samples() const { return this->Sums[1]; }
+  double Seconds() const { return this->Sums[3]; }
   /// b, the seconds one more non-contributing sample adds to a ray on one thread; false
   /// (b untouched) when the rays do not determine it: too few, or samples and contributing
   /// samples in a fixed proportion.
@@ -67,10 +68,11 @@ struct CastStatistics
   std::uint64_t ShadowRays = 0;
   std::uint64_t ShadowSamples = 0; ///< lattice samples taken along shadow rays
   std::uint64_t ShadowCells = 0;   ///< cells crossed by them (paper, Table 3)
-  /// Lattice samples the rays have between where they enter and leave the field: the
-  /// samples of a cast without acceleration (before cropping).
+  /// Lattice samples the rays have from where they enter the field to where they leave it
+  /// or their ray function stops them: the samples of a cast without acceleration (before
+  /// cropping).
   std::uint64_t UnacceleratedSamples = 0;
-  RayCostFit Timing; ///< of every fourth ray along image rows
+  RayCostFit Timing; ///< of the primary rays of every RayCostFit::ColumnStride-th column
 
   CastStatistics& operator+=(const CastStatistics& o)
   {

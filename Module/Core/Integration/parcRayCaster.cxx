@@ -1251,12 +1251,12 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
   stats.Segments += sourceSegments;
   // Without acceleration the ray would take the same samples up to the same stop.
   long stop = NotStopped;
+  // (a stop lies in the ranges, which lie in [ceil(tEnter / dt), floor(tExit / dt)]).
   auto countUnaccelerated = [&]() {
     const double dt = this->Params->SampleDistance;
-    const long count = LatticeSampleCount(tEnter, tExit, dt);
     stats.UnacceleratedSamples += stop == NotStopped
-      ? count
-      : std::min(count, stop - static_cast<long>(std::ceil(tEnter / dt)) + 1);
+      ? LatticeSampleCount(tEnter, tExit, dt)
+      : stop - static_cast<long>(std::ceil(tEnter / dt)) + 1;
   };
   if (ranges.empty() && !this->CastsEveryRay())
   {
@@ -1435,19 +1435,22 @@ bool RayCaster::CastImageIn(const View& field, const Camera& view, const float* 
     {
       scratch.Differences.resize(DifferenceCacheCells);
     }
-    const bool timed = TimedColumn(query.Pixel[0]);
-    const CastStatistics before = timed ? scratch.Stats : CastStatistics();
-    const auto start = timed ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point();
-    this->CastRayIn(field, query, source, scratch.Segments, scratch.Ranges, pixel,
-      scratch.Stats, nullptr, nullptr, &scratch.Differences, &scratch.Shadows);
-    if (timed)
+    if (!TimedColumn(query.Pixel[0]))
     {
-      const CastStatistics& after = scratch.Stats;
-      scratch.Stats.Timing.Add(static_cast<double>(after.Samples - before.Samples),
-        static_cast<double>(after.ContributingSamples - before.ContributingSamples),
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
-        static_cast<double>(after.UnacceleratedSamples - before.UnacceleratedSamples));
+      this->CastRayIn(field, query, source, scratch.Segments, scratch.Ranges, pixel,
+        scratch.Stats, nullptr, nullptr, &scratch.Differences, &scratch.Shadows);
+      return;
     }
+    CastStatistics& s = scratch.Stats;
+    const std::uint64_t samples = s.Samples, contributing = s.ContributingSamples,
+                        unaccelerated = s.UnacceleratedSamples;
+    const auto start = std::chrono::steady_clock::now();
+    this->CastRayIn(field, query, source, scratch.Segments, scratch.Ranges, pixel, s, nullptr,
+      nullptr, &scratch.Differences, &scratch.Shadows);
+    s.Timing.Add(static_cast<double>(s.Samples - samples),
+      static_cast<double>(s.ContributingSamples - contributing),
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+      static_cast<double>(s.UnacceleratedSamples - unaccelerated));
   };
   const bool everyRay = this->CastsEveryRay();
   auto mayHave = [&](int px, int py) { return everyRay || source.MayHaveSegments(px, py); };
