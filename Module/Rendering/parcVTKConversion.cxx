@@ -108,16 +108,16 @@ int ClampColors(std::vector<float>& rgb)
   return changed;
 }
 
-void ConvertColor(
-  vtkVolumeProperty* property, const double range[2], ColorTable& out, std::string& fixes)
+void ConvertColor(vtkVolumeProperty* property, int component, const double range[2],
+  ColorTable& out, std::string& fixes)
 {
   std::vector<float> rgb(3 * ColorTableSize);
   const double lo = range[0];
   const double hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
-  if (property->GetColorChannels() == 1)
+  if (property->GetColorChannels(component) == 1)
   {
     std::vector<float> gray(ColorTableSize);
-    property->GetGrayTransferFunction()->GetTable(lo, hi, ColorTableSize, gray.data());
+    property->GetGrayTransferFunction(component)->GetTable(lo, hi, ColorTableSize, gray.data());
     for (int i = 0; i < ColorTableSize; ++i)
     {
       rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = gray[i];
@@ -125,7 +125,7 @@ void ConvertColor(
   }
   else
   {
-    property->GetRGBTransferFunction()->GetTable(lo, hi, ColorTableSize, rgb.data());
+    property->GetRGBTransferFunction(component)->GetTable(lo, hi, ColorTableSize, rgb.data());
   }
   if (const int changed = ClampColors(rgb))
   {
@@ -273,26 +273,27 @@ bool WrapScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
 }
 
 std::string ConvertProperty(
-  vtkVolumeProperty* property, const double range[2], CastParameters& p)
+  vtkVolumeProperty* property, const double range[2], CastParameters& p, int component)
 {
   std::string fixes;
+  const int c = component;
   p.Interp = property->GetInterpolationType() == VTK_NEAREST_INTERPOLATION
     ? Interpolation::Nearest
     : Interpolation::Linear;
-  ConvertPiecewise(property->GetScalarOpacity(0), "scalar opacity", p.Opacity, fixes);
-  ConvertColor(property, range, p.Color, fixes);
-  p.UseGradientOpacity = property->HasGradientOpacity(0) && !property->GetDisableGradientOpacity(0);
+  ConvertPiecewise(property->GetScalarOpacity(c), "scalar opacity", p.Opacity, fixes);
+  ConvertColor(property, c, range, p.Color, fixes);
+  p.UseGradientOpacity = property->HasGradientOpacity(c) && !property->GetDisableGradientOpacity(c);
   if (p.UseGradientOpacity)
   {
-    ConvertPiecewise(property->GetGradientOpacity(0), "gradient opacity", p.GradientOpacity, fixes);
+    ConvertPiecewise(property->GetGradientOpacity(c), "gradient opacity", p.GradientOpacity, fixes);
   }
-  p.OpacityUnitDistance = property->GetScalarOpacityUnitDistance(0);
-  p.Shade = property->GetShade(0) &&
+  p.OpacityUnitDistance = property->GetScalarOpacityUnitDistance(c);
+  p.Shade = property->GetShade(c) &&
     (p.Blend == BlendMode::Composite || p.Blend == BlendMode::IsoSurface);
-  p.Ambient = property->GetAmbient(0);
-  p.Diffuse = property->GetDiffuse(0);
-  p.Specular = property->GetSpecular(0);
-  p.SpecularPower = property->GetSpecularPower(0);
+  p.Ambient = property->GetAmbient(c);
+  p.Diffuse = property->GetDiffuse(c);
+  p.Specular = property->GetSpecular(c);
+  p.SpecularPower = property->GetSpecularPower(c);
   p.IsoValues.clear();
   vtkContourValues* iso = property->GetIsoSurfaceValues();
   for (int i = 0; i < iso->GetNumberOfContours(); ++i)

@@ -38,12 +38,13 @@ bool CheckImage(vtkImageData* image, std::string& error);
 bool CheckGrid(const int dims[3], const double spacing[3], std::string& error);
 
 /// The transfer functions, interpolation, shading coefficients and iso values of
-/// component 0 of property, for a field of the given value range. Blend must be set in p
+/// a component of property, for a field of the given value range. Blend must be set in p
 /// already (it decides whether shading applies). Values no transfer function can mean are
 /// made usable the same way for every acceleration mode: nodes with a NaN or infinite
 /// scalar or value are left out, opacities are clamped to [0, 1] and colours to [0, 1]
 /// (NaN to 0). Returns a description of what was changed, empty when nothing was.
-std::string ConvertProperty(vtkVolumeProperty* property, const double range[2], CastParameters& p);
+std::string ConvertProperty(
+  vtkVolumeProperty* property, const double range[2], CastParameters& p, int component = 0);
 
 Matrix4 ToMatrix4(vtkMatrix4x4* m);
 /// The matrix from 0-based voxel indices of the image to its physical coordinates.

@@ -301,6 +301,16 @@ public:
   parc::NormalVolume Normals;
   std::uint64_t NormalsVersion = 0;
   parc::CastParameters Parameters;
+  /// Components 1, 2, ... of independent components (vtkVolumeProperty::
+  /// IndependentComponentsOn), each with its own field (FieldArray's values of that
+  /// component), parameters and caster; empty for one component.
+  struct ComponentState
+  {
+    parc::ScalarField Field;
+    parc::CastParameters Parameters;
+    parc::RayCaster Caster;
+  };
+  std::vector<std::unique_ptr<ComponentState>> Components;
   /// Voxel index -> render frame (world minus the camera position), of the last
   /// PrepareParameters; every world quantity the core sees is in that frame.
   parc::Matrix4 IndexToFrame;
@@ -774,30 +784,45 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
                   << ". Nothing is drawn.");
     return false;
   }
+  if (components > static_cast<int>(parc::MaxComponents))
+  {
+    vtkErrorMacro("The scalars have " << components << " components; at most "
+                                      << parc::MaxComponents
+                                      << " are rendered, as by VTK's mappers. Nothing is drawn.");
+    return false;
+  }
   const int component = dependent ? components - 1 : 0;
   const vtkMTimeType time = std::max(image->GetMTime(), scalars->GetMTime());
   if (scalars == in.FieldArray && time == in.FieldTime && component == in.FieldComponent)
   {
     return true;
   }
-  if (components > 1 && !dependent)
-  {
-    vtkWarningMacro("The scalars have " << components
-                                        << " independent components; only the first is "
-                                           "rendered.");
-  }
   std::size_t replaced = 0;
+  in.FieldArray = nullptr;
+  in.Components.clear();
   if (!parc::vtk::WrapScalars(scalars, dims, in.Field, replaced, error, component))
   {
     vtkErrorMacro(<< error << " Nothing is drawn.");
-    in.FieldArray = nullptr;
     return false;
   }
-  if (dependent && in.Field.GetMemorySize() > 0)
+  bool copied = in.Field.GetMemorySize() > 0;
+  for (int c = 1; !dependent && c < components; ++c)
   {
-    vtkErrorMacro("Dependent components with non-finite values are not supported (the "
-                  "replaced copy holds one component); nothing is drawn.");
-    in.FieldArray = nullptr;
+    in.Components.push_back(std::make_unique<vtkVolumeState::ComponentState>());
+    std::size_t others = 0;
+    if (!parc::vtk::WrapScalars(scalars, dims, in.Components.back()->Field, others, error, c))
+    {
+      vtkErrorMacro(<< error << " Nothing is drawn.");
+      in.Components.clear();
+      return false;
+    }
+    copied = copied || others > 0;
+  }
+  if (components > 1 && copied)
+  {
+    vtkErrorMacro("Several components with non-finite values are not supported (a replaced "
+                  "copy holds one component); nothing is drawn.");
+    in.Components.clear();
     return false;
   }
   if (replaced > 0)
@@ -837,7 +862,17 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   {
     in.FieldArray->GetRange(colorRange, 0);
   }
+  if (!in.Components.empty() &&
+    !(p.Blend == parc::BlendMode::Composite || p.Blend == parc::BlendMode::MaximumIntensity ||
+      p.Blend == parc::BlendMode::MinimumIntensity))
+  {
+    vtkErrorMacro("Independent components are rendered with composite, maximum or minimum "
+                  "intensity blending, not blend mode "
+                  << blend << "; nothing is drawn.");
+    return false;
+  }
   std::string fixes = parc::vtk::ConvertProperty(property, colorRange, p);
+  p.ComponentWeight = in.Components.empty() ? 1.0 : property->GetComponentWeight(0);
   constexpr float UnsignedCharToUnit = 1.f / 255.f;
   p.ColorShiftCount = in.DependentComponents == 0 ? 0 : in.DependentComponents - 1;
   for (int c = 0; c < p.ColorShiftCount; ++c)
@@ -850,11 +885,6 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
     fixes += std::string(fixes.empty() ? "" : " ") +
       "2-D transfer functions are not supported: the 1-D colour and scalar opacity "
       "functions of the property are used.";
-  }
-  if (!fixes.empty() && property->GetMTime() != in.FixesWarnedTime)
-  {
-    vtkWarningMacro(<< fixes);
-    in.FixesWarnedTime = property->GetMTime();
   }
   const auto notFinite = [](double v) { return !std::isfinite(v); };
   if (p.Blend == parc::BlendMode::IsoSurface &&
@@ -932,8 +962,10 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   {
     p.Lights.clear();
   }
-  in.PrepareShadingModel(this->ShadingModel == SHADING_QUANTIZED_NORMALS, ren);
-  if (!in.Caster.Prepare(&in.Field, &p))
+  // The quantized normals are of one component: several are shaded exactly.
+  in.PrepareShadingModel(
+    this->ShadingModel == SHADING_QUANTIZED_NORMALS && in.Components.empty(), ren);
+  if (!in.Caster.Prepare(&in.Field, &p) || !this->PrepareComponents(in, property, fixes))
   {
     vtkErrorMacro("Invalid rendering parameters (sample distance " << p.SampleDistance
                                                                    << ", opacity unit distance "
@@ -941,7 +973,42 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
                                                                    << ").");
     return false;
   }
+  if (!fixes.empty() && property->GetMTime() != in.FixesWarnedTime)
+  {
+    vtkWarningMacro(<< fixes);
+    in.FixesWarnedTime = property->GetMTime();
+  }
   return true;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPARCVolumeMapper::PrepareComponents(
+  vtkVolumeState& in, vtkVolumeProperty* property, std::string& fixes)
+{
+  std::vector<parc::RayCaster::Component> others;
+  for (std::size_t i = 0; i < in.Components.size(); ++i)
+  {
+    const int c = static_cast<int>(i) + 1;
+    vtkVolumeState::ComponentState& component = *in.Components[i];
+    // Component 0's settings, with the component's own transfer functions and shading.
+    parc::CastParameters& q = component.Parameters;
+    q = in.Parameters;
+    const double* range = component.Field.GetRange();
+    const std::string own = parc::vtk::ConvertProperty(property, range, q, c);
+    if (!own.empty())
+    {
+      fixes += std::string(fixes.empty() ? "" : " ") + "Component " + std::to_string(c) +
+        ": " + own;
+    }
+    q.ComponentWeight = property->GetComponentWeight(c);
+    std::copy_n(range, 2, q.IntensityRange);
+    if (!component.Caster.Prepare(&component.Field, &q))
+    {
+      return false;
+    }
+    others.push_back({ &component.Caster, c });
+  }
+  return in.Caster.SetComponents(std::move(others));
 }
 
 //------------------------------------------------------------------------------
@@ -1400,11 +1467,19 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
     return in.Plan.GetGrid().GetNumberOfSupercells() > 0; // empty after a failed one
   }
   in.Classified = key;
-  parc::ContributionRule rule;
-  rule.Set(in.Parameters, in.Field.GetRange());
+  // One rule per component: a supercell is PC where any component may contribute.
+  std::vector<const parc::ScalarField*> fields{ &in.Field };
+  std::vector<parc::ContributionRule> rules(1 + in.Components.size());
+  rules[0].Set(in.Parameters, in.Field.GetRange());
+  for (std::size_t c = 0; c < in.Components.size(); ++c)
+  {
+    const vtkVolumeState::ComponentState& component = *in.Components[c];
+    fields.push_back(&component.Field);
+    rules[c + 1].Set(component.Parameters, component.Field.GetRange());
+  }
   const double* requested = this->SupercellSize;
   double size[3];
-  if (!in.Plan.Classify(in.Field, in.FieldVersion, rule, in.Parameters.Interp, requested, size))
+  if (!in.Plan.Classify(fields, in.FieldVersion, rules, in.Parameters.Interp, requested, size))
   {
     vtkErrorMacro("Invalid supercell size (" << requested[0] << ", " << requested[1] << ", "
                                              << requested[2] << "): casting unaccelerated.");

@@ -105,6 +105,7 @@
 #include "vtkVolumeMapper.h"
 
 #include <memory> // For std::unique_ptr
+#include <string> // For std::string
 
 class vtkImageData;
 class vtkRenderWindow;
@@ -521,6 +522,10 @@ protected:
    * the renderer's lights into the caster's parameters.
    */
   bool PrepareParameters(vtkVolumeState& volume, vtkRenderer* ren, vtkVolume* prop);
+  /// The parameters and casters of the independent components after the first (from the
+  /// first one's, prepared), given to the first one's caster; their transfer-function
+  /// fixes are added to fixes.
+  bool PrepareComponents(vtkVolumeState& volume, vtkVolumeProperty* property, std::string& fixes);
   /**
    * Render's middle phases for the renderer's camera: the ray image's view, the depth of
    * other geometry, each volume's PARC passes, the cast, Auto's measurements.

@@ -203,30 +203,53 @@ void AccelerationPlan::SetMergeFaces(bool merge)
   }
 }
 
-bool AccelerationPlan::Classify(const ScalarField& field, std::uint64_t fieldVersion,
-  const ContributionRule& rule, Interpolation interpolation, const double size[3],
-  double fitted[3])
+bool AccelerationPlan::Classify(const std::vector<const ScalarField*>& fields,
+  std::uint64_t fieldVersion, const std::vector<ContributionRule>& rules,
+  Interpolation interpolation, const double size[3], double fitted[3])
 {
-  if (!this->HavePyramid || this->PyramidFieldVersion != fieldVersion)
+  if (fields.empty() || rules.size() != fields.size())
   {
-    this->Pyramid.Build(field);
+    this->Grid = SupercellGrid();
+    return false;
+  }
+  if (this->Pyramids.size() != fields.size() || this->PyramidFieldVersion != fieldVersion)
+  {
+    this->Pyramids.resize(fields.size());
+    for (std::size_t c = 0; c < fields.size(); ++c)
+    {
+      this->Pyramids[c].Build(*fields[c]);
+    }
     this->PyramidFieldVersion = fieldVersion;
-    this->HavePyramid = true;
     ++this->PyramidBuilds;
   }
   this->NewModelVersion();
-  const int* cells = this->Pyramid.GetCellDimensions();
+  const int* cells = this->Pyramids[0].GetCellDimensions();
   if (!SupercellGrid::FitSize(cells, size, fitted) || !this->Grid.Configure(cells, fitted))
   {
     this->Grid = SupercellGrid();
     return false;
   }
+  std::vector<SupercellGrid::Channel> channels;
+  for (std::size_t c = 0; c < fields.size(); ++c)
+  {
+    channels.push_back({ &this->Pyramids[c], &rules[c] });
+  }
   const auto start = std::chrono::steady_clock::now();
-  this->Grid.Classify(this->Pyramid, rule, interpolation);
+  this->Grid.Classify(channels, interpolation);
   this->ClassificationTime =
     std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   ++this->Classifications;
   return true;
+}
+
+std::size_t AccelerationPlan::GetPyramidMemorySize() const
+{
+  std::size_t bytes = 0;
+  for (const RangePyramid& pyramid : this->Pyramids)
+  {
+    bytes += pyramid.GetMemorySize();
+  }
+  return bytes;
 }
 
 void AccelerationPlan::NewModelVersion()

@@ -138,7 +138,15 @@ public:
   /// field must outlive the plan's use. False, the grid empty, for an invalid size.
   bool Classify(const ScalarField& field, std::uint64_t fieldVersion,
     const ContributionRule& rule, Interpolation interpolation, const double size[3],
-    double fitted[3]);
+    double fitted[3])
+  {
+    return this->Classify({ &field }, fieldVersion, { rule }, interpolation, size, fitted);
+  }
+  /// The same for a volume of independent components: one field and rule per component
+  /// (fields of equal dimensions); a supercell is PC under any of them.
+  bool Classify(const std::vector<const ScalarField*>& fields, std::uint64_t fieldVersion,
+    const std::vector<ContributionRule>& rules, Interpolation interpolation,
+    const double size[3], double fitted[3]);
 
   const SupercellGrid& GetGrid() const { return this->Grid; }
   /// Counts the classifications: the version of the models.
@@ -169,7 +177,7 @@ public:
   double GetClassificationTime() const { return this->ClassificationTime; }
 
   /// Bytes held by the pyramid, the supercell flags, the depth model and the colour models.
-  std::size_t GetPyramidMemorySize() const { return this->Pyramid.GetMemorySize(); }
+  std::size_t GetPyramidMemorySize() const;
   std::size_t GetDepthModelMemorySize() const { return this->Depth.Model.GetMemorySize(); }
   std::size_t GetColorModelsMemorySize() const;
 
@@ -190,9 +198,8 @@ private:
   static void Release(PassModel& pass);
 
   bool MergeFaces = true;
-  RangePyramid Pyramid;
+  std::vector<RangePyramid> Pyramids; ///< one per field
   std::uint64_t PyramidFieldVersion = 0;
-  bool HavePyramid = false;
   SupercellGrid Grid;
   PassModel Depth;
   PassModel Color[3]; ///< per major axis

@@ -72,6 +72,11 @@ void ContributionRule::Set(const CastParameters& p, const double range[2])
   this->Lo.clear();
   this->Hi.clear();
   this->Margin = RoundingMargin * std::max(std::fabs(range[0]), std::fabs(range[1]));
+  if (!(p.ComponentWeight > 0.0)) // a component of weight 0 contributes nowhere
+  {
+    this->Blend = BlendMode::Composite;
+    return;
+  }
   switch (p.Blend)
   {
     case BlendMode::Composite:

@@ -8,7 +8,8 @@
 // - maximum intensity: max >= the smallest scalar with non-zero opacity;
 // - minimum intensity: min <= the largest scalar with non-zero opacity;
 // - average intensity: [min, max] meets the averaged scalar range;
-// - isosurface: some iso value v with min <= v <= max.
+// - isosurface: some iso value v with min <= v <= max;
+// - a component of weight 0 (CastParameters::ComponentWeight): never.
 // A sample outside every PC cell cannot change the ray (zero opacity, below the threshold,
 // outside the averaged range, or no iso-value crossing nearby), so skipping it is exact.
 //

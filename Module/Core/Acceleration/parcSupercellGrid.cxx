@@ -166,24 +166,32 @@ bool SupercellGrid::ClassifySupercell(const RangePyramid& pyramid, const Contrib
   return false;
 }
 
-void SupercellGrid::Classify(const RangePyramid& pyramid, const ContributionRule& rule,
-  Interpolation interpolation)
+void SupercellGrid::Classify(const std::vector<Channel>& channels, Interpolation interpolation)
 {
   // One byte a supercell while classifying in parallel (threads write different bytes),
   // packed into bits after.
-  std::vector<std::uint8_t> flags;
-  // Supercells of 2^L cells along every axis are the pyramid's nodes of level L: classified
+  std::vector<std::uint8_t> flags(this->Count, 0);
+  // Supercells of 2^L cells along every axis are the pyramids' nodes of level L: classified
   // top-down there (the same answer as each supercell's query, far fewer visits).
   const int level = static_cast<int>(std::lround(std::log2(this->Size[0])));
-  if (level >= 1 && level <= pyramid.GetNumberOfLevels() &&
-    this->Size[0] == std::ldexp(1.0, level) && this->Size[1] == this->Size[0] &&
-    this->Size[2] == this->Size[0])
+  const bool levels = level >= 1 && this->Size[0] == std::ldexp(1.0, level) &&
+    this->Size[1] == this->Size[0] && this->Size[2] == this->Size[0] &&
+    std::all_of(channels.begin(), channels.end(),
+      [level](const Channel& c) { return level <= c.Pyramid->GetNumberOfLevels(); });
+  if (levels)
   {
-    pyramid.ClassifyLevel(level, rule, flags);
+    std::vector<std::uint8_t> channelFlags;
+    for (const Channel& c : channels)
+    {
+      c.Pyramid->ClassifyLevel(level, *c.Rule, channelFlags);
+      for (std::size_t n = 0; n < flags.size() && n < channelFlags.size(); ++n)
+      {
+        flags[n] |= channelFlags[n];
+      }
+    }
   }
   else
   {
-    flags.assign(this->Count, 0);
     const int nx = this->Counts[0], ny = this->Counts[1];
     vtkSMPTools::For(0, this->Counts[2], [&](vtkIdType k0, vtkIdType k1) {
       for (int k = static_cast<int>(k0); k < k1; ++k)
@@ -192,8 +200,10 @@ void SupercellGrid::Classify(const RangePyramid& pyramid, const ContributionRule
         {
           for (int i = 0; i < nx; ++i)
           {
-            flags[this->Index(i, j, k)] =
-              this->ClassifySupercell(pyramid, rule, interpolation, i, j, k) ? 1 : 0;
+            flags[this->Index(i, j, k)] = std::any_of(channels.begin(), channels.end(),
+              [&](const Channel& c) {
+                return this->ClassifySupercell(*c.Pyramid, *c.Rule, interpolation, i, j, k);
+              });
           }
         }
       }

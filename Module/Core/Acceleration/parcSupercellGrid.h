@@ -37,9 +37,22 @@ public:
   /// MaxSupercells supercells (size itself when it fits). False for invalid sizes.
   static bool FitSize(const int cellDims[3], const double size[3], double fitted[3]);
 
-  /// Classifies every supercell (in parallel); Configure must have matched the pyramid.
+  /// One field of a volume and the rule of its ray function: a volume of independent
+  /// components classifies one channel per component.
+  struct Channel
+  {
+    const RangePyramid* Pyramid;
+    const ContributionRule* Rule;
+  };
+  /// Classifies every supercell (in parallel): PC when it is under some channel's rule.
+  /// Configure must have matched the pyramids (of fields of equal dimensions).
+  void Classify(const std::vector<Channel>& channels, Interpolation interpolation);
+  /// The same for one channel.
   void Classify(const RangePyramid& pyramid, const ContributionRule& rule,
-    Interpolation interpolation);
+    Interpolation interpolation)
+  {
+    this->Classify({ { &pyramid, &rule } }, interpolation);
+  }
 
   const int* GetCounts() const { return this->Counts; }
   const int* GetCellDimensions() const { return this->CellDims; }

@@ -15,7 +15,9 @@ struct RayEvent
   double T;     ///< ray parameter
   float Rgb[3]; ///< colour; premultiplied by Alpha when Premultiplied
   float Alpha;  ///< opacity (corrected for the sample distance)
-  bool Premultiplied; ///< a whole-ray result rather than one sample's colour and opacity
+  /// Rgb is premultiplied: a whole-ray result, or a sample of independent components
+  /// (parcRayCaster.h), rather than one sample's colour and opacity.
+  bool Premultiplied;
 };
 
 /// Front-to-back "over" of events, in the order they are added.
@@ -42,12 +44,17 @@ struct EventCompositor
       this->AddSample(e.Rgb, e.Alpha);
       return;
     }
+    this->AddPremultiplied(e.Rgb, e.Alpha);
+  }
+  /// Adds premultiplied colour rgb and opacity a behind what was added before.
+  void AddPremultiplied(const float rgb[3], float a)
+  {
     const float transparency = 1.f - this->Alpha;
     for (int c = 0; c < 3; ++c)
     {
-      this->Rgb[c] += transparency * e.Rgb[c];
+      this->Rgb[c] += transparency * rgb[c];
     }
-    this->Alpha += transparency * e.Alpha;
+    this->Alpha += transparency * a;
   }
   void Finish(float rgba[4]) const
   {

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <optional>
 #include <type_traits>
 
 namespace parc
@@ -159,6 +160,7 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   RenderConstants& k = this->Constants;
   k.OpacityExponent =
     static_cast<float>(parameters->SampleDistance / parameters->OpacityUnitDistance);
+  k.ComponentWeight = static_cast<float>(parameters->ComponentWeight);
   double constant = 1.0;
   k.GradientOpacityConstant =
     parameters->UseGradientOpacity && parameters->GradientOpacity.IsConstant(constant);
@@ -203,6 +205,37 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
     : std::vector<ShadingFactors>(); // frees the table of an earlier render
   k.GradientNeeded = (parameters->Shade && k.NormalShading.empty()) ||
     (parameters->UseGradientOpacity && !k.GradientOpacityConstant);
+  return true;
+}
+
+bool RayCaster::SetComponents(std::vector<Component> components)
+{
+  this->Components.clear();
+  const CastParameters* p = this->Params;
+  if (components.empty())
+  {
+    return true;
+  }
+  if (!p || components.size() >= MaxComponents ||
+    !(p->Blend == BlendMode::Composite || p->Blend == BlendMode::MaximumIntensity ||
+      p->Blend == BlendMode::MinimumIntensity))
+  {
+    return false;
+  }
+  const int* dims = this->Field->GetDimensions();
+  for (const Component& c : components)
+  {
+    const CastParameters* q = c.Caster ? c.Caster->Params : nullptr;
+    if (!q || !std::equal(dims, dims + 3, c.Caster->Field->GetDimensions()) ||
+      c.Caster->Field->GetScalarType() != this->Field->GetScalarType() ||
+      q->Blend != p->Blend || q->SampleDistance != p->SampleDistance ||
+      q->WorldToIndex.M != p->WorldToIndex.M || q->ClipPlanes.size() != p->ClipPlanes.size() ||
+      q->Crop.Enabled != p->Crop.Enabled)
+    {
+      return false;
+    }
+  }
+  this->Components = std::move(components);
   return true;
 }
 
@@ -392,6 +425,16 @@ struct RayContext
     out.AddSample(rgb, a);
     return out.Alpha < this->P.TerminationOpacity;
   }
+  /// Over for a premultiplied colour rgb.
+  bool OverPremultiplied(EventCompositor& out, double t, const float rgb[3], float a)
+  {
+    if (this->Events)
+    {
+      AppendEvent(*this->Events, t, rgb, a, true);
+    }
+    out.AddPremultiplied(rgb, a);
+    return out.Alpha < this->P.TerminationOpacity;
+  }
 
   Vec3 IndexPosition(double t) const { return this->IndexOrigin + t * this->IndexDirection; }
   /// Takes lattice samples k0 .. k0 + n - 1 (n <= SampleBlockSize) into Block.
@@ -466,14 +509,23 @@ struct RayContext
   /// the gradient when haveGradient), counted and recorded as a hit; false when a is 0.
   bool ContributingOpacity(int j, double t, float& a, Vec3f& g, bool& haveGradient)
   {
+    if (!this->SampleOpacity(j, t, a, g, haveGradient))
+    {
+      return false;
+    }
+    ++this->Stats.ContributingSamples;
+    this->RecordHit(t);
+    return true;
+  }
+  /// ContributingOpacity without counting or recording the sample.
+  bool SampleOpacity(int j, double t, float& a, Vec3f& g, bool& haveGradient)
+  {
     a = this->P.Opacity.Evaluate(this->Value(j));
     if (a == 0.f || this->Masked(t) || !this->ApplyGradientOpacity(a, j, t, g, haveGradient))
     {
       return false;
     }
     a = this->CorrectOpacity(a);
-    ++this->Stats.ContributingSamples;
-    this->RecordHit(t);
     return true;
   }
   /// Takes lattice samples k0 .. k0 + n - 1 into the block and calls
@@ -781,17 +833,22 @@ struct ExtremeFunction
   bool operator()(long k0, int n, bool, int&)
   {
     this->C.SampleBlock(k0, n);
+    this->Scan(this->C, k0, n);
+    return true;
+  }
+  /// Takes the extreme of the n samples from k0 in c's block.
+  void Scan(const Context& c, long k0, int n)
+  {
     for (int j = 0; j < n; ++j)
     {
-      const float s = this->C.Value(j);
+      const float s = c.Value(j);
       if (!this->Found || Sign * s > Sign * this->Extreme)
       {
         this->Extreme = s;
         this->Found = true;
-        this->ExtremeAt = (k0 + j) * this->C.Dt;
+        this->ExtremeAt = (k0 + j) * c.Dt;
       }
     }
-    return true;
   }
   double Position() const { return this->ExtremeAt; } ///< where the result lies on the ray
   void Finish(float rgba[4]) const
@@ -805,6 +862,153 @@ struct ExtremeFunction
       this->C.Stats.ContributingSamples += (a > 0.f) ? 1 : 0;
     }
     Premultiply(rgb, a, rgba);
+  }
+};
+
+/// The contexts of the independent components of non-zero weight, C's (component 0's)
+/// first when its weight is not 0 (see the file comment of parcRayCaster.h).
+template <class Context>
+struct ComponentContexts
+{
+  std::array<Context*, MaxComponents> Parts;
+  int Count = 0;
+};
+
+/// Composite over independent components: C keeps the statistics, events and result.
+template <class Context>
+struct ComponentCompositeFunction
+{
+  static constexpr bool WholeRay = false;
+  Context& C;
+  const ComponentContexts<Context>& Components;
+  EventCompositor Out;
+
+  bool operator()(long k0, int n, bool, int& visited)
+  {
+    unsigned partLanes[MaxComponents];
+    unsigned lanes = 0;
+    for (int c = 0; c < this->Components.Count; ++c)
+    {
+      this->Components.Parts[c]->SampleBlock(k0, n);
+      partLanes[c] = this->Components.Parts[c]->MayContribute(n);
+      lanes |= partLanes[c];
+    }
+    for (; lanes != 0; lanes &= lanes - 1)
+    {
+      const int j = CountTrailingZeros(lanes);
+      const double t = (k0 + j) * this->C.Dt;
+      float rgb[3] = { 0.f, 0.f, 0.f };
+      float sum = 0.f, squares = 0.f;
+      for (int c = 0; c < this->Components.Count; ++c)
+      {
+        if (partLanes[c] & (1u << j))
+        {
+          this->AddComponent(*this->Components.Parts[c], j, t, rgb, sum, squares);
+        }
+      }
+      if (sum == 0.f)
+      {
+        continue;
+      }
+      ++this->C.Stats.ContributingSamples;
+      this->C.RecordHit(t);
+      if (!this->C.OverPremultiplied(this->Out, t, rgb, squares / sum))
+      {
+        visited = j + 1;
+        return false;
+      }
+    }
+    return true;
+  }
+  /// Adds component part's weighted opacity a at sample j (t) to sum, a^2 to squares and
+  /// a times its shaded colour to rgb.
+  static void AddComponent(
+    Context& part, int j, double t, float rgb[3], float& sum, float& squares)
+  {
+    float a;
+    Vec3f g;
+    bool haveGradient = false;
+    if (!part.SampleOpacity(j, t, a, g, haveGradient))
+    {
+      return;
+    }
+    a *= part.K.ComponentWeight;
+    float color[3];
+    part.SampleColor(j, t, 0.0, color);
+    if (part.P.Shade)
+    {
+      part.ShadeSample(color, t, j, g, haveGradient);
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      rgb[c] += a * color[c];
+    }
+    sum += a;
+    squares += a * a;
+  }
+  void Finish(float rgba[4]) const { this->Out.Finish(rgba); }
+};
+
+/// Maximum (Sign = 1) or minimum (Sign = -1) intensity of independent components: each
+/// component's own extreme, combined in Finish.
+template <class Context, int Sign>
+struct ComponentExtremeFunction
+{
+  static constexpr bool WholeRay = true;
+  Context& C;
+  const ComponentContexts<Context>& Components;
+  static_assert(MaxComponents == 4, "one initializer per component below");
+  std::array<ExtremeFunction<Context, Sign>, MaxComponents> Extremes;
+
+  ComponentExtremeFunction(Context& c, const ComponentContexts<Context>& components)
+    : C(c)
+    , Components(components)
+    , Extremes{ { { c }, { c }, { c }, { c } } }
+  {
+  }
+  bool operator()(long k0, int n, bool, int&)
+  {
+    for (int c = 0; c < this->Components.Count; ++c)
+    {
+      this->Components.Parts[c]->SampleBlock(k0, n);
+      this->Extremes[c].Scan(*this->Components.Parts[c], k0, n);
+    }
+    return true;
+  }
+  /// Where the result lies on the ray: the first component extreme.
+  double Position() const
+  {
+    double t = std::numeric_limits<double>::infinity();
+    for (int c = 0; c < this->Components.Count; ++c)
+    {
+      t = std::min(t, this->Extremes[c].Position());
+    }
+    return t;
+  }
+  void Finish(float rgba[4]) const
+  {
+    std::fill_n(rgba, 4, 0.f);
+    for (int c = 0; c < this->Components.Count; ++c)
+    {
+      const Context& part = *this->Components.Parts[c];
+      const ExtremeFunction<Context, Sign>& e = this->Extremes[c];
+      const float a = e.Found ? part.P.Opacity.Evaluate(e.Extreme) * part.K.ComponentWeight : 0.f;
+      if (a > 0.f)
+      {
+        float rgb[3];
+        part.P.Color.Lookup(e.Extreme, rgb);
+        for (int k = 0; k < 3; ++k)
+        {
+          rgba[k] += a * rgb[k];
+        }
+        rgba[3] += a;
+        ++this->C.Stats.ContributingSamples;
+      }
+    }
+    for (int k = 0; k < 4; ++k)
+    {
+      rgba[k] = std::min(rgba[k], 1.f);
+    }
   }
 };
 
@@ -1275,6 +1479,40 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
   {
     context.DifferenceSlots = differences->data();
     context.DifferenceMask = differences->size() - 1;
+  }
+  if (!this->Components.empty())
+  {
+    // Independent components: a context per component of non-zero weight on its field.
+    context.Shadows = nullptr;
+    std::array<std::optional<View>, MaxComponents> views;
+    std::array<std::optional<Context>, MaxComponents> others;
+    ComponentContexts<Context> parts;
+    if (this->Constants.ComponentWeight > 0.f)
+    {
+      parts.Parts[parts.Count++] = &context;
+    }
+    for (std::size_t c = 0; c < this->Components.size(); ++c)
+    {
+      const RayCaster& caster = *this->Components[c].Caster;
+      if (caster.Constants.ComponentWeight > 0.f)
+      {
+        views[c].emplace(field.Shifted(this->Components[c].Shift));
+        others[c].emplace(*views[c], *caster.Params, caster.Constants, query.Path, indexOrigin,
+          indexDirection, stats, true);
+        parts.Parts[parts.Count++] = &*others[c];
+      }
+    }
+    stop = this->Params->Blend == BlendMode::Composite
+      ? Run(ComponentCompositeFunction<Context>{ context, parts, {} }, ranges, rgba)
+      : this->Params->Blend == BlendMode::MaximumIntensity
+      ? Run(ComponentExtremeFunction<Context, 1>(context, parts), ranges, rgba)
+      : Run(ComponentExtremeFunction<Context, -1>(context, parts), ranges, rgba);
+    countUnaccelerated();
+    if (firstHit)
+    {
+      *firstHit = context.FirstHit;
+    }
+    return;
   }
   switch (this->Params->Blend)
   {

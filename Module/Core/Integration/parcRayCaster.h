@@ -40,6 +40,17 @@
 // additive volumes cast no shadow. A shadow ray stops once T < 1 - the volume's
 // termination opacity. The lattice depends only on x and the light, so every segment
 // source of the shadow rays gives the same T.
+// Independent components (SetComponents; vtkVolumeProperty::IndependentComponentsOn): the
+// caster of component 0 casts for all. Each component c has its own field (the same
+// memory, shifted by c values), transfer functions, shading and ComponentWeight w_c, and
+// is sampled at the same lattice positions. As VTK's ray cast mappers combine them:
+// - Composite: each sample's component opacities a_c (corrected, gradient opacity
+//   included) become w_c a_c; a sample with sum_c w_c a_c = 0 changes nothing; otherwise
+//   its premultiplied colour is sum_c w_c a_c rgb_c (rgb_c shaded with component c's own
+//   gradient and material) and its opacity sum_c (w_c a_c)^2 / sum_c w_c a_c.
+// - Maximum / minimum intensity: each component's own extreme along the ray, then colour
+//   sum_c w_c a_c rgb_c and opacity min(1, sum_c w_c a_c).
+// A component of weight 0 is not sampled. Shadows are not cast (no Occluders are used).
 // Thread safety: Cast* are const and may run concurrently once Prepare has been called.
 #ifndef parcRayCaster_h
 #define parcRayCaster_h
@@ -72,10 +83,20 @@ struct ShadowScratch
   std::vector<LatticeRange> Ranges;
 };
 
+/// The most independent components a caster combines (VTK's limit).
+constexpr std::size_t MaxComponents = 4;
+
 /// Casts rays through one scalar field.
 class RayCaster
 {
 public:
+  /// An independent component other than component 0 (see the file comment).
+  struct Component
+  {
+    const RayCaster* Caster; ///< prepared on the component's field and parameters
+    /// Where the component's values lie in memory relative to component 0's, in values.
+    std::ptrdiff_t Shift;
+  };
   /// Keeps pointers to field and parameters (they must outlive the casts) and derives the
   /// per-render constants. Returns false if the parameters cannot be used.
   bool Prepare(const ScalarField* field, const CastParameters* parameters);
@@ -92,6 +113,14 @@ public:
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
     CastStatistics& stats, double* firstHit = nullptr,
     std::vector<RayEvent>* events = nullptr, ShadowScratch* shadows = nullptr) const;
+
+  /// The components 1, 2, ... of a field of independent components, this caster being
+  /// component 0 (see the file comment); empty (the default) for one component. Each must
+  /// be prepared on a field of this one's dimensions and scalar type, with the same blend
+  /// mode (composite, maximum or minimum intensity), sample distance, world-to-index
+  /// matrix, clipping and cropping. Returns false, keeping none, otherwise.
+  bool SetComponents(std::vector<Component> components);
+  const std::vector<Component>& GetComponents() const { return this->Components; }
 
   /// What shades this volume's contributions in shadow (see the file comment); null (the
   /// default) casts no shadow ray. It must outlive the casts.
@@ -168,6 +197,7 @@ public:
   struct RenderConstants
   {
     float OpacityExponent = 1.f; ///< dt / unit distance
+    float ComponentWeight = 1.f; ///< CastParameters::ComponentWeight
     bool GradientNeeded = false;
     bool GradientOpacityConstant = false; ///< then every sample's factor is GradientOpacityValue
     float GradientOpacityValue = 1.f;
@@ -215,6 +245,7 @@ private:
   const CastParameters* Params = nullptr;
   RenderConstants Constants;
   const Occluders* Shadows = nullptr;
+  std::vector<Component> Components;
 };
 
 /// The volumes that shadow a scene's shaded contributions, each with a segment source per

@@ -85,6 +85,9 @@ struct CastParameters
   int ColorShiftCount = 0;
   int ColorShifts[3] = { 0, 0, 0 };
   float DirectColorScale = 1.f;
+  /// The weight of an independent component's opacity (RayCaster::SetComponents); 0 makes
+  /// the component contribute nowhere.
+  double ComponentWeight = 1.0;
   bool Shade = false;
   double Ambient = 0.1, Diffuse = 0.7, Specular = 0.2, SpecularPower = 10.0;
   std::vector<Light> Lights;
