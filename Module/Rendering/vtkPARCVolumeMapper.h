@@ -16,7 +16,11 @@
  *
  * Supported: scalar types (unsigned) char, short, int, float and double (point data, or
  * cell data as one voxel per cell at the cell's centre, as VTK's GPU mapper renders it;
- * of independent components only the first is used, with a warning; dependent components,
+ * up to 4 independent components, vtkVolumeProperty::IndependentComponentsOn, each with
+ * its own colour, scalar and gradient opacity functions, shading and component weight,
+ * combined per sample as VTK's ray cast mappers combine them, with composite, maximum and
+ * minimum intensity blending (the quantized normals fall back to exact shading, and no
+ * shadows are cast); dependent components,
  * vtkVolumeProperty::IndependentComponentsOff, as VTK defines them: 2 components give
  * colour through the colour function from the first and opacity and gradient from the
  * second, 4 unsigned char components give RGB directly from the first three and opacity

@@ -3,7 +3,8 @@
 // clipping plane and with cropping (the centre subvolume, and VTK's "fence" regions), set
 // alike on both; vtkGPUVolumeRayCastMapper (on llvmpipe) for average intensity and additive
 // blending, the modes FixedPoint lacks, which VTK defines as grey images, and for a binary
-// mask. The samplers differ (fixed-point arithmetic, other sample positions), so the
+// mask; and both for a volume of two independent components, each with its own transfer
+// functions and weight. The samplers differ (fixed-point arithmetic, other sample positions), so the
 // images are compared within a stated tolerance: mean absolute difference below 1 of 255
 // per channel (2 for the GPU mapper, whose rays start at the box's faces) and 99.9% of the
 // values within 24 of 255, over an image that is not blank.
@@ -58,7 +59,43 @@ vtkSmartPointer<vtkVolumeMapper> MakeReference(bool gpu)
   return mapper;
 }
 
-bool Compare(int blend, const char* what, const Configure& configure, bool gpu = false)
+/// Two independent components of 64^3 voxels: the blobs, and a ball off their centre with
+/// a green colour function of its own, at weight 0.7.
+void MakeComponents(vtkSmartPointer<vtkImageData>& image,
+  vtkSmartPointer<vtkVolumeProperty>& property)
+{
+  auto blobs = parctest::MakeBlobs(64);
+  auto ball = parctest::MakeVolume(64, [](double x, double y, double z) {
+    return 1.2 - std::sqrt((x - 6) * (x - 6) + (y + 8) * (y + 8) + z * z) / 14.0;
+  });
+  auto* a = vtkUnsignedCharArray::SafeDownCast(blobs->GetPointData()->GetScalars());
+  auto* b = vtkUnsignedCharArray::SafeDownCast(ball->GetPointData()->GetScalars());
+  vtkNew<vtkUnsignedCharArray> both;
+  both->SetNumberOfComponents(2);
+  both->SetNumberOfTuples(a->GetNumberOfTuples());
+  for (vtkIdType i = 0; i < a->GetNumberOfTuples(); ++i)
+  {
+    both->SetTypedComponent(i, 0, a->GetValue(i));
+    both->SetTypedComponent(i, 1, b->GetValue(i));
+  }
+  image = blobs;
+  image->GetPointData()->SetScalars(both);
+  property = parctest::MakeProperty(false);
+  property->IndependentComponentsOn();
+  vtkNew<vtkPiecewiseFunction> opacity;
+  opacity->AddPoint(0, 0.0);
+  opacity->AddPoint(150, 0.0);
+  opacity->AddPoint(255, 0.4);
+  vtkNew<vtkColorTransferFunction> green;
+  green->AddRGBPoint(0, 0.0, 0.3, 0.0);
+  green->AddRGBPoint(255, 0.3, 1.0, 0.3);
+  property->SetScalarOpacity(1, opacity);
+  property->SetColor(1, green);
+  property->SetComponentWeight(1, 0.7);
+}
+
+bool Compare(int blend, const char* what, const Configure& configure, bool gpu = false,
+  bool components = false)
 {
   vtkNew<vtkRenderWindow> window;
   window->SetSize(160, 160);
@@ -66,6 +103,10 @@ bool Compare(int blend, const char* what, const Configure& configure, bool gpu =
   window->SetOffScreenRendering(1);
   auto image = parctest::MakeBlobs(64);
   auto property = parctest::MakeProperty(false);
+  if (components)
+  {
+    MakeComponents(image, property);
+  }
   const double vp[4] = { 0, 0, 1, 1 };
   auto parcMapper = parctest::AddVolume(window, vp, image, property, blend);
   parcMapper->SetSampleDistance(0.5);
@@ -154,5 +195,9 @@ int TestPARCCompareVTKMappers(int, char*[])
       }
     },
     true);
+  for (const int blend : { vtkVolumeMapper::COMPOSITE_BLEND, vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND })
+  {
+    ok &= Compare(blend, "two independent components", plain, false, true);
+  }
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -10,10 +10,12 @@ import numpy
 
 from parc import vtkPARCVolumeMapper
 from vtkmodules.vtkCommonCore import vtkCommand, vtkFloatArray, vtkUnsignedCharArray
-from vtkmodules.vtkCommonDataModel import vtkImageData, vtkRectilinearGrid
+from vtkmodules.vtkCommonDataModel import (vtkImageData, vtkPiecewiseFunction,
+                                            vtkRectilinearGrid)
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import numpy_to_vtk, vtk_to_numpy
 from vtkmodules.util.vtkConstants import VTK_STRING
+from vtkmodules.vtkRenderingCore import vtkColorTransferFunction
 
 from parctesthelpers import ray_image
 from TestPARCPipeline import make_scene
@@ -240,6 +242,74 @@ class TestPARCDropIn(unittest.TestCase):
         render(image_of([red, zero, density], numpy.uint8))  # 3 dependent components
         self.assertEqual(mapper.GetLastRayCount(), 0)
         self.assertTrue(any("Dependent components" in e for e in errors), errors)
+
+    def test_independent_components(self):
+        # Two independent components (IndependentComponentsOn, VTK's default), each with
+        # its own transfer functions, shading and weight: both show, every acceleration
+        # mode gives the same float image, a component of weight 0 costs no gradient, and
+        # what cannot be combined is refused with an error that says so.
+        mapper, window = make_scene()
+        volume = window.GetRenderers().GetFirstRenderer().GetVolumes().GetItemAsObject(0)
+        prop = volume.GetProperty()
+        axis = numpy.arange(24) - 11.5
+        z, y, x = numpy.meshgrid(axis, axis, axis, indexing="ij")
+        left = (250 * numpy.exp(-((x + 5) ** 2 + y * y + z * z) / 20.0)).ravel()
+        right = (250 * numpy.exp(-((x - 5) ** 2 + y * y + z * z) / 20.0)).ravel()
+        image = vtkImageData()
+        image.SetDimensions(24, 24, 24)
+        image.GetPointData().SetScalars(numpy_to_vtk(numpy.ascontiguousarray(
+            numpy.stack([left, right], axis=1).astype(numpy.uint8)), deep=True))
+        mapper.SetInputData(image)
+        window.GetRenderers().GetFirstRenderer().ResetCamera()
+        for c in (0, 1):
+            opacity = vtkPiecewiseFunction()
+            opacity.AddPoint(60, 0.0)
+            opacity.AddPoint(250, 0.6)
+            colour = vtkColorTransferFunction()
+            colour.AddRGBPoint(0, 1.0 - c, 0.0, float(c))  # red, blue
+            prop.SetScalarOpacity(c, opacity)
+            prop.SetColor(c, colour)
+        prop.SetShade(1, 0)
+
+        def render_modes():
+            images = []
+            for mode in (vtkPARCVolumeMapper.ACCELERATION_NONE,
+                         vtkPARCVolumeMapper.ACCELERATION_DEPTH_BUFFER,
+                         vtkPARCVolumeMapper.ACCELERATION_COLOR_BUFFER,
+                         vtkPARCVolumeMapper.ACCELERATION_BOTH):
+                mapper.SetAccelerationMode(mode)
+                window.Render()
+                images.append(ray_image(mapper).reshape(120, 120, 4))
+                self.assertTrue((images[-1] == images[0]).all(), mode)
+            return images[0], mapper.GetLastGradientCount()
+
+        both, gradients = render_modes()
+        left_half, right_half = both[:, :60], both[:, 60:]
+        self.assertGreater(left_half[..., 0].max(), 0.3, "component 0 red, on the left")
+        self.assertGreater(right_half[..., 2].max(), 0.3, "component 1 blue, on the right")
+        self.assertGreater(left_half[..., 0].sum(), 5 * left_half[..., 2].sum())
+        self.assertGreater(right_half[..., 2].sum(), 5 * right_half[..., 0].sum())
+        self.assertGreater(gradients, 0, "component 0 is shaded")
+
+        prop.SetComponentWeight(0, 0.0)
+        weighted, gradients = render_modes()
+        self.assertEqual(weighted[..., 0].max(), 0.0, "component 0 of weight 0: no red")
+        self.assertTrue((weighted[..., 3] > 0).any())
+        self.assertEqual(gradients, 0, "only component 0 is shaded, and it is not sampled")
+        prop.SetComponentWeight(0, 1.0)
+
+        errors = messages(mapper, vtkCommand.ErrorEvent)
+        mapper.SetBlendModeToIsoSurface()
+        prop.GetIsoSurfaceValues().SetValue(0, 120.0)
+        window.Render()
+        self.assertEqual(mapper.GetLastRayCount(), 0)
+        self.assertTrue(any("Independent components" in e for e in errors), errors)
+        mapper.SetBlendModeToComposite()
+        five = numpy.ascontiguousarray(numpy.stack([left] * 5, axis=1).astype(numpy.uint8))
+        image.GetPointData().SetScalars(numpy_to_vtk(five, deep=True))
+        window.Render()
+        self.assertEqual(mapper.GetLastRayCount(), 0)
+        self.assertTrue(any("5 components" in e for e in errors), errors)
 
     def test_binary_mask(self):
         # The wavelet (41^3, seen along z) behind a mask that keeps x indices below 20: the
