@@ -1142,12 +1142,14 @@ std::vector<parc::SceneCaster::Member> vtkPARCVolumeMapper::vtkInternals::RunPas
 void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, vtkRenderer* ren)
 {
   const auto castsShadows = [](const parc::Light& light) { return light.ShadowAttenuation > 0.0; };
+  // Volumes of independent components neither cast nor receive shadows.
+  const auto inShadows = [](const vtkVolumeState& volume) { return volume.Components.empty(); };
   // The lights of the shaded volumes (every shaded volume has all of the renderer's).
   const std::vector<parc::Light>* lights = nullptr;
   for (const auto& entry : this->Rendered)
   {
     const std::vector<parc::Light>& own = entry.first->Parameters.Lights;
-    if (std::any_of(own.begin(), own.end(), castsShadows))
+    if (inShadows(*entry.first) && std::any_of(own.begin(), own.end(), castsShadows))
     {
       lights = &own;
     }
@@ -1159,6 +1161,10 @@ void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, 
   for (const auto& entry : this->Rendered)
   {
     vtkVolumeState& volume = *entry.first;
+    if (!inShadows(volume))
+    {
+      continue;
+    }
     parc::Occluders::Member member{ &volume.Caster, {} };
     for (std::size_t i = 0; shadows && self->AccelerationMode != ACCELERATION_NONE &&
          volume.Plan.GetGrid().GetNumberOfSupercells() > 0 && i < lights->size();
@@ -1174,7 +1180,7 @@ void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, 
   this->Shadows.SetMembers(shadows ? std::move(occluders) : std::vector<parc::Occluders::Member>());
   for (const auto& entry : this->Rendered)
   {
-    entry.first->Caster.SetOccluders(shadows ? &this->Shadows : nullptr);
+    entry.first->Caster.SetOccluders(shadows && inShadows(*entry.first) ? &this->Shadows : nullptr);
   }
 }
 

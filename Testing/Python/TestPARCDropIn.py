@@ -290,6 +290,12 @@ class TestPARCDropIn(unittest.TestCase):
         self.assertGreater(left_half[..., 0].sum(), 5 * left_half[..., 2].sum())
         self.assertGreater(right_half[..., 2].sum(), 5 * right_half[..., 0].sum())
         self.assertGreater(gradients, 0, "component 0 is shaded")
+        renderer = window.GetRenderers().GetFirstRenderer()
+        renderer.UseShadowsOn()
+        self.assertTrue((render_modes()[0] == both).all(), "no shadows with components")
+        self.assertEqual(mapper.GetLastShadowRayCount(), 0)
+        self.assertEqual(mapper.GetLastLightFrustumCount(), 0, "no light passes for nothing")
+        renderer.UseShadowsOff()
 
         prop.SetComponentWeight(0, 0.0)
         weighted, gradients = render_modes()
