@@ -1,5 +1,6 @@
 // The ray caster: analytic ground truths, each ray function, shading, lattice invariance and
 // thread invariance.
+#include "parcSegmentOracle.h"
 #include "parcTestUtilities.h"
 
 #include <vtkSMPTools.h>
@@ -267,6 +268,52 @@ TEST(RayCaster, BinaryMaskConfinesTheSamples)
   const parc::ScalarField other = parctest::MakeField(shorter, [](int, int, int) { return 1.f; });
   p.Mask = &other;
   EXPECT_FALSE(caster.Prepare(&field, &p)) << "a mask of other dimensions";
+}
+
+// A label map: samples whose nearest mask voxel has a label with functions take
+// (1 - f) times the default opacity and colour plus f times the label's; the others keep
+// the default ones. The slab along z: label 0 before k = 50, label 1 (red, denser) after.
+TEST(RayCaster, LabelMapBlendsTheLabelsFunctions)
+{
+  const parc::ScalarField field = ConstantSlab(100.f);
+  const parc::ScalarField labels =
+    parctest::MakeField(SlabDims, [](int, int, int k) { return k >= 50 ? 1.f : 0.f; });
+  CastParameters p = SlabParameters(0.01);
+  parc::LabelFunctions red;
+  red.Label = 1;
+  red.Opacity.SetNodes({ 0.0, 255.0 }, { 0.05, 0.05 }, true);
+  red.Color.SetTable(0.0, 255.0, { 1.f, 0.f, 0.f, 1.f, 0.f, 0.f });
+  p.Mask = &labels;
+  p.Labels = { red };
+  for (const float f : { 1.f, 0.25f })
+  {
+    p.MaskBlendFactor = f;
+    const auto r = CastOne(field, p, SlabRay());
+    // 396 samples at z = 0 .. 49.375 (nearest voxel k <= 49), 405 at z = 49.5 .. 100.
+    const double a0 = 1.0 - std::pow(1.0 - 0.01, 0.125);
+    const double a1 = 1.0 - std::pow(1.0 - ((1.0 - f) * 0.01 + f * 0.05), 0.125);
+    const double front = 1.0 - std::pow(1.0 - a0, 396.0);
+    const double back = (1.0 - front) * (1.0 - std::pow(1.0 - a1, 405.0));
+    EXPECT_NEAR(r.RGBA[3], front + back, 1e-4) << "f " << f;
+    EXPECT_NEAR(r.RGBA[0], front + back, 1e-4) << "red in both parts";
+    EXPECT_NEAR(r.RGBA[1], front + (1.0 - f) * back, 1e-4) << "green of the default only";
+    EXPECT_EQ(r.Stats.ContributingSamples, 801u);
+  }
+  // Label 0, and a label without functions, keep the default functions.
+  p.Labels[0].Label = 2;
+  const auto unlabelled = CastOne(field, p, SlabRay());
+  p.Labels.clear();
+  p.Mask = nullptr;
+  const auto plain = CastOne(field, p, SlabRay());
+  EXPECT_EQ(std::memcmp(unlabelled.RGBA, plain.RGBA, sizeof(plain.RGBA)), 0);
+  // Label maps apply to composite blending, with sorted positive labels and a mask.
+  parc::RayCaster caster;
+  p.Labels = { red };
+  EXPECT_FALSE(caster.Prepare(&field, &p)) << "no mask";
+  p.Mask = &labels;
+  EXPECT_TRUE(caster.Prepare(&field, &p));
+  p.Blend = BlendMode::MaximumIntensity;
+  EXPECT_FALSE(caster.Prepare(&field, &p));
 }
 
 TEST(RayCaster, CompositingIsFrontToBack)
@@ -596,4 +643,59 @@ TEST(Camera, PerspectiveRaysStartAtTheEyeAndParallelRaysOnTheCameraPlane)
   EXPECT_NEAR(a.Origin.Z, b.Origin.Z, 1e-12) << "one camera plane";
   EXPECT_NEAR(a.Origin.Z, 96.0, 1e-12);
   EXPECT_NEAR(v.DepthToParameter(a, 0, 0, 0.5), 80.0, 1e-9) << "window depth 0.5 is NDC 0";
+}
+
+// Where a label's opacity is non-zero and the default one is not, the classification
+// keeps the cells (the union of the functions' intervals): the oracle's segments give the
+// unaccelerated image bit for bit, which the default function's cells alone would not.
+TEST(RayCaster, LabelMapClassificationGivesBitIdenticalImages)
+{
+  const parc::ScalarField field = Blobs();
+  const int* dims = field.GetDimensions();
+  const parc::ScalarField labels =
+    parctest::MakeField(dims, [](int i, int, int) { return i < 16 ? 3.f : 0.f; });
+  CastParameters p = BlobParameters(); // opacity from 60 up
+  parc::LabelFunctions rim;
+  rim.Label = 3;
+  rim.Opacity.SetNodes({ 10.0, 30.0, 50.0 }, { 0.0, 0.4, 0.0 }, true); // below 60 only
+  rim.Color.SetTable(0.0, 255.0, { 0.f, 1.f, 0.f, 0.f, 1.f, 0.f });
+  rim.UseGradientOpacity = true;
+  rim.GradientOpacity.SetNodes({ 0.0, 20.0 }, { 0.3, 1.0 }, true);
+  p.Mask = &labels;
+  p.Labels = { rim };
+  p.MaskBlendFactor = 0.7f;
+  p.Shade = true;
+  parc::Light light;
+  light.Position = { 0.0, 50.0, 50.0 };
+  p.Lights = { light };
+  parc::RayCaster caster;
+  ASSERT_TRUE(caster.Prepare(&field, &p));
+  EXPECT_TRUE(caster.NeedsGradient());
+  parc::RangePyramid pyramid;
+  pyramid.Build(field);
+  const double size[3] = { 2.0, 2.0, 2.0 };
+  parc::SupercellGrid grids[2];
+  CastParameters withoutLabels = p;
+  withoutLabels.Labels.clear();
+  const CastParameters* rules[2] = { &p, &withoutLabels };
+  for (int g = 0; g < 2; ++g)
+  {
+    parc::ContributionRule rule;
+    rule.Set(*rules[g], field.GetRange());
+    ASSERT_TRUE(grids[g].Configure(pyramid.GetCellDimensions(), size));
+    grids[g].Classify(pyramid, rule, p.Interp);
+  }
+  EXPECT_GT(grids[0].GetNumberOfContributing(), grids[1].GetNumberOfContributing());
+  const parc::SegmentOracle oracle(grids[0], p.WorldToIndex);
+  const parc::SegmentOracle lossy(grids[1], p.WorldToIndex);
+  const parc::Camera view = ParallelView(48, 40, 0.6);
+  std::vector<float> whole(4 * 48 * 40), accelerated(whole.size()), lost(whole.size());
+  parc::CastStatistics s1, s2, s3;
+  caster.CastImage(view, nullptr, parc::WholeRaySource(), whole.data(), s1);
+  caster.CastImage(view, nullptr, oracle, accelerated.data(), s2);
+  caster.CastImage(view, nullptr, lossy, lost.data(), s3);
+  EXPECT_EQ(0, std::memcmp(whole.data(), accelerated.data(), whole.size() * sizeof(float)));
+  EXPECT_NE(0, std::memcmp(whole.data(), lost.data(), whole.size() * sizeof(float)));
+  EXPECT_LT(s2.Samples, s1.Samples);
+  EXPECT_EQ(s1.ContributingSamples, s2.ContributingSamples);
 }

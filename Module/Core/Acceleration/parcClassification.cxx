@@ -6,6 +6,7 @@
 #include <cfloat>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace parc
 {
@@ -82,6 +83,23 @@ void ContributionRule::Set(const CastParameters& p, const double range[2])
     case BlendMode::Composite:
     case BlendMode::Additive:
       NonZeroIntervals(p.Opacity, this->Lo, this->Hi);
+      for (const LabelFunctions& label : p.Labels) // where any label's opacity is non-zero
+      {
+        std::vector<double> lo, hi;
+        NonZeroIntervals(label.Opacity, lo, hi);
+        lo.insert(lo.end(), this->Lo.begin(), this->Lo.end());
+        hi.insert(hi.end(), this->Hi.begin(), this->Hi.end());
+        std::vector<std::size_t> order(lo.size());
+        std::iota(order.begin(), order.end(), 0);
+        std::sort(order.begin(), order.end(),
+          [&lo](std::size_t a, std::size_t b) { return lo[a] < lo[b]; });
+        this->Lo.clear();
+        this->Hi.clear();
+        for (std::size_t i : order)
+        {
+          AppendInterval(this->Lo, this->Hi, lo[i], hi[i]);
+        }
+      }
       break;
     case BlendMode::MaximumIntensity:
       this->Threshold = p.Opacity.FirstNonZero();

@@ -4,7 +4,8 @@
 // cell's [min, max] of its 8 corners, up to the float rounding of the caster; the rule
 // widens each range by a margin that covers that rounding. A cell is PC when its widened
 // range passes the test of the ray function:
-// - composite, additive: the scalar opacity is non-zero somewhere on [min, max];
+// - composite, additive: the scalar opacity (or a label's, CastParameters::Labels) is
+//   non-zero somewhere on [min, max];
 // - maximum intensity: max >= the smallest scalar with non-zero opacity;
 // - minimum intensity: min <= the largest scalar with non-zero opacity;
 // - average intensity: [min, max] meets the averaged scalar range;

@@ -146,6 +146,16 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   {
     return false;
   }
+  const auto& labels = parameters->Labels;
+  const auto byLabel = [](const LabelFunctions& a, const LabelFunctions& b) {
+    return a.Label < b.Label;
+  };
+  if (!labels.empty() &&
+    (!parameters->Mask || parameters->Blend != BlendMode::Composite ||
+      !std::is_sorted(labels.begin(), labels.end(), byLabel) || !(labels[0].Label > 0)))
+  {
+    return false; // a label map, for composite blending
+  }
   if (const ScalarField* mask = parameters->Mask)
   {
     // A mask of the field's dimensions, for the ray functions that composite samples.
@@ -167,8 +177,19 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   k.GradientOpacityValue = static_cast<float>(constant);
   const double intensityWidth = parameters->IntensityRange[1] - parameters->IntensityRange[0];
   k.IntensityScale = intensityWidth > 0.0 ? 1.0 / intensityWidth : 0.0;
-  k.ZeroOpacityBelow = FloatAtMost(parameters->Opacity.FirstNonZero());
-  k.ZeroOpacityAbove = -FloatAtMost(-parameters->Opacity.LastNonZero());
+  // Zero opacity below every function's first non-zero value (labels included) and above
+  // every last one.
+  double firstNonZero = parameters->Opacity.FirstNonZero();
+  double lastNonZero = parameters->Opacity.LastNonZero();
+  bool labelGradients = false;
+  for (const LabelFunctions& label : labels)
+  {
+    firstNonZero = std::min(firstNonZero, label.Opacity.FirstNonZero());
+    lastNonZero = std::max(lastNonZero, label.Opacity.LastNonZero());
+    labelGradients = labelGradients || label.UseGradientOpacity;
+  }
+  k.ZeroOpacityBelow = FloatAtMost(firstNonZero);
+  k.ZeroOpacityAbove = -FloatAtMost(-lastNonZero);
   for (int r = 0; r < 3; ++r)
   {
     for (int c = 0; c < 3; ++c)
@@ -204,7 +225,7 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
     ? NormalShadingTable(*parameters)
     : std::vector<ShadingFactors>(); // frees the table of an earlier render
   k.GradientNeeded = (parameters->Shade && k.NormalShading.empty()) ||
-    (parameters->UseGradientOpacity && !k.GradientOpacityConstant);
+    (parameters->UseGradientOpacity && !k.GradientOpacityConstant) || labelGradients;
   return true;
 }
 
@@ -364,6 +385,8 @@ struct RayContext
   double EntryT = 0.0;
   /// Where the ray's events go (several volumes), or null.
   std::vector<RayEvent>* Events = nullptr;
+  /// The label functions of the sample SampleOpacity took last (label maps), or null.
+  const LabelFunctions* SampleLabel = nullptr;
   /// The block of lattice samples taken last.
   LatticeBlock Block;
   /// One cell's voxel differences: the cache of a ray whose thread shares none.
@@ -520,6 +543,10 @@ struct RayContext
   /// ContributingOpacity without counting or recording the sample.
   bool SampleOpacity(int j, double t, float& a, Vec3f& g, bool& haveGradient)
   {
+    if (!this->P.Labels.empty())
+    {
+      return this->LabelOpacity(j, t, a, g, haveGradient);
+    }
     a = this->P.Opacity.Evaluate(this->Value(j));
     if (a == 0.f || this->Masked(t) || !this->ApplyGradientOpacity(a, j, t, g, haveGradient))
     {
@@ -564,14 +591,73 @@ struct RayContext
     }
     return lanes;
   }
+  /// SampleOpacity with a label map (see CastParameters::Labels); keeps the sample's label
+  /// functions in SampleLabel.
+  bool LabelOpacity(int j, double t, float& a, Vec3f& g, bool& haveGradient)
+  {
+    this->SampleLabel = this->LabelAt(t);
+    const float s = this->Value(j);
+    a = this->P.Opacity.Evaluate(s);
+    if (a != 0.f)
+    {
+      this->ApplyGradientOpacity(a, j, t, g, haveGradient);
+    }
+    if (const LabelFunctions* label = this->SampleLabel)
+    {
+      float own = label->Opacity.Evaluate(s);
+      if (own != 0.f && label->UseGradientOpacity)
+      {
+        if (!haveGradient)
+        {
+          g = this->WorldGradient(t, j);
+          haveGradient = true;
+        }
+        own *= label->GradientOpacity.Evaluate(Length(g));
+      }
+      const float f = this->P.MaskBlendFactor;
+      a = (1.f - f) * a + f * own;
+    }
+    if (a == 0.f)
+    {
+      return false;
+    }
+    a = this->CorrectOpacity(a);
+    return true;
+  }
+  /// The functions of the label at ray parameter t, or null for the default ones.
+  const LabelFunctions* LabelAt(double t) const
+  {
+    const float value = this->P.Mask->SampleNearest(this->IndexPosition(t));
+    const int label = static_cast<int>(std::lround(value));
+    const auto& labels = this->P.Labels;
+    const auto it = std::lower_bound(labels.begin(), labels.end(), label,
+      [](const LabelFunctions& l, int v) { return l.Label < v; });
+    return it != labels.end() && it->Label == label ? &*it : nullptr;
+  }
   /// Whether the mask hides ray parameter t (see CastParameters::Mask).
   bool Masked(double t) const
   {
-    return this->P.Mask && this->P.Mask->SampleNearest(this->IndexPosition(t)) == 0.f;
+    return this->P.Mask && this->P.Labels.empty() &&
+      this->P.Mask->SampleNearest(this->IndexPosition(t)) == 0.f;
   }
   /// The colour of sample j of the block at t (or of a crossing of value s at t, j =
   /// NotALatticeSample): see CastParameters::ColorShiftCount.
   void SampleColor(int j, double t, double s, float rgb[3]) const
+  {
+    this->DefaultColor(j, t, s, rgb);
+    if (const LabelFunctions* label = this->SampleLabel)
+    {
+      float own[3];
+      label->Color.Lookup(j != NotALatticeSample ? this->Value(j) : s, own);
+      const float f = this->P.MaskBlendFactor;
+      for (int c = 0; c < 3; ++c)
+      {
+        rgb[c] = (1.f - f) * rgb[c] + f * own[c];
+      }
+    }
+  }
+  /// SampleColor from the default functions.
+  void DefaultColor(int j, double t, double s, float rgb[3]) const
   {
     if (this->P.ColorShiftCount == 0)
     {

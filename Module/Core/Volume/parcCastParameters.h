@@ -55,6 +55,16 @@ struct Light
   double ShadowAttenuation = 0.0;
 };
 
+/// The transfer functions of one label of a label map (CastParameters::Labels).
+struct LabelFunctions
+{
+  int Label = 1; ///< > 0
+  PiecewiseLinearFunction Opacity;
+  ColorTable Color;
+  bool UseGradientOpacity = false;
+  PiecewiseLinearFunction GradientOpacity;
+};
+
 /// Everything that decides what a ray returns, except the ray and the field.
 struct CastParameters
 {
@@ -82,6 +92,14 @@ struct CastParameters
   /// contributes only where the nearest voxel of Mask is non-zero (composite, isosurface,
   /// additive). The mask must outlive the casts.
   const ScalarField* Mask = nullptr;
+  /// With Labels (composite only), Mask is a label map instead, as VTK's GPU mapper reads
+  /// one: the label L of a sample is its nearest voxel of Mask, rounded. Where L has
+  /// functions here (sorted by Label), with f = MaskBlendFactor, the sample's opacity is
+  /// (1 - f) a(s) g(|grad|) + f a_L(s) g_L(|grad|) and its colour (1 - f) rgb(s) +
+  /// f rgb_L(s), the default functions a, g, rgb being the ones above (g = 1 without
+  /// gradient opacity); elsewhere (L = 0, or no functions) it has the default ones.
+  std::vector<LabelFunctions> Labels;
+  float MaskBlendFactor = 1.f;
   int ColorShiftCount = 0;
   int ColorShifts[3] = { 0, 0, 0 };
   float DirectColorScale = 1.f;
