@@ -108,24 +108,25 @@ int ClampColors(std::vector<float>& rgb)
   return changed;
 }
 
-void ConvertColor(vtkVolumeProperty* property, int component, const double range[2],
-  ColorTable& out, std::string& fixes)
+/// The colour table of a gray function (when gray is given) or an RGB one over range.
+void ConvertColor(vtkPiecewiseFunction* gray, vtkColorTransferFunction* color,
+  const double range[2], ColorTable& out, std::string& fixes)
 {
   std::vector<float> rgb(3 * ColorTableSize);
   const double lo = range[0];
   const double hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
-  if (property->GetColorChannels(component) == 1)
+  if (gray)
   {
-    std::vector<float> gray(ColorTableSize);
-    property->GetGrayTransferFunction(component)->GetTable(lo, hi, ColorTableSize, gray.data());
+    std::vector<float> values(ColorTableSize);
+    gray->GetTable(lo, hi, ColorTableSize, values.data());
     for (int i = 0; i < ColorTableSize; ++i)
     {
-      rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = gray[i];
+      rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = values[i];
     }
   }
   else
   {
-    property->GetRGBTransferFunction(component)->GetTable(lo, hi, ColorTableSize, rgb.data());
+    color->GetTable(lo, hi, ColorTableSize, rgb.data());
   }
   if (const int changed = ClampColors(rgb))
   {
@@ -281,7 +282,9 @@ std::string ConvertProperty(
     ? Interpolation::Nearest
     : Interpolation::Linear;
   ConvertPiecewise(property->GetScalarOpacity(c), "scalar opacity", p.Opacity, fixes);
-  ConvertColor(property, c, range, p.Color, fixes);
+  const bool gray = property->GetColorChannels(c) == 1;
+  ConvertColor(gray ? property->GetGrayTransferFunction(c) : nullptr,
+    gray ? nullptr : property->GetRGBTransferFunction(c), range, p.Color, fixes);
   p.UseGradientOpacity = property->HasGradientOpacity(c) && !property->GetDisableGradientOpacity(c);
   if (p.UseGradientOpacity)
   {
@@ -299,6 +302,41 @@ std::string ConvertProperty(
   for (int i = 0; i < iso->GetNumberOfContours(); ++i)
   {
     p.IsoValues.push_back(iso->GetValue(i));
+  }
+  return fixes;
+}
+
+std::string ConvertLabels(vtkVolumeProperty* property, const double range[2],
+  const CastParameters& p, std::vector<LabelFunctions>& out)
+{
+  std::string fixes;
+  out.clear();
+  for (const int label : property->GetLabelMapLabels()) // sorted
+  {
+    if (label <= 0)
+    {
+      continue; // label 0 has the default functions
+    }
+    LabelFunctions f;
+    f.Label = label;
+    f.Opacity = p.Opacity;
+    f.Color = p.Color;
+    f.UseGradientOpacity = p.UseGradientOpacity;
+    f.GradientOpacity = p.GradientOpacity;
+    if (vtkPiecewiseFunction* opacity = property->GetLabelScalarOpacity(label))
+    {
+      ConvertPiecewise(opacity, "label scalar opacity", f.Opacity, fixes);
+    }
+    if (vtkColorTransferFunction* color = property->GetLabelColor(label))
+    {
+      ConvertColor(nullptr, color, range, f.Color, fixes);
+    }
+    if (vtkPiecewiseFunction* gradient = property->GetLabelGradientOpacity(label))
+    {
+      f.UseGradientOpacity = true;
+      ConvertPiecewise(gradient, "label gradient opacity", f.GradientOpacity, fixes);
+    }
+    out.push_back(std::move(f));
   }
   return fixes;
 }

@@ -46,6 +46,13 @@ bool CheckGrid(const int dims[3], const double spacing[3], std::string& error);
 std::string ConvertProperty(
   vtkVolumeProperty* property, const double range[2], CastParameters& p, int component = 0);
 
+/// The functions of the labels (> 0) of property's label map into out, sorted: each
+/// label's own scalar opacity, colour and gradient opacity where it has them, p's (already
+/// converted for the field's range) where it has not. Returns what was fixed, as
+/// ConvertProperty does.
+std::string ConvertLabels(vtkVolumeProperty* property, const double range[2],
+  const CastParameters& p, std::vector<LabelFunctions>& out);
+
 Matrix4 ToMatrix4(vtkMatrix4x4* m);
 /// The matrix from 0-based voxel indices of the image to its physical coordinates.
 Matrix4 IndexToPhysical(vtkImageData* image);

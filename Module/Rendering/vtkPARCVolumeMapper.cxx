@@ -25,6 +25,7 @@
 #include "vtkOpenGLRayCastImageDisplayHelper.h"
 #include "vtkPlane.h"
 #include "vtkPlaneCollection.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkPointData.h"
 #include "vtkSmartPointer.h"
 #include "vtkPropCollection.h"
@@ -256,11 +257,15 @@ struct ClassificationKey
   const void* Property = nullptr; ///< compared, never dereferenced
   vtkMTimeType PropertyTime = 0;
   int Blend = -1;
+  /// The label map's labels with functions, and the latest time of their opacities.
+  std::size_t Labels = 0;
+  vtkMTimeType LabelsTime = 0;
   double Average[2] = { 0, 0 }, Size[3] = { 0, 0, 0 };
   bool operator==(const ClassificationKey& o) const
   {
     return FieldVersion == o.FieldVersion && Property == o.Property &&
-      PropertyTime == o.PropertyTime && Blend == o.Blend &&
+      PropertyTime == o.PropertyTime && Blend == o.Blend && Labels == o.Labels &&
+      LabelsTime == o.LabelsTime &&
       std::equal(Average, Average + 2, o.Average) && std::equal(Size, Size + 3, o.Size);
   }
 };
@@ -568,17 +573,24 @@ void vtkPARCVolumeMapper::SetMaskInput(vtkImageData* mask)
 }
 
 //------------------------------------------------------------------------------
-bool vtkPARCVolumeMapper::PrepareMask(vtkVolumeState& in)
+bool vtkPARCVolumeMapper::PrepareMask(
+  vtkVolumeState& in, vtkVolumeProperty* property, std::string& fixes)
 {
   parc::CastParameters& p = in.Parameters;
-  if (this->MaskType != BinaryMaskType)
+  const bool labelMap = this->MaskType == LabelMapMaskType;
+  if (labelMap && this->MaskBlendFactor == 0.f)
   {
-    vtkErrorMacro("Label-map masks are not supported: SetMaskTypeToBinary for a binary mask; "
+    return true; // the default functions everywhere, as VTK's GPU mapper draws it
+  }
+  if (labelMap && (p.Blend != parc::BlendMode::Composite || !in.Components.empty()))
+  {
+    vtkErrorMacro("A label-map mask applies to composite blending of one component; "
                   "nothing is drawn.");
     return false;
   }
-  if (!(p.Blend == parc::BlendMode::Composite || p.Blend == parc::BlendMode::IsoSurface ||
-        p.Blend == parc::BlendMode::Additive))
+  if (!labelMap &&
+    !(p.Blend == parc::BlendMode::Composite || p.Blend == parc::BlendMode::IsoSurface ||
+      p.Blend == parc::BlendMode::Additive))
   {
     vtkErrorMacro("A binary mask applies to composite, isosurface and additive blending; "
                   "nothing is drawn.");
@@ -610,6 +622,16 @@ bool vtkPARCVolumeMapper::PrepareMask(vtkVolumeState& in)
     in.MaskTime = time;
   }
   p.Mask = &in.Mask;
+  if (labelMap)
+  {
+    const std::string own = parc::vtk::ConvertLabels(property, in.Field.GetRange(), p, p.Labels);
+    fixes += std::string(fixes.empty() || own.empty() ? "" : " ") + own;
+    p.MaskBlendFactor = this->MaskBlendFactor;
+    if (p.Labels.empty())
+    {
+      p.Mask = nullptr; // no label has functions: the default ones everywhere
+    }
+  }
   return true;
 }
 
@@ -905,7 +927,8 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   std::copy_n(in.Field.GetRange(), 2, p.IntensityRange);
   p.TerminationOpacity = this->TerminationOpacity;
   p.Mask = nullptr;
-  if (in.Port == 0 && this->MaskInput && !this->PrepareMask(in))
+  p.Labels.clear();
+  if (in.Port == 0 && this->MaskInput && !this->PrepareMask(in, property, fixes))
   {
     return false;
   }
@@ -1466,6 +1489,14 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
   key.Property = vol->GetProperty();
   key.PropertyTime = vol->GetProperty()->GetMTime();
   key.Blend = this->GetInputBlendMode(in.Port);
+  key.Labels = in.Parameters.Labels.size();
+  for (const parc::LabelFunctions& label : in.Parameters.Labels)
+  {
+    if (vtkPiecewiseFunction* opacity = vol->GetProperty()->GetLabelScalarOpacity(label.Label))
+    {
+      key.LabelsTime = std::max(key.LabelsTime, opacity->GetMTime());
+    }
+  }
   std::copy_n(this->AverageIPScalarRange, 2, key.Average);
   std::copy_n(this->SupercellSize, 3, key.Size);
   if (key == in.Classified)

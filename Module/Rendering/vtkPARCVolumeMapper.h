@@ -322,8 +322,13 @@ public:
    * the volume's dimensions. A binary mask (SetMaskTypeToBinary) confines composite,
    * isosurface and additive rendering (and the shadows of those) to where the mask's
    * nearest voxel is non-zero, exactly in every acceleration mode; the other ray functions
-   * report an error. Label maps (the default type, as in VTK) are not supported: an error,
-   * nothing drawn. MaskBlendFactor (label maps only) is kept for such programs.
+   * report an error. A label map (the default type, as in VTK) gives composite rendering of
+   * one component the functions of each sample's label L (its nearest voxel, rounded) as
+   * VTK's GPU mapper does: where the property has label functions for L > 0
+   * (vtkVolumeProperty::SetLabelScalarOpacity, SetLabelColor, SetLabelGradientOpacity; a
+   * function not set is the default one), opacity and colour are (1 - f) times the default
+   * plus f times the label's, f = MaskBlendFactor; elsewhere, and everywhere when f is 0,
+   * the default functions apply. Exact in every acceleration mode.
    */
   void SetMaskInput(vtkImageData* mask);
   vtkGetObjectMacro(MaskInput, vtkImageData);
@@ -519,8 +524,9 @@ protected:
    * false on bad input.
    */
   bool PrepareField(vtkVolumeState& volume, vtkVolume* prop);
-  /** Wraps the binary mask for port 0's volume; false (nothing drawn) on a bad mask. */
-  bool PrepareMask(vtkVolumeState& volume);
+  /** Wraps the mask for port 0's volume, with a label map's functions (their fixes added
+   * to fixes); false (nothing drawn) on a bad mask. */
+  bool PrepareMask(vtkVolumeState& volume, vtkVolumeProperty* property, std::string& fixes);
   /**
    * Converts the property and transform of prop (the vtkVolume of the volume's port) and
    * the renderer's lights into the caster's parameters.

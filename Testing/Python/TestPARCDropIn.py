@@ -330,10 +330,8 @@ class TestPARCDropIn(unittest.TestCase):
         mask.GetPointData().SetScalars(
             numpy_to_vtk(numpy.where(x < 20, 255, 0).astype(numpy.uint8), deep=True))
         mapper.SetMaskInput(mask)
-        errors = messages(mapper, vtkCommand.ErrorEvent)
-        window.Render()  # VTK's default mask type, a label map: not supported
-        self.assertTrue(any("Label-map" in e for e in errors), errors)
-        self.assertEqual(mapper.GetLastRayCount(), 0)
+        window.Render()  # VTK's default mask type, a label map without label functions
+        self.assertTrue((ray_image(mapper).reshape(120, 120, 4) == plain).all())
         mapper.SetMaskTypeToBinary()
         images = []
         for mode in (vtkPARCVolumeMapper.ACCELERATION_NONE,
@@ -352,6 +350,58 @@ class TestPARCDropIn(unittest.TestCase):
         mapper.SetMaskInput(None)
         window.Render()
         self.assertTrue((ray_image(mapper).reshape(120, 120, 4) == plain).all())
+
+    def test_label_map(self):
+        # A label map (VTK's default mask type): label 1 on the left (x indices below 20)
+        # with its own red colour and denser opacity, label 0 on the right with the default
+        # functions; MaskBlendFactor blends them; every mode alike.
+        mapper, window = make_scene()
+        window.Render()
+        plain = ray_image(mapper).reshape(120, 120, 4)
+        x = numpy.tile(numpy.arange(41), 41 * 41)
+        mask = vtkImageData()
+        mask.SetDimensions(41, 41, 41)
+        mask.GetPointData().SetScalars(
+            numpy_to_vtk(numpy.where(x < 20, 1, 0).astype(numpy.uint8), deep=True))
+        mapper.SetMaskInput(mask)
+        volume = window.GetRenderers().GetFirstRenderer().GetVolumes().GetItemAsObject(0)
+        prop = volume.GetProperty()
+        red = vtkColorTransferFunction()
+        red.AddRGBPoint(0, 1.0, 0.0, 0.0)
+        dense = vtkPiecewiseFunction()
+        dense.AddPoint(60, 0.0)
+        dense.AddPoint(250, 0.8)
+        prop.SetLabelColor(1, red)
+        prop.SetLabelScalarOpacity(1, dense)
+
+        def render_modes():
+            images = []
+            for mode in (vtkPARCVolumeMapper.ACCELERATION_NONE,
+                         vtkPARCVolumeMapper.ACCELERATION_DEPTH_BUFFER,
+                         vtkPARCVolumeMapper.ACCELERATION_COLOR_BUFFER,
+                         vtkPARCVolumeMapper.ACCELERATION_BOTH):
+                mapper.SetAccelerationMode(mode)
+                window.Render()
+                images.append(ray_image(mapper).reshape(120, 120, 4))
+                self.assertTrue((images[-1] == images[0]).all(), mode)
+            return images[0]
+
+        labelled = render_modes()
+        self.assertTrue((labelled[:, 90:] == plain[:, 90:]).all(), "right: label 0, default")
+        left = labelled[:, :30]
+        self.assertGreater(left[..., 3].sum(), 1.5 * plain[:, :30, 3].sum(), "denser")
+        self.assertGreater(left[..., 0].sum(), 20 * left[..., 2].sum(), "red")
+        mapper.SetMaskBlendFactor(0.5)
+        half = render_modes()[:, :30]
+        self.assertGreater(half[..., 2].sum(), 5 * left[..., 2].sum(), "half the default blue")
+        mapper.SetMaskBlendFactor(0.0)
+        self.assertTrue((render_modes() == plain).all(), "blend factor 0: the default")
+        mapper.SetMaskBlendFactor(1.0)
+        errors = messages(mapper, vtkCommand.ErrorEvent)
+        mapper.SetBlendModeToMaximumIntensity()
+        window.Render()
+        self.assertEqual(mapper.GetLastRayCount(), 0)
+        self.assertTrue(any("label-map" in e for e in errors), errors)
 
     def test_final_color_window_level(self):
         # Window 0.5 and level 0.25 brighten the displayed image (rgb / window + (1/2 -
