@@ -36,6 +36,20 @@ def messages(obj, event):
 
 
 class TestPARCDropIn(unittest.TestCase):
+    def render_every_mode(self, mapper, window):
+        """Renders with each acceleration mode; asserts that the float images are the same
+        and returns it, as (120, 120, 4)."""
+        images = []
+        for mode in (vtkPARCVolumeMapper.ACCELERATION_NONE,
+                     vtkPARCVolumeMapper.ACCELERATION_DEPTH_BUFFER,
+                     vtkPARCVolumeMapper.ACCELERATION_COLOR_BUFFER,
+                     vtkPARCVolumeMapper.ACCELERATION_BOTH):
+            mapper.SetAccelerationMode(mode)
+            window.Render()
+            images.append(ray_image(mapper).reshape(120, 120, 4))
+            self.assertTrue((images[-1] == images[0]).all(), mode)
+        return images[0]
+
     def test_budget_coarsens_interactive_renders_only(self):
         mapper, window = make_scene(size=240)
         self.assertTrue(mapper.GetAutoAdjustSampleDistances())
@@ -272,16 +286,7 @@ class TestPARCDropIn(unittest.TestCase):
         prop.SetShade(1, 0)
 
         def render_modes():
-            images = []
-            for mode in (vtkPARCVolumeMapper.ACCELERATION_NONE,
-                         vtkPARCVolumeMapper.ACCELERATION_DEPTH_BUFFER,
-                         vtkPARCVolumeMapper.ACCELERATION_COLOR_BUFFER,
-                         vtkPARCVolumeMapper.ACCELERATION_BOTH):
-                mapper.SetAccelerationMode(mode)
-                window.Render()
-                images.append(ray_image(mapper).reshape(120, 120, 4))
-                self.assertTrue((images[-1] == images[0]).all(), mode)
-            return images[0], mapper.GetLastGradientCount()
+            return self.render_every_mode(mapper, window), mapper.GetLastGradientCount()
 
         both, gradients = render_modes()
         left_half, right_half = both[:, :60], both[:, 60:]
@@ -375,16 +380,7 @@ class TestPARCDropIn(unittest.TestCase):
         prop.SetLabelScalarOpacity(1, dense)
 
         def render_modes():
-            images = []
-            for mode in (vtkPARCVolumeMapper.ACCELERATION_NONE,
-                         vtkPARCVolumeMapper.ACCELERATION_DEPTH_BUFFER,
-                         vtkPARCVolumeMapper.ACCELERATION_COLOR_BUFFER,
-                         vtkPARCVolumeMapper.ACCELERATION_BOTH):
-                mapper.SetAccelerationMode(mode)
-                window.Render()
-                images.append(ray_image(mapper).reshape(120, 120, 4))
-                self.assertTrue((images[-1] == images[0]).all(), mode)
-            return images[0]
+            return self.render_every_mode(mapper, window)
 
         labelled = render_modes()
         self.assertTrue((labelled[:, 90:] == plain[:, 90:]).all(), "right: label 0, default")
