@@ -3,11 +3,11 @@
 // clipping plane and with cropping (the centre subvolume, and VTK's "fence" regions), set
 // alike on both; vtkGPUVolumeRayCastMapper (on llvmpipe) for average intensity and additive
 // blending, the modes FixedPoint lacks, which VTK defines as grey images, and for a binary
-// mask; and both for a volume of two independent components, each with its own transfer
-// functions and weight. The samplers differ (fixed-point arithmetic, other sample positions), so the
-// images are compared within a stated tolerance: mean absolute difference below 1 of 255
-// per channel (2 for the GPU mapper, whose rays start at the box's faces) and 99.9% of the
-// values within 24 of 255, over an image that is not blank.
+// mask; and FixedPoint for a volume of two independent components, each with its own
+// transfer functions and weight. The samplers differ (fixed-point arithmetic, other sample
+// positions), so the images are compared within a stated tolerance: mean absolute
+// difference below 1 of 255 per channel (2 for the GPU mapper, whose rays start at the
+// box's faces) and 99.9% of the values within 24 of 255, over an image that is not blank.
 #include "parcTestScene.h"
 
 #include <vtkFixedPointVolumeRayCastMapper.h>
@@ -195,7 +195,8 @@ int TestPARCCompareVTKMappers(int, char*[])
       }
     },
     true);
-  for (const int blend : { vtkVolumeMapper::COMPOSITE_BLEND, vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND })
+  for (const int blend :
+    { vtkVolumeMapper::COMPOSITE_BLEND, vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND })
   {
     ok &= Compare(blend, "two independent components", plain, false, true);
   }
