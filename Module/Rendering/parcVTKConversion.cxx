@@ -68,9 +68,9 @@ void ConvertPiecewise(vtkPiecewiseFunction* f, const char* what, PiecewiseLinear
   }
   if (dropped > 0 || clamped > 0)
   {
-    fixes += std::string(fixes.empty() ? "" : " ") + "The " + what + " function has " +
-      std::to_string(dropped) + " non-finite and " + std::to_string(clamped) +
-      " out-of-range [0, 1] values: left out and clamped.";
+    AppendSentence(fixes, std::string("The ") + what + " function has " +
+        std::to_string(dropped) + " non-finite and " + std::to_string(clamped) +
+        " out-of-range [0, 1] values: left out and clamped.");
   }
   if (x.empty())
   {
@@ -130,8 +130,8 @@ void ConvertColor(vtkPiecewiseFunction* gray, vtkColorTransferFunction* color,
   }
   if (const int changed = ClampColors(rgb))
   {
-    fixes += std::string(fixes.empty() ? "" : " ") + "The colour function has " +
-      std::to_string(changed) + " NaN or out-of-range [0, 1] values in its table: clamped.";
+    AppendSentence(fixes, "The colour function has " + std::to_string(changed) +
+        " NaN or out-of-range [0, 1] values in its table: clamped.");
   }
   out.SetTable(lo, hi, std::move(rgb));
 }
@@ -142,6 +142,14 @@ std::size_t WrapField(ScalarField& field, vtkDataArray* array, const int dims[3]
   return field.Wrap(static_cast<const T*>(array->GetVoidPointer(0)) + component, dims,
     array->GetNumberOfComponents());
 }
+}
+
+void AppendSentence(std::string& text, const std::string& sentence)
+{
+  if (!sentence.empty())
+  {
+    text += (text.empty() ? "" : " ") + sentence;
+  }
 }
 
 bool ConvertBlendMode(int vtkBlendMode, BlendMode& out)

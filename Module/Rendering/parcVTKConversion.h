@@ -17,6 +17,10 @@ namespace parc
 namespace vtk
 {
 
+/// Appends sentence to text, a space between them (nothing for an empty sentence): how the
+/// conversions collect what they fixed.
+void AppendSentence(std::string& text, const std::string& sentence);
+
 /// The core blend mode of a vtkVolumeMapper blend mode; false for unsupported ones.
 bool ConvertBlendMode(int vtkBlendMode, BlendMode& out);
 

@@ -625,7 +625,7 @@ bool vtkPARCVolumeMapper::PrepareMask(
   if (labelMap)
   {
     const std::string own = parc::vtk::ConvertLabels(property, in.Field.GetRange(), p, p.Labels);
-    fixes += std::string(fixes.empty() || own.empty() ? "" : " ") + own;
+    parc::vtk::AppendSentence(fixes, own);
     p.MaskBlendFactor = this->MaskBlendFactor;
     if (p.Labels.empty())
     {
@@ -904,9 +904,9 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   p.DirectColorScale = UnsignedCharToUnit;
   if (property->GetTransferFunctionMode() == vtkVolumeProperty::TF_2D)
   {
-    fixes += std::string(fixes.empty() ? "" : " ") +
+    parc::vtk::AppendSentence(fixes,
       "2-D transfer functions are not supported: the 1-D colour and scalar opacity "
-      "functions of the property are used.";
+      "functions of the property are used.");
   }
   const auto notFinite = [](double v) { return !std::isfinite(v); };
   if (p.Blend == parc::BlendMode::IsoSurface &&
@@ -1020,8 +1020,7 @@ bool vtkPARCVolumeMapper::PrepareComponents(
     const std::string own = parc::vtk::ConvertProperty(property, range, q, c);
     if (!own.empty())
     {
-      fixes += std::string(fixes.empty() ? "" : " ") + "Component " + std::to_string(c) +
-        ": " + own;
+      parc::vtk::AppendSentence(fixes, "Component " + std::to_string(c) + ": " + own);
     }
     q.ComponentWeight = property->GetComponentWeight(c);
     std::copy_n(range, 2, q.IntensityRange);
