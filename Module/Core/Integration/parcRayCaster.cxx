@@ -519,14 +519,19 @@ struct RayContext
     }
     else
     {
-      if (!haveGradient)
-      {
-        g = this->WorldGradient(t, j);
-        haveGradient = true;
-      }
-      a *= this->P.GradientOpacity.Evaluate(Length(g));
+      a *= this->P.GradientOpacity.Evaluate(Length(this->GradientOnce(t, j, g, haveGradient)));
     }
     return a != 0.f;
+  }
+  /// g, the world gradient at sample j (t), computed unless haveGradient already says so.
+  const Vec3f& GradientOnce(double t, int j, Vec3f& g, bool& haveGradient)
+  {
+    if (!haveGradient)
+    {
+      g = this->WorldGradient(t, j);
+      haveGradient = true;
+    }
+    return g;
   }
   /// The corrected opacity a of sample j of the block, at t (with gradient opacity; g holds
   /// the gradient when haveGradient), counted and recorded as a hit; false when a is 0.
@@ -607,12 +612,7 @@ struct RayContext
       float own = label->Opacity.Evaluate(s);
       if (own != 0.f && label->UseGradientOpacity)
       {
-        if (!haveGradient)
-        {
-          g = this->WorldGradient(t, j);
-          haveGradient = true;
-        }
-        own *= label->GradientOpacity.Evaluate(Length(g));
+        own *= label->GradientOpacity.Evaluate(Length(this->GradientOnce(t, j, g, haveGradient)));
       }
       const float f = this->P.MaskBlendFactor;
       a = (1.f - f) * a + f * own;
@@ -1593,34 +1593,31 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
       : this->Params->Blend == BlendMode::MaximumIntensity
       ? Run(ComponentExtremeFunction<Context, 1>(context, parts), ranges, rgba)
       : Run(ComponentExtremeFunction<Context, -1>(context, parts), ranges, rgba);
-    countUnaccelerated();
-    if (firstHit)
-    {
-      *firstHit = context.FirstHit;
-    }
-    return;
   }
-  switch (this->Params->Blend)
+  else
   {
-    case BlendMode::Composite:
-      stop = Run(CompositeFunction<Context>{ context, {} }, ranges, rgba);
-      break;
-    case BlendMode::MaximumIntensity:
-      stop = Run(ExtremeFunction<Context, 1>{ context }, ranges, rgba);
-      break;
-    case BlendMode::MinimumIntensity:
-      stop = Run(ExtremeFunction<Context, -1>{ context }, ranges, rgba);
-      break;
-    case BlendMode::AverageIntensity:
-      stop = Run(AverageFunction<Context>{ context }, ranges, rgba);
-      break;
-    case BlendMode::Additive:
-      stop = Run(AdditiveFunction<Context>{ context }, ranges, rgba);
-      break;
-    case BlendMode::IsoSurface:
-      stop = Run(IsoSurfaceFunction<Context>{ context, this->Constants.SortedIsoValues, {} },
-        ranges, rgba);
-      break;
+    switch (this->Params->Blend)
+    {
+      case BlendMode::Composite:
+        stop = Run(CompositeFunction<Context>{ context, {} }, ranges, rgba);
+        break;
+      case BlendMode::MaximumIntensity:
+        stop = Run(ExtremeFunction<Context, 1>{ context }, ranges, rgba);
+        break;
+      case BlendMode::MinimumIntensity:
+        stop = Run(ExtremeFunction<Context, -1>{ context }, ranges, rgba);
+        break;
+      case BlendMode::AverageIntensity:
+        stop = Run(AverageFunction<Context>{ context }, ranges, rgba);
+        break;
+      case BlendMode::Additive:
+        stop = Run(AdditiveFunction<Context>{ context }, ranges, rgba);
+        break;
+      case BlendMode::IsoSurface:
+        stop = Run(IsoSurfaceFunction<Context>{ context, this->Constants.SortedIsoValues, {} },
+          ranges, rgba);
+        break;
+    }
   }
   countUnaccelerated();
   if (firstHit)
