@@ -173,12 +173,14 @@ TEST(RayCaster, MaximumAndMinimumIntensityAlongAGridLine)
 TEST(RayCaster, AverageIntensityCountsOnlyItsRange)
 {
   // VTK's meaning: the mean over the samples in the range of value (normalised to the
-  // intensity range) times opacity, as an opaque grey.
+  // intensity range) times opacity, as an opaque grey. The opacity is not corrected for
+  // the sample distance (VTK's GPU mapper takes it as it is).
   const parc::ScalarField field = RandomCube(12);
   CastParameters p;
   parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.0, 1.0 });
   p.Interp = parc::Interpolation::Nearest;
   p.SampleDistance = 1.0; // samples exactly on the voxels x = 0..7
+  p.OpacityUnitDistance = 2.0; // would change every opacity if it were corrected
   p.Blend = BlendMode::AverageIntensity;
   p.AverageRange[0] = 100.0;
   p.AverageRange[1] = 255.0;
@@ -191,7 +193,7 @@ TEST(RayCaster, AverageIntensityCountsOnlyItsRange)
     const float v = field.GetValue(i, 2, 6);
     if (v >= 100.f)
     {
-      sum += (v / 255.0) * (v / 255.0); // opacity v / 255 (unit sample distance)
+      sum += (v / 255.0) * (v / 255.0); // opacity v / 255
       ++count;
     }
   }
@@ -209,16 +211,17 @@ TEST(RayCaster, AverageIntensityCountsOnlyItsRange)
   EXPECT_EQ(none.RGBA[0], 0.f);
 }
 
-TEST(RayCaster, AdditiveSumsIntensityTimesCorrectedOpacity)
+TEST(RayCaster, AdditiveSumsIntensityTimesScaledOpacity)
 {
-  // 801 samples of value 100 in [0, 200]: each adds 0.5 times its corrected opacity.
+  // 801 samples of value 100 in [0, 200]: each adds 0.5 times its opacity times dt / unit
+  // distance (VTK's GPU mapper scales the opacity of additive blending linearly).
   const parc::ScalarField field = ConstantSlab(100.f);
-  CastParameters p = SlabParameters(0.001);
+  CastParameters p = SlabParameters(0.01);
   p.Blend = BlendMode::Additive;
   p.IntensityRange[0] = 0.0;
   p.IntensityRange[1] = 200.0;
   auto r = CastOne(field, p, SlabRay());
-  const double perSample = 1.0 - std::pow(1.0 - 0.001, 0.125);
+  const double perSample = 0.01 * 0.125; // 1 - 0.99^0.125 would be 0.4% more
   for (int c = 0; c < 3; ++c)
   {
     EXPECT_NEAR(r.RGBA[c], 801 * 0.5 * perSample, 1e-4) << "grey";

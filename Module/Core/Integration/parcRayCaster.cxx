@@ -156,10 +156,10 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   {
     return false; // a label map, for composite blending
   }
+  const BlendMode blend = parameters->Blend;
   if (const ScalarField* mask = parameters->Mask)
   {
     // A mask of the field's dimensions, for the ray functions that composite samples.
-    const BlendMode blend = parameters->Blend;
     if (!std::equal(dims, dims + 3, mask->GetDimensions()) ||
       !(blend == BlendMode::Composite || blend == BlendMode::IsoSurface ||
         blend == BlendMode::Additive))
@@ -168,8 +168,11 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
     }
   }
   RenderConstants& k = this->Constants;
-  k.OpacityExponent =
+  const auto perUnit =
     static_cast<float>(parameters->SampleDistance / parameters->OpacityUnitDistance);
+  const bool uncorrected = blend == BlendMode::Additive || blend == BlendMode::AverageIntensity;
+  k.OpacityExponent = uncorrected ? 1.f : perUnit;
+  k.OpacityScale = blend == BlendMode::Additive ? perUnit : 1.f;
   k.ComponentWeight = static_cast<float>(parameters->ComponentWeight);
   double constant = 1.0;
   k.GradientOpacityConstant =
@@ -1107,7 +1110,8 @@ void GreyIntensity(double intensity, float rgba[4])
 }
 
 /// VTK's average intensity: the mean, over the samples whose value lies in AverageRange,
-/// of the value (normalised to IntensityRange) times its corrected opacity; a grey, opaque
+/// of the value (normalised to IntensityRange) times its opacity (uncorrected, as VTK's GPU
+/// mapper takes it); a grey, opaque
 /// result where the ray has such samples, nothing elsewhere.
 template <class Context>
 struct AverageFunction
@@ -1150,9 +1154,10 @@ struct AverageFunction
 };
 
 /// VTK's additive intensity: the sum over the samples of the value (normalised to
-/// IntensityRange) times its corrected opacity, as an opaque grey wherever the ray meets
-/// the field (black where nothing contributes, as VTK's GPU mapper draws it; such a ray is
-/// cast even where acceleration finds nothing to sample, see CastsEveryRay).
+/// IntensityRange) times its opacity scaled by dt / unit distance (OpacityScale), as an
+/// opaque grey wherever the ray meets the field (black where nothing contributes, as VTK's
+/// GPU mapper draws it; such a ray is cast even where acceleration finds nothing to
+/// sample, see CastsEveryRay).
 template <class Context>
 struct AdditiveFunction
 {
@@ -1165,7 +1170,8 @@ struct AdditiveFunction
   {
     return this->C.ContributingSamples(
       k0, n, visited, [this](int j, double, float a, const Vec3f&, bool) {
-        this->Sum += a * this->C.NormalizedIntensity(this->C.Value(j));
+        const double scaled = a * this->C.K.OpacityScale;
+        this->Sum += scaled * this->C.NormalizedIntensity(this->C.Value(j));
         this->Contributed = true;
         return true;
       });

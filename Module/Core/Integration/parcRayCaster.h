@@ -196,7 +196,12 @@ public:
   /// What Prepare derives from the parameters once per render for every ray.
   struct RenderConstants
   {
-    float OpacityExponent = 1.f; ///< dt / unit distance
+    /// VTK's correction of a sample's opacity a for the sample distance dt, as its GPU
+    /// mapper makes it: 1 - (1 - a)^OpacityExponent, then times OpacityScale. Compositing
+    /// ray functions take the exponent dt / unit distance; additive blending the scale
+    /// dt / unit distance; average intensity neither.
+    float OpacityExponent = 1.f;
+    float OpacityScale = 1.f;
     float ComponentWeight = 1.f; ///< CastParameters::ComponentWeight
     bool GradientNeeded = false;
     bool GradientOpacityConstant = false; ///< then every sample's factor is GradientOpacityValue
