@@ -413,6 +413,9 @@ public:
   vtkNew<vtkOpenGLRayCastImageDisplayHelper> DisplayHelper;
   /// The volume's allocated render time for this render (render-time budgets).
   double Budget = 0.0;
+  /// Whether this render adjusts the sample distances to the budget (AutoAdjust-, or
+  /// InteractiveAdjustSampleDistances in an interactive render).
+  bool AdjustSampleDistances = false;
   /// The last render that cast: its time, the parts of it in the PARC passes and the cast,
   /// its image sample distance and sample distance (port 0), from which the next render's
   /// image sample distance is estimated.
@@ -540,8 +543,10 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   in.Budget = vol->GetAllocatedRenderTime();
   // The renderer's last render holds this mapper's last one and what else it drew then.
   in.PreviousRendererTime = ren->GetLastRenderTimeInSeconds();
-  this->LastInteractive =
-    this->AutoAdjustSampleDistances && in.Budget < 1.0 / this->InteractiveUpdateRate;
+  const bool interactive = in.Budget < 1.0 / this->InteractiveUpdateRate;
+  in.AdjustSampleDistances = this->AutoAdjustSampleDistances ||
+    (this->InteractiveAdjustSampleDistances && interactive);
+  this->LastInteractive = in.AdjustSampleDistances && interactive;
   if (this->UseJittering && !in.JitteringWarned)
   {
     vtkWarningMacro("UseJittering is not supported: rays sample one exact lattice; ignored.");
@@ -639,7 +644,7 @@ bool vtkPARCVolumeMapper::PrepareMask(
 double vtkPARCVolumeMapper::ChooseImageSampleDistance() const
 {
   const vtkInternals& in = *this->Internals;
-  if (!this->AutoAdjustSampleDistances)
+  if (!in.AdjustSampleDistances)
   {
     return this->ImageSampleDistance;
   }
@@ -1902,6 +1907,8 @@ void vtkPARCVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "IntermixIntersectingGeometry: " << this->IntermixIntersectingGeometry << "\n";
   os << indent << "LastSampleDistance: " << this->LastSampleDistance << "\n";
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";
+  os << indent << "InteractiveAdjustSampleDistances: " << this->InteractiveAdjustSampleDistances
+     << "\n";
   os << indent << "MinimumImageSampleDistance: " << this->MinimumImageSampleDistance << "\n";
   os << indent << "MaximumImageSampleDistance: " << this->MaximumImageSampleDistance << "\n";
   os << indent << "InteractiveSampleDistance: " << this->InteractiveSampleDistance << "\n";

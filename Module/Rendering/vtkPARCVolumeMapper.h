@@ -283,6 +283,19 @@ public:
 
   ///@{
   /**
+   * As vtkSmartVolumeMapper has it: with InteractiveAdjustSampleDistances on, interactive
+   * renders adjust the sample distances as with AutoAdjustSampleDistances even when that
+   * is off, and still renders use ImageSampleDistance and SampleDistance as set. Default
+   * off (vtkSmartVolumeMapper's default is on, with AutoAdjustSampleDistances off: set
+   * both so to behave like it).
+   */
+  vtkSetMacro(InteractiveAdjustSampleDistances, vtkTypeBool);
+  vtkGetMacro(InteractiveAdjustSampleDistances, vtkTypeBool);
+  vtkBooleanMacro(InteractiveAdjustSampleDistances, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * Derive the sample distance from the input's spacing instead of SampleDistance: the
    * average voxel edge (world units) times min(1/2, cbrt(N) / 200) for N voxels, half the
    * average edge from 10^6 voxels on and proportionally finer for smaller volumes, as
@@ -562,6 +575,7 @@ protected:
   vtkTypeBool IntermixIntersectingGeometry = 1;
   double LastSampleDistance = 0.0;
   vtkTypeBool AutoAdjustSampleDistances = 1;
+  vtkTypeBool InteractiveAdjustSampleDistances = 0;
   double MinimumImageSampleDistance = 1.0;
   double MaximumImageSampleDistance = 10.0;
   double InteractiveSampleDistance = 2.0;

@@ -1,9 +1,7 @@
 // Clipping planes and cropping, as a program for VTK's ray cast mappers sets them: the
 // wavelet, composite and maximum intensity, cut by an oblique clipping plane (compared
 // with vtkFixedPointVolumeRayCastMapper) and cropped to VTK's "fence" regions (compared
-// with vtkGPUVolumeRayCastMapper). The cropping planes are in world coordinates, as
-// vtkVolumeMapper documents them; VTK 9.1's FixedPoint mapper places them as if the
-// image's extent started at 0, which the wavelet's (-32 to 31) does not.
+// with vtkGPUVolumeRayCastMapper).
 #include "parcExampleHarness.h"
 
 #include <vtkFixedPointVolumeRayCastMapper.h>

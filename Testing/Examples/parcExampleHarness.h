@@ -18,6 +18,8 @@
 #include <vtkCamera.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkImageAppend.h>
+#include <vtkImageChangeInformation.h>
+#include <vtkImageGaussianSource.h>
 #include <vtkImageData.h>
 #include <vtkNew.h>
 #include <vtkImageShiftScale.h>
@@ -61,19 +63,58 @@ constexpr int SkipCode = 125;
 /// The window's width and height in pixels.
 constexpr int WindowSize = 200;
 
-/// VTK's wavelet (vtkRTAnalyticSource) on 64^3 voxels centred on the origin, as unsigned
-/// char: 0 to 254, a bright centre in a rippled field. The data most examples start from.
+/// The examples' volumes: 64^3 voxels over [-32, 31]^3 in world coordinates, with an
+/// extent that starts at 0 (VTK 9.1's FixedPoint mapper places cropping planes, and its GPU
+/// mapper places a mask, as if every extent started at 0). They are made by sources on the
+/// extent -32 to 31, where voxel indices are world coordinates, then moved by ZeroBased.
+constexpr int VolumeLow = -32;
+constexpr int VolumeHigh = 31;
+
+template <class ImageSource>
+void SetVolumeExtent(ImageSource* source)
+{
+  source->SetWholeExtent(VolumeLow, VolumeHigh, VolumeLow, VolumeHigh, VolumeLow, VolumeHigh);
+}
+
+/// The source's output, moved to the extent 0 to 63 at origin -32: the same world
+/// positions.
+inline vtkSmartPointer<vtkImageData> ZeroBased(vtkAlgorithm* source)
+{
+  vtkNew<vtkImageChangeInformation> zeroBased;
+  zeroBased->SetInputConnection(source->GetOutputPort());
+  zeroBased->SetOutputExtentStart(0, 0, 0);
+  zeroBased->SetOutputOrigin(VolumeLow, VolumeLow, VolumeLow);
+  zeroBased->Update();
+  return zeroBased->GetOutput();
+}
+
+/// VTK's wavelet (vtkRTAnalyticSource) as unsigned char: 0 to 254, a bright centre in a
+/// rippled field. The data most examples start from.
 inline vtkSmartPointer<vtkImageData> MakeWavelet()
 {
   vtkNew<vtkRTAnalyticSource> wavelet;
-  wavelet->SetWholeExtent(-32, 31, -32, 31, -32, 31);
+  SetVolumeExtent(wavelet.Get());
   vtkNew<vtkImageShiftScale> bytes;
   bytes->SetInputConnection(wavelet->GetOutputPort());
   bytes->SetShift(-32.0); // the wavelet's values run from 32.4 to 285.6 here
   bytes->SetOutputScalarTypeToUnsignedChar();
   bytes->ClampOverflowOn();
-  bytes->Update();
-  return bytes->GetOutput();
+  return ZeroBased(bytes);
+}
+
+/// A Gaussian blob as unsigned char: 254 at the centre (world coordinates), falling off
+/// with the standard deviation sigma (voxels).
+inline vtkSmartPointer<vtkImageData> MakeBlob(double x, double y, double z, double sigma)
+{
+  vtkNew<vtkImageGaussianSource> blob;
+  SetVolumeExtent(blob.Get());
+  blob->SetCenter(x, y, z);
+  blob->SetStandardDeviation(sigma);
+  blob->SetMaximum(254.0);
+  vtkNew<vtkImageShiftScale> bytes;
+  bytes->SetInputConnection(blob->GetOutputPort());
+  bytes->SetOutputScalarTypeToUnsignedChar();
+  return ZeroBased(bytes);
 }
 
 /// A property for the wavelet: the ripples faint and blue, the centre dense and orange.
@@ -230,24 +271,37 @@ inline bool Close(const std::string& what, vtkImageData* parc, vtkImageData* vtk
   return ok;
 }
 
+/// What a program checks of a mapper after its render, besides the image: nothing.
+struct NoCheck
+{
+  template <class Mapper>
+  bool operator()(Mapper*) const
+  {
+    return true;
+  }
+};
+
 /// Renders the scene with a vtkPARCVolumeMapper and with a VTKMapper, compares the images
 /// and handles -T and -I. scene(renderer, mapper) sets the mapper up and adds its volume:
-/// a generic lambda, so that one program text serves both mapper types. Returns the
+/// a generic lambda, so that one program text serves both mapper types; check(mapper),
+/// called after each render, says whether what else the program expects held. Returns the
 /// program's exit code.
-template <class VTKMapper, class SceneFunction>
+template <class VTKMapper, class SceneFunction, class Check = NoCheck>
 int CompareWithVTK(int argc, char* argv[], const std::string& name, const SceneFunction& scene,
-  const Tolerance& tolerance)
+  const Tolerance& tolerance, const Check& check = Check())
 {
   vtkNew<vtkPARCVolumeMapper> parcMapper;
   auto parcWindow = MakeWindow([&](vtkRenderer* r) { scene(r, parcMapper.Get()); });
   parcWindow->Render();
   auto parcImage = Grab(parcWindow);
+  bool ok = check(parcMapper.Get());
   vtkNew<VTKMapper> vtkMapper;
   auto vtkWindow = MakeWindow([&](vtkRenderer* r) { scene(r, vtkMapper.Get()); });
   vtkWindow->Render();
   auto vtkImage = Grab(vtkWindow);
-  const bool ok = Close(
-    name + " against " + vtkMapper->GetClassName(), parcImage, vtkImage, tolerance);
+  ok = check(vtkMapper.Get()) && ok;
+  ok = Close(name + " against " + vtkMapper->GetClassName(), parcImage, vtkImage, tolerance) &&
+    ok;
   if (const char* dir = Option(argc, argv, "-T"))
   {
     WriteSideBySide(dir, name, parcImage, vtkImage);

@@ -105,6 +105,28 @@ class TestPARCDropIn(unittest.TestCase):
         self.assertEqual(mapper.GetLastImageSampleDistance(), 1.0)
         self.assertEqual(mapper.GetLastSampleDistance(), still_distance)
 
+    def test_interactive_adjustment_as_the_smart_mapper_has_it(self):
+        # vtkSmartVolumeMapper's way: AutoAdjustSampleDistances off and
+        # InteractiveAdjustSampleDistances on adjust interactive renders only; the still
+        # render keeps ImageSampleDistance as set.
+        mapper, window = make_scene(size=240)
+        self.assertFalse(mapper.GetInteractiveAdjustSampleDistances())
+        mapper.AutoAdjustSampleDistancesOff()
+        mapper.SetImageSampleDistance(1.5)
+        window.SetDesiredUpdateRate(INTERACTIVE_RATE)
+        window.Render()
+        self.assertFalse(mapper.GetLastInteractive(), "no adjustment at all")
+        self.assertEqual(mapper.GetLastImageSampleDistance(), 1.5)
+        mapper.InteractiveAdjustSampleDistancesOn()
+        window.Render()
+        window.Render()
+        self.assertTrue(mapper.GetLastInteractive())
+        self.assertGreater(mapper.GetLastImageSampleDistance(), 1.5)
+        window.SetDesiredUpdateRate(STILL_RATE)
+        window.Render()
+        self.assertFalse(mapper.GetLastInteractive())
+        self.assertEqual(mapper.GetLastImageSampleDistance(), 1.5)
+
     def test_no_auto_trial_while_interacting(self):
         mapper, window = make_scene(size=200)
         window.SetDesiredUpdateRate(INTERACTIVE_RATE)
