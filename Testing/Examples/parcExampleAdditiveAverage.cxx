@@ -5,7 +5,6 @@
 #include "parcExampleHarness.h"
 
 #include <vtkGPUVolumeRayCastMapper.h>
-#include <vtkVolume.h>
 
 namespace
 {
@@ -15,10 +14,7 @@ auto IntensityScene(int blendMode, double lowest)
     mapper->SetInputData(parcexample::MakeWavelet());
     mapper->SetBlendMode(blendMode);
     mapper->SetAverageIPScalarRange(lowest, 255);
-    mapper->SetAutoAdjustSampleDistances(0);
-    mapper->SetLockSampleDistanceToInputSpacing(0);
-    mapper->SetSampleDistance(0.5);
-    mapper->SetImageSampleDistance(1.0);
+    parcexample::SampleAlike(mapper);
     auto property = parcexample::MakeWaveletProperty();
     // The grey level is the sum or average of the opacity function's values along the ray:
     // a small ramp keeps a sum of about 200 samples in range.
@@ -26,10 +22,7 @@ auto IntensityScene(int blendMode, double lowest)
     opacity->AddPoint(0, 0.0);
     opacity->AddPoint(254, blendMode == vtkVolumeMapper::ADDITIVE_BLEND ? 0.008 : 1.0);
     property->SetScalarOpacity(opacity);
-    vtkNew<vtkVolume> volume;
-    volume->SetMapper(mapper);
-    volume->SetProperty(property);
-    renderer->AddVolume(volume);
+    parcexample::AddVolume(renderer, mapper, property);
   };
 }
 }

@@ -5,7 +5,6 @@
 
 #include <vtkGPUVolumeRayCastMapper.h>
 #include <vtkPointDataToCellData.h>
-#include <vtkVolume.h>
 
 int main(int argc, char* argv[])
 {
@@ -15,14 +14,8 @@ int main(int argc, char* argv[])
     cells->PassPointDataOff();
     mapper->SetInputConnection(cells->GetOutputPort());
     mapper->SetScalarModeToUseCellData();
-    mapper->SetAutoAdjustSampleDistances(0);
-    mapper->SetLockSampleDistanceToInputSpacing(0);
-    mapper->SetSampleDistance(0.5);
-    mapper->SetImageSampleDistance(1.0);
-    vtkNew<vtkVolume> volume;
-    volume->SetMapper(mapper);
-    volume->SetProperty(parcexample::MakeWaveletProperty());
-    renderer->AddVolume(volume);
+    parcexample::SampleAlike(mapper);
+    parcexample::AddVolume(renderer, mapper, parcexample::MakeWaveletProperty());
   };
   return parcexample::CompareWithVTK<vtkGPUVolumeRayCastMapper>(
     argc, argv, "CellScalars", scene, parcexample::AgainstGPU);

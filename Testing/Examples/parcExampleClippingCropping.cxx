@@ -7,7 +7,6 @@
 #include <vtkFixedPointVolumeRayCastMapper.h>
 #include <vtkGPUVolumeRayCastMapper.h>
 #include <vtkPlane.h>
-#include <vtkVolume.h>
 
 namespace
 {
@@ -16,10 +15,7 @@ auto WaveletScene(int blendMode, bool clip, bool crop)
   return [=](vtkRenderer* renderer, auto* mapper) {
     mapper->SetInputData(parcexample::MakeWavelet());
     mapper->SetBlendMode(blendMode);
-    mapper->SetAutoAdjustSampleDistances(0);
-    mapper->SetLockSampleDistanceToInputSpacing(0);
-    mapper->SetSampleDistance(0.5);
-    mapper->SetImageSampleDistance(1.0);
+    parcexample::SampleAlike(mapper);
     if (clip)
     {
       vtkNew<vtkPlane> plane; // keeps x - 0.4 y >= -6
@@ -33,10 +29,7 @@ auto WaveletScene(int blendMode, bool clip, bool crop)
       mapper->SetCroppingRegionPlanes(-20, 12, -15, 18, -10, 9);
       mapper->SetCroppingRegionFlagsToFence();
     }
-    vtkNew<vtkVolume> volume;
-    volume->SetMapper(mapper);
-    volume->SetProperty(parcexample::MakeWaveletProperty());
-    renderer->AddVolume(volume);
+    parcexample::AddVolume(renderer, mapper, parcexample::MakeWaveletProperty());
   };
 }
 }

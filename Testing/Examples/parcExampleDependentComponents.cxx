@@ -7,7 +7,6 @@
 
 #include <vtkFixedPointVolumeRayCastMapper.h>
 #include <vtkImageAppendComponents.h>
-#include <vtkVolume.h>
 
 #include <vector>
 
@@ -22,16 +21,10 @@ auto DependentScene(const std::vector<vtkSmartPointer<vtkImageData>>& components
       append->AddInputData(component);
     }
     mapper->SetInputConnection(append->GetOutputPort());
-    mapper->SetAutoAdjustSampleDistances(0);
-    mapper->SetLockSampleDistanceToInputSpacing(0);
-    mapper->SetSampleDistance(0.5);
-    mapper->SetImageSampleDistance(1.0);
+    parcexample::SampleAlike(mapper);
     auto property = parcexample::MakeWaveletProperty();
     property->IndependentComponentsOff();
-    vtkNew<vtkVolume> volume;
-    volume->SetMapper(mapper);
-    volume->SetProperty(property);
-    renderer->AddVolume(volume);
+    parcexample::AddVolume(renderer, mapper, property);
   };
 }
 }

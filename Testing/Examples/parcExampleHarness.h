@@ -32,6 +32,7 @@
 #include <vtkRenderer.h>
 #include <vtkSmartPointer.h>
 #include <vtkUnsignedCharArray.h>
+#include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
 #include <vtkWindowToImageFilter.h>
 
@@ -115,6 +116,27 @@ inline vtkSmartPointer<vtkImageData> MakeBlob(double x, double y, double z, doub
   bytes->SetInputConnection(blob->GetOutputPort());
   bytes->SetOutputScalarTypeToUnsignedChar();
   return ZeroBased(bytes);
+}
+
+/// The settings under which the examples compare the mappers: no budget adjustment, a
+/// sample every 0.5 world units, one ray per pixel.
+template <class Mapper>
+void SampleAlike(Mapper* mapper)
+{
+  mapper->SetAutoAdjustSampleDistances(0);
+  mapper->SetLockSampleDistanceToInputSpacing(0);
+  mapper->SetSampleDistance(0.5);
+  mapper->SetImageSampleDistance(1.0);
+}
+
+/// Adds a volume of the mapper and property to the renderer.
+inline void AddVolume(vtkRenderer* renderer, vtkAbstractVolumeMapper* mapper,
+  vtkVolumeProperty* property)
+{
+  vtkNew<vtkVolume> volume;
+  volume->SetMapper(mapper);
+  volume->SetProperty(property);
+  renderer->AddVolume(volume);
 }
 
 /// A property for the wavelet: the ripples faint and blue, the centre dense and orange.

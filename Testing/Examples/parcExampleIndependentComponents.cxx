@@ -6,7 +6,6 @@
 
 #include <vtkFixedPointVolumeRayCastMapper.h>
 #include <vtkImageAppendComponents.h>
-#include <vtkVolume.h>
 
 namespace
 {
@@ -19,10 +18,7 @@ auto TwoComponentScene(int blendMode)
     components->Update();
     mapper->SetInputConnection(components->GetOutputPort());
     mapper->SetBlendMode(blendMode);
-    mapper->SetAutoAdjustSampleDistances(0);
-    mapper->SetLockSampleDistanceToInputSpacing(0);
-    mapper->SetSampleDistance(0.5);
-    mapper->SetImageSampleDistance(1.0);
+    parcexample::SampleAlike(mapper);
 
     auto property = parcexample::MakeWaveletProperty();
     property->IndependentComponentsOn();
@@ -36,10 +32,7 @@ auto TwoComponentScene(int blendMode)
     property->SetScalarOpacity(1, opacity);
     property->SetColor(1, green);
     property->SetComponentWeight(1, 0.7);
-    vtkNew<vtkVolume> volume;
-    volume->SetMapper(mapper);
-    volume->SetProperty(property);
-    renderer->AddVolume(volume);
+    parcexample::AddVolume(renderer, mapper, property);
   };
 }
 }

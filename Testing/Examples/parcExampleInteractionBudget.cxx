@@ -8,7 +8,6 @@
 
 #include <vtkCallbackCommand.h>
 #include <vtkFixedPointVolumeRayCastMapper.h>
-#include <vtkVolume.h>
 
 namespace
 {
@@ -41,10 +40,7 @@ vtkSmartPointer<vtkImageData> Interact()
   auto window = parcexample::MakeWindow([&mapper](vtkRenderer* renderer) {
     mapper->SetInputData(parcexample::MakeWavelet());
     mapper->SetSampleDistance(0.5);
-    vtkNew<vtkVolume> volume;
-    volume->SetMapper(mapper);
-    volume->SetProperty(parcexample::MakeWaveletProperty());
-    renderer->AddVolume(volume);
+    parcexample::AddVolume(renderer, mapper, parcexample::MakeWaveletProperty());
   });
   window->SetDesiredUpdateRate(DraggingRate);
   window->Render(); // the first frame measures what a frame costs

@@ -14,16 +14,12 @@
 
 #include <vtkGPUVolumeRayCastMapper.h>
 #include <vtkLight.h>
-#include <vtkVolume.h>
 
 int main(int argc, char* argv[])
 {
   const auto scene = [](vtkRenderer* renderer, auto* mapper) {
     mapper->SetInputData(parcexample::MakeBlob(0, 0, 0, 12));
-    mapper->SetAutoAdjustSampleDistances(0);
-    mapper->SetLockSampleDistanceToInputSpacing(0);
-    mapper->SetSampleDistance(0.5);
-    mapper->SetImageSampleDistance(1.0);
+    parcexample::SampleAlike(mapper);
     vtkNew<vtkPiecewiseFunction> shell; // a fuzzy sphere about 36 voxels across
     shell->AddPoint(0, 0.0);
     shell->AddPoint(30, 0.0);
@@ -39,10 +35,7 @@ int main(int argc, char* argv[])
     property->SetAmbient(0.0);
     property->SetDiffuse(0.9);
     property->SetSpecular(0.0);
-    vtkNew<vtkVolume> volume;
-    volume->SetMapper(mapper);
-    volume->SetProperty(property);
-    renderer->AddVolume(volume);
+    parcexample::AddVolume(renderer, mapper, property);
 
     vtkNew<vtkLight> headlight;
     headlight->SetLightTypeToHeadlight();

@@ -6,7 +6,6 @@
 
 #include <vtkFixedPointVolumeRayCastMapper.h>
 #include <vtkNIFTIImageReader.h>
-#include <vtkVolume.h>
 
 #include <fstream>
 
@@ -19,10 +18,7 @@ auto HeadScene(vtkImageData* head, int blendMode)
   return [=](vtkRenderer* renderer, auto* mapper) {
     mapper->SetInputData(head);
     mapper->SetBlendMode(blendMode);
-    mapper->SetAutoAdjustSampleDistances(0);
-    mapper->SetLockSampleDistanceToInputSpacing(0);
-    mapper->SetSampleDistance(0.5);
-    mapper->SetImageSampleDistance(1.0);
+    parcexample::SampleAlike(mapper);
     double range[2];
     head->GetScalarRange(range);
     const double width = range[1] - range[0];
@@ -41,10 +37,7 @@ auto HeadScene(vtkImageData* head, int blendMode)
     property->SetScalarOpacity(opacity);
     property->SetColor(color);
     property->SetInterpolationTypeToLinear();
-    vtkNew<vtkVolume> volume;
-    volume->SetMapper(mapper);
-    volume->SetProperty(property);
-    renderer->AddVolume(volume);
+    parcexample::AddVolume(renderer, mapper, property);
   };
 }
 }

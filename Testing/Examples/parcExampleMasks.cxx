@@ -14,7 +14,6 @@
 #include <vtkGPUVolumeRayCastMapper.h>
 #include <vtkImageEllipsoidSource.h>
 #include <vtkImageMathematics.h>
-#include <vtkVolume.h>
 
 namespace
 {
@@ -38,14 +37,8 @@ auto BinaryMaskScene()
     mapper->SetInputData(parcexample::MakeWavelet());
     mapper->SetMaskInput(parcexample::ZeroBased(Ellipsoid(-6, 0, 0, 1)));
     mapper->SetMaskTypeToBinary();
-    mapper->SetAutoAdjustSampleDistances(0);
-    mapper->SetLockSampleDistanceToInputSpacing(0);
-    mapper->SetSampleDistance(0.5);
-    mapper->SetImageSampleDistance(1.0);
-    vtkNew<vtkVolume> volume;
-    volume->SetMapper(mapper);
-    volume->SetProperty(parcexample::MakeWaveletProperty());
-    renderer->AddVolume(volume);
+    parcexample::SampleAlike(mapper);
+    parcexample::AddVolume(renderer, mapper, parcexample::MakeWaveletProperty());
   };
 }
 
@@ -60,10 +53,7 @@ auto LabelScene(float blendFactor)
     mapper->SetMaskInput(parcexample::ZeroBased(labels));
     mapper->SetMaskTypeToLabelMap();
     mapper->SetMaskBlendFactor(blendFactor);
-    mapper->SetAutoAdjustSampleDistances(0);
-    mapper->SetLockSampleDistanceToInputSpacing(0);
-    mapper->SetSampleDistance(0.5);
-    mapper->SetImageSampleDistance(1.0);
+    parcexample::SampleAlike(mapper);
 
     auto property = parcexample::MakeWaveletProperty();
     vtkNew<vtkColorTransferFunction> red;
@@ -82,10 +72,7 @@ auto LabelScene(float blendFactor)
     faint->AddPoint(254, 0.15);
     property->SetLabelColor(2, green);
     property->SetLabelScalarOpacity(2, faint);
-    vtkNew<vtkVolume> volume;
-    volume->SetMapper(mapper);
-    volume->SetProperty(property);
-    renderer->AddVolume(volume);
+    parcexample::AddVolume(renderer, mapper, property);
   };
 }
 }

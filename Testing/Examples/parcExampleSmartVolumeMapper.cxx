@@ -7,7 +7,6 @@
 #include "parcExampleHarness.h"
 
 #include <vtkSmartVolumeMapper.h>
-#include <vtkVolume.h>
 
 int main(int argc, char* argv[])
 {
@@ -18,10 +17,7 @@ int main(int argc, char* argv[])
     mapper->SetInteractiveAdjustSampleDistances(1);
     mapper->SetAutoAdjustSampleDistances(0);
     mapper->SetSampleDistance(0.5);
-    vtkNew<vtkVolume> volume;
-    volume->SetMapper(mapper);
-    volume->SetProperty(parcexample::MakeWaveletProperty());
-    renderer->AddVolume(volume);
+    parcexample::AddVolume(renderer, mapper, parcexample::MakeWaveletProperty());
   };
   const auto castByRays = [](auto* mapper) {
     const int mode = mapper->GetLastUsedRenderMode();
