@@ -1111,8 +1111,8 @@ void GreyIntensity(double intensity, float rgba[4])
 
 /// VTK's average intensity: the mean, over the samples whose value lies in AverageRange,
 /// of the value (normalised to IntensityRange) times its opacity (uncorrected, as VTK's GPU
-/// mapper takes it); a grey, opaque
-/// result where the ray has such samples, nothing elsewhere.
+/// mapper takes it); a grey, opaque result where the ray has such samples, nothing
+/// elsewhere.
 template <class Context>
 struct AverageFunction
 {
@@ -1170,13 +1170,12 @@ struct AdditiveFunction
   {
     return this->C.ContributingSamples(
       k0, n, visited, [this](int j, double, float a, const Vec3f&, bool) {
-        const double scaled = a * this->C.K.OpacityScale;
-        this->Sum += scaled * this->C.NormalizedIntensity(this->C.Value(j));
+        this->Sum += a * this->C.NormalizedIntensity(this->C.Value(j));
         this->Contributed = true;
         return true;
       });
   }
-  void Finish(float rgba[4]) const { GreyIntensity(this->Sum, rgba); }
+  void Finish(float rgba[4]) const { GreyIntensity(this->Sum * this->C.K.OpacityScale, rgba); }
   /// Where the result lies on the ray: the first contributing sample, or where the ray
   /// enters the field.
   double Position() const { return this->Contributed ? this->C.FirstHit : this->C.EntryT; }
