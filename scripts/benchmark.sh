@@ -24,6 +24,20 @@ scene() { # title, file, options...
     render "$file" --size "$size" "$@" --compare-acceleration
   done
 }
+# One parc-render measurement per scene at 400x400, sample distance 0.5: the option (words),
+# the first and last line of its table to keep, then the scenes (a file and its options,
+# one word list each; absent files are skipped).
+at400() {
+  local option=$1 first=$2 last=$3 args
+  shift 3
+  for args in "$@"; do
+    set -- $args
+    [ -f "$1" ] || continue
+    echo; echo "### $(basename "$1") $(echo "${*:2}" | sed "s|$here/||g"), 400x400"; echo
+    xrun "$here/build/bin/parc-render" "$@" --size 400 --sample-distance 0.5 \
+      --output "$here/out/benchmark.png" $option | sed -n "/^$first/,/^$last/p"
+  done
+}
 {
   echo "# PARC benchmark, $(date -u +%Y-%m-%dT%H:%MZ)"
   echo
@@ -118,30 +132,20 @@ scene() { # title, file, options...
     --output "$here/out/benchmark.png" --accuracy-curve 3 | sed -n '/^| sample distance/,/^3 interleaved/p'
   echo
   echo "## Transfer-function edits (issue 11; goal: the frame after an edit at most 1.2x a warm one)"
-  for args in "$head --tf mri --shade --elevation -80 --azimuth 30" \
-              "$head --tf mri --elevation -80 --azimuth 30" \
-              "$data/ironProt_68x68x68_uint8.raw --tf $tf/iron-protein-cloud.txt"; do
-    set -- $args
-    [ -f "$1" ] || continue
-    echo; echo "### $(basename "$1") $(echo "${*:2}" | sed "s|$here/||g"), 400x400"; echo
-    xrun "$here/build/bin/parc-render" "$@" --size 400 --sample-distance 0.5 \
-      --output "$here/out/benchmark.png" --edit-cost 8 | sed -n '/^| frame/,/^edit frame/p'
-  done
+  at400 "--edit-cost 8" "| frame" "edit frame" \
+    "$head --tf mri --shade --elevation -80 --azimuth 30" \
+    "$head --tf mri --elevation -80 --azimuth 30" \
+    "$data/ironProt_68x68x68_uint8.raw --tf $tf/iron-protein-cloud.txt"
   echo
   echo "## Auto's trial frames (issue 11; goal: no trial frame slower than 1.2x the settled one)"
   echo
   echo "A fresh mapper in Auto, 3 rounds per scene, 400x400: every frame until Auto has settled, then 3 settled frames. Depth comes first; a mode is tried only when the measured frames predict it faster. The first frame also builds the classification and the models and is not counted."
-  for args in "$head --tf mri --shade --elevation -80 --azimuth 30" \
-              "$head --blend iso --iso 60 --elevation -80 --azimuth 30" \
-              "$head --tf $tf/mri-scalp.txt --elevation -80 --azimuth 30" \
-              "$data/bolt_70x123x66_uint8.raw --blend mip" \
-              "$data/embryo_256x256x256_uint8.raw --blend iso --iso 80"; do
-    set -- $args
-    [ -f "$1" ] || continue
-    echo; echo "### $(basename "$1") $(echo "${*:2}" | sed "s|$here/||g"), 400x400"; echo
-    xrun "$here/build/bin/parc-render" "$@" --size 400 --sample-distance 0.5 \
-      --output "$here/out/benchmark.png" --auto-trials 3 | sed -n '/^| round/,/^slowest/p'
-  done
+  at400 "--auto-trials 3" "| round" "slowest" \
+    "$head --tf mri --shade --elevation -80 --azimuth 30" \
+    "$head --blend iso --iso 60 --elevation -80 --azimuth 30" \
+    "$head --tf $tf/mri-scalp.txt --elevation -80 --azimuth 30" \
+    "$data/bolt_70x123x66_uint8.raw --blend mip" \
+    "$data/embryo_256x256x256_uint8.raw --blend iso --iso 80"
   echo
   echo "## Threads (issue 11; goal: 2 threads at least 1.8x in every mode)"
   echo
