@@ -1,6 +1,8 @@
 // parc-render: renders a volume file with vtkPARCVolumeMapper to a PNG file and prints
 // the statistics of the render (optionally as JSON, optionally side by side with
 // vtkFixedPointVolumeRayCastMapper at the same sample distance).
+#include "parcAccuracyStudy.h"
+#include "parcRenderTools.h"
 #include "parcVolumeIO.h"
 #include "vtkPARCMultiVolume.h"
 #include "vtkPARCVolumeMapper.h"
@@ -39,6 +41,13 @@
 
 namespace
 {
+using parctools::CopyMapper;
+using parctools::FixedPointLike;
+using parctools::MinMedian;
+using parctools::RayImage;
+using parctools::TimedRender;
+using parctools::WarmUp;
+
 const char* Usage = R"(usage: parc-render VOLUME [options]
   VOLUME                .vti .mha .mhd .nii .nii.gz .nrrd .nhdr .vtk .slc or NAME_XxYxZ_TYPE.raw
   --output FILE.png     image to write (default: parc.png)
@@ -69,11 +78,15 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
   --sample-cost R       R interleaved rounds of the scene unshaded and shaded with each
                         shading model, acceleration none: casting ns per sample per
                         thread, and the extra ns per contributing shaded sample (table)
-  --accuracy-curve R    accuracy against time at sample distances 2 to 1/8 voxel (the
-                        smallest spacing): RMSE in grey levels of each mapper's window
-                        image against this mapper's exact cast at 1/16 voxel and against
-                        its own, and the median of R interleaved frames: this mapper
-                        (Auto, each shading model when shaded) and FixedPoint (table)
+  --accuracy-curve R    what accuracy costs in time: every mapper (this one in each
+                        acceleration mode and shading model, FixedPoint, GPU) at sample
+                        distances 2 to --finest-distance D (default 1/16) voxel (the
+                        smallest spacing) and image sample distances 1 and 2, R timed
+                        interleaved frames each: median and spread, RMSE and maximum of the
+                        8-bit image against this mapper's exact cast at --reference-distance
+                        D (default 1/64 voxel; its convergence shown) and against the
+                        mapper's own cast there, and the float RMSE (table; with --csv FILE
+                        also rows appended to FILE, named by --scene NAME)
   --edit-cost R         R rounds of a transfer-function edit: the frame right after the
                         edit against the warm frame after it (minimum, median, ratio)
   --auto-trials R       R rounds of a fresh mapper in Auto: each frame until Auto has
@@ -109,7 +122,8 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
 struct Options
 {
   std::string Volume, Output = "parc.png", Blend = "composite", TF, Acceleration = "auto";
-  std::string Second, SecondBlend = "composite", SecondTF;
+  std::string Second, SecondBlend = "composite", SecondTF, Csv, Scene;
+  double FinestDistance = 1.0 / 16.0, ReferenceDistance = 1.0 / 64.0;
   double SecondIso = 0.0;
   bool HasSecondIso = false;
   double Iso = 0.0, Azimuth = 30.0, Elevation = 20.0, Zoom = 1.0, SampleDistance = 0.0;
@@ -205,6 +219,10 @@ Options Parse(int argc, char* argv[])
     else if (a == "--versus-fixed-point") { o.Versus = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--sample-cost") { o.SampleCost = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--accuracy-curve") { o.Accuracy = static_cast<int>(ToNumber(a, value())); }
+    else if (a == "--finest-distance") { o.FinestDistance = ToNumber(a, value()); }
+    else if (a == "--reference-distance") { o.ReferenceDistance = ToNumber(a, value()); }
+    else if (a == "--csv") { o.Csv = value(); }
+    else if (a == "--scene") { o.Scene = value(); }
     else if (a == "--edit-cost") { o.EditCost = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--auto-trials") { o.AutoTrials = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--thread-scaling") { o.ThreadScaling = static_cast<int>(ToNumber(a, value())); }
@@ -261,6 +279,12 @@ Options Parse(int argc, char* argv[])
   {
     Fail("--shadow-table takes a positive number and needs --light");
   }
+  if (!(o.FinestDistance > 0.0) || !(o.ReferenceDistance > 0.0) ||
+    o.ReferenceDistance >= o.FinestDistance)
+  {
+    Fail("--finest-distance and --reference-distance take positive distances, the "
+         "reference the smaller");
+  }
   if (o.BudgetRate < 0.0)
   {
     Fail("--budget takes a positive rate in frames per second");
@@ -311,34 +335,8 @@ int AccelerationMode(const std::string& name)
     name, "acceleration mode");
 }
 
-/// Wall time of one renWin->Render().
-double TimedRender(vtkRenderWindow* window)
-{
-  const double start = vtkTimerLog::GetUniversalTime();
-  window->Render();
-  return vtkTimerLog::GetUniversalTime() - start;
-}
 
-/// Renders until the set-up is done: classification, models, GL resources and, in Auto,
-/// the trial frames that pick the pass.
-void WarmUp(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper)
-{
-  constexpr int MaxWarmUpRenders = 12;
-  int renders = 0;
-  do
-  {
-    window->Render();
-  } while (mapper->GetAutoTrialsRemaining() > 0 && ++renders < MaxWarmUpRenders);
-}
 
-/// The mapper's last float ray-cast image (RGBA, 4 floats a pixel).
-std::vector<float> RayImage(vtkPARCVolumeMapper* mapper)
-{
-  vtkNew<vtkImageData> image;
-  mapper->GetLastRayCastImage(image);
-  auto* rgba = vtkFloatArray::SafeDownCast(image->GetPointData()->GetScalars());
-  return std::vector<float>(rgba->GetPointer(0), rgba->GetPointer(0) + 4 * rgba->GetNumberOfTuples());
-}
 
 /// Averages of repeated renders of one configuration, and its float ray-cast image.
 struct Measurement
@@ -408,48 +406,8 @@ void CompareAccelerationModes(vtkRenderWindow* window, vtkPARCVolumeMapper* mapp
     mapper->GetLastClassificationTime());
 }
 
-/// The minimum and median of times.
-std::pair<double, double> MinMedian(std::vector<double> times)
-{
-  std::sort(times.begin(), times.end());
-  return { times.front(), times[times.size() / 2] };
-}
 
-/// vtkFixedPointVolumeRayCastMapper on image with parc's blend mode and last sample
-/// distance, one ray per pixel, no automatic adjustment.
-vtkSmartPointer<vtkFixedPointVolumeRayCastMapper> FixedPointLike(
-  vtkPARCVolumeMapper* parc, vtkImageData* image)
-{
-  auto fixed = vtkSmartPointer<vtkFixedPointVolumeRayCastMapper>::New();
-  fixed->SetInputData(image);
-  fixed->SetBlendMode(parc->GetBlendMode());
-  fixed->SetAutoAdjustSampleDistances(0);
-  fixed->SetLockSampleDistanceToInputSpacing(0);
-  fixed->SetSampleDistance(parc->GetLastSampleDistance());
-  fixed->SetImageSampleDistance(1.0);
-  return fixed;
-}
 
-/// A mapper like parc (the inputs and ray functions of every port, the sample distance
-/// and supercell size) in acceleration mode.
-vtkSmartPointer<vtkPARCVolumeMapper> CopyMapper(vtkPARCVolumeMapper* parc, int mode)
-{
-  auto m = vtkSmartPointer<vtkPARCVolumeMapper>::New();
-  for (int port = 0; port < parc->GetNumberOfInputPorts(); ++port)
-  {
-    if (parc->GetNumberOfInputConnections(port) > 0)
-    {
-      m->SetInputDataObject(port, parc->GetInputDataObject(port, 0));
-      m->SetInputBlendMode(port, parc->GetInputBlendMode(port));
-    }
-  }
-  m->SetBlendMode(parc->GetBlendMode());
-  m->SetSampleDistance(parc->GetLastSampleDistance());
-  m->SetSupercellSize(parc->GetSupercellSize());
-  m->SetShadingModel(parc->GetShadingModel());
-  m->SetAccelerationMode(mode);
-  return m;
-}
 
 /// The paper's Table 3: rounds interleaved frames without and with shadows, for
 /// acceleration none and PARC (depth buffers, colour buffers, Auto) on primary and shadow
@@ -775,122 +733,6 @@ void SampleCost(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, vtkVolumeP
   std::printf("minimum casting times of %d interleaved rounds, %d threads\n", rounds, threads);
 }
 
-/// The window's RGB, 8 bits a channel.
-std::vector<unsigned char> WindowPixels(vtkRenderWindow* window)
-{
-  vtkNew<vtkWindowToImageFilter> grab;
-  grab->SetInput(window);
-  grab->SetInputBufferTypeToRGB();
-  grab->ReadFrontBufferOff();
-  grab->Update();
-  vtkDataArray* rgb = grab->GetOutput()->GetPointData()->GetScalars();
-  const auto* p = static_cast<const unsigned char*>(rgb->GetVoidPointer(0));
-  return std::vector<unsigned char>(p, p + 3 * rgb->GetNumberOfTuples());
-}
-
-/// Root mean square difference of two RGB images, in grey levels.
-double RMSE(const std::vector<unsigned char>& a, const std::vector<unsigned char>& b)
-{
-  double sum = 0.0;
-  for (std::size_t i = 0; i < a.size() && i < b.size(); ++i)
-  {
-    const double d = static_cast<double>(a[i]) - static_cast<double>(b[i]);
-    sum += d * d;
-  }
-  return std::sqrt(sum / std::max<std::size_t>(a.size(), 1));
-}
-
-/// Accuracy against time: for each sample distance (in voxels of the smallest spacing)
-/// this mapper (Auto; with each shading model when the scene is shaded) and
-/// vtkFixedPointVolumeRayCastMapper render the scene, rounds frames interleaved; each
-/// mapper's RMSE against this mapper's exact cast at 1/16 voxel (the reference) and against
-/// its own cast at 1/16 voxel (sampling error alone) (markdown table).
-void AccuracyCurve(vtkRenderWindow* window, vtkVolume* volume, vtkPARCVolumeMapper* parc,
-  vtkImageData* image, int rounds)
-{
-  const double* spacing = image->GetSpacing();
-  const double voxel = std::min({ spacing[0], spacing[1], spacing[2] });
-  std::vector<vtkSmartPointer<vtkVolumeMapper>> mappers;
-  std::vector<std::string> names;
-  parc->SetShadingModelToExact();
-  mappers.push_back(parc);
-  names.push_back("PARC Auto");
-  if (volume->GetProperty()->GetShade())
-  {
-    const auto quantized = CopyMapper(parc, vtkPARCVolumeMapper::ACCELERATION_AUTO);
-    quantized->SetShadingModelToQuantizedNormals();
-    mappers.push_back(quantized);
-    names.back() += " (exact shading)";
-    names.push_back("PARC Auto (quantized normals)");
-  }
-  const auto fixed = FixedPointLike(parc, image);
-  mappers.push_back(fixed);
-  names.push_back("FixedPoint");
-  auto setDistance = [&](double d) {
-    for (vtkVolumeMapper* m : mappers)
-    {
-      if (auto* p = vtkPARCVolumeMapper::SafeDownCast(m))
-      {
-        p->SetSampleDistance(d * voxel);
-      }
-    }
-    fixed->SetSampleDistance(d * voxel);
-  };
-  constexpr double ReferenceDistance = 1.0 / 16.0;
-  setDistance(ReferenceDistance);
-  std::vector<std::vector<unsigned char>> references;
-  for (vtkVolumeMapper* m : mappers)
-  {
-    volume->SetMapper(m);
-    window->Render();
-    references.push_back(WindowPixels(window));
-  }
-  std::printf("| sample distance (voxels) |");
-  for (const std::string& name : names)
-  {
-    std::printf(" %s median (s) | RMSE | RMSE against its own |", name.c_str());
-  }
-  std::printf("\n|---|");
-  for (std::size_t i = 0; i < mappers.size(); ++i)
-  {
-    std::printf("---|---|---|");
-  }
-  std::printf("\n");
-  for (double d : { 2.0, 1.0, 0.5, 0.25, 0.125 })
-  {
-    setDistance(d);
-    std::vector<std::vector<double>> times(mappers.size());
-    std::vector<std::vector<unsigned char>> pixels;
-    for (vtkVolumeMapper* m : mappers) // warm-up, and Auto's trials
-    {
-      volume->SetMapper(m);
-      if (auto* p = vtkPARCVolumeMapper::SafeDownCast(m))
-      {
-        WarmUp(window, p);
-      }
-      window->Render();
-      pixels.push_back(WindowPixels(window));
-    }
-    for (int r = 0; r < rounds; ++r)
-    {
-      for (std::size_t i = 0; i < mappers.size(); ++i)
-      {
-        volume->SetMapper(mappers[i]);
-        times[i].push_back(TimedRender(window));
-      }
-    }
-    std::printf("| %g |", d);
-    for (std::size_t i = 0; i < mappers.size(); ++i)
-    {
-      std::printf(" %.4f | %.2f | %.2f |", MinMedian(times[i]).second,
-        RMSE(pixels[i], references[0]), RMSE(pixels[i], references[i]));
-    }
-    std::printf("\n");
-  }
-  std::printf("%d interleaved rounds per distance, Auto used %s at the last\n", rounds,
-    vtkPARCVolumeMapper::GetAccelerationModeAsString(parc->GetLastAccelerationMode()));
-  volume->SetMapper(parc);
-}
 
 /// Transfer-function edits: rounds times, a small change of the scalar opacity (a node
 /// moved back and forth, so that the classification changes), then the frame right after it
@@ -1240,7 +1082,13 @@ int main(int argc, char* argv[])
   }
   if (o.Accuracy > 0)
   {
-    AccuracyCurve(window, volume, mapper, image, o.Accuracy);
+    parcaccuracy::Settings study;
+    study.Rounds = o.Accuracy;
+    study.FinestDistance = o.FinestDistance;
+    study.ReferenceDistance = o.ReferenceDistance;
+    study.Csv = o.Csv;
+    study.Scene = o.Scene.empty() ? std::filesystem::path(o.Volume).filename().string() : o.Scene;
+    parcaccuracy::Study(study, window, volume, mapper, image);
   }
   if (o.EditCost > 0)
   {
