@@ -1,170 +1,298 @@
 #!/usr/bin/env bash
-# Benchmarks of PARC against unaccelerated casting, every mode side by side in one run per
-# scene (issues 5 and 6): samples, cells, polygons, projection, casting and total time,
-# speedup, and whether the float image is bit-identical; against
-# vtkFixedPointVolumeRayCastMapper (interleaved, minimum and median), the casting cost per
-# sample and the memory per structure (issue 11). Records the machine and settings.
-# Output: a markdown report on stdout and in out/benchmark.md. Scenes from ../shared/data
-# are skipped when absent.
+# The benchmark a user reads: what accuracy costs in time beside VTK's own mappers, the
+# paper's tables on real data, how the cost grows with the work, numerical stability of hard
+# cases, and the supercell sweep. Not a timed test: every ratio is measured side by side in
+# one run, frames interleaved across mappers.
+#
+# Usage: scripts/benchmark.sh [--quick]
+#   Writes out/benchmark/index.md (and shows it as it goes), its PNG plots and CSV data.
+#   --quick: smaller images, fewer rounds and scenes (under 5 minutes); the full run takes
+#   about 30. Data sets from ../shared/data are skipped, and said so, when absent.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
+quick=0
+case "${1:-}" in
+  --quick) quick=1 ;;
+  "") ;;
+  *) echo "usage: scripts/benchmark.sh [--quick]" >&2; exit 2 ;;
+esac
 "$here/scripts/setup.sh" >/dev/null
 data="$here/../shared/data"
 head=/usr/share/mricron/templates/ch2.nii.gz
 tf="$here/Data/TransferFunctions"
-mkdir -p "$here/out"
+out="$here/out/benchmark"
+mkdir -p "$out"
+rm -f "$out"/*.png "$out"/*.csv
+render_bin="$here/build/bin/parc-render"
+scratch="$out/last-render.png"
+export PYTHONPATH="$here/build/lib/python3.11/dist-packages${PYTHONPATH:+:$PYTHONPATH}"
+
+if [ "$quick" = 1 ]; then
+  size=200 rounds=1 finest=0.25 reference=0.0625 tables="300" sweep_size=300 repeat=1
+else
+  size=400 rounds=3 finest=0.0625 reference=0.015625 tables="300 600" sweep_size=600 repeat=3
+fi
+
 xrun() { xvfb-run -a -s "-screen 0 1280x1024x24" "$@"; }
-render() { xrun "$here/build/bin/parc-render" "$@" --repeat 3 --sample-distance 0.25 \
-  --output "$here/out/benchmark.png" | grep -v '^mapper\|^PARC \|^sample distance'; }
-scene() { # title, file, options...
-  local title=$1 file=$2; shift 2
-  if [ ! -f "$file" ]; then echo "($title: $file not found, skipped)"; return; fi
-  for size in 300 600; do
-    echo; echo "### $title, ${size}x${size}"; echo
-    render "$file" --size "$size" "$@" --compare-acceleration
-  done
+parc() { xrun "$render_bin" "$@" --output "$scratch"; }
+plot() { xrun /usr/bin/python3 "$here/scripts/benchmark_report.py" "$@"; }
+# A scene's title: the file's name and its options, without this checkout's path.
+title() { echo "$(basename "$1") $(echo "${*:2}" | sed "s|$here/||g")"; }
+# Whether a data set is here; says so when it is not.
+present() { [ -f "$1" ] && return 0; echo; echo "($1 not found: skipped)"; return 1; }
+# The median of a mapper's row in a --versus-fixed-point table on stdin.
+median_of() { awk -F'|' -v row="$1" '$2 ~ row { gsub(/ /, "", $4); print $4; exit }'; }
+
+header() {
+  echo "# PARC for VTK: benchmark report ($([ "$quick" = 1 ] && echo quick || echo full) run)"
+  echo
+  echo "- date: $(date -u +%Y-%m-%dT%H:%MZ); commit $(git -C "$here" rev-parse --short HEAD), Release build"
+  echo "- machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores, $(free -g | awk '/Mem:/{print $2}') GiB; this mapper and FixedPoint use $(nproc) threads unless a table says otherwise"
+  echo "- VTK $(dpkg-query -W -f='${Version}' libvtk9-dev); OpenGL: $(xrun glxinfo -B 2>/dev/null | sed -n 's/^OpenGL renderer string: //p'), $(xrun glxinfo -B 2>/dev/null | sed -n 's/^OpenGL version string: //p'). There is no GPU here: vtkGPUVolumeRayCastMapper runs on Mesa's llvmpipe, on the same CPU cores."
+  echo "- data: MRI head \`$head\` (mricron-data, 181x217x181, 8-bit, dense); from \`../shared/data\`: $(for f in ironProt_68x68x68 poship_66x66x66 neghip_64x64x64 tooth_103x94x161 embryo_256x256x256; do [ -f "$data/${f}_uint8.raw" ] && printf '%s ' "$f" || printf '%s (absent) ' "$f"; done)"
+  echo "- settings: images ${size}x${size} for the accuracy study, perspective, linear interpolation; sample distances in voxels of the smallest spacing; times are wall-clock seconds of warm frames (window->Render() until the GL work is done), interleaved across mappers (A B C A B C), median and spread (minimum-maximum) of $rounds rounds unless a table says otherwise"
+  echo
 }
-# One parc-render measurement per scene at 400x400, sample distance 0.5: the option (words),
-# the first and last line of its table to keep, then the scenes (a file and its options,
-# one word list each; absent files are skipped).
-at400() {
-  local option=$1 first=$2 last=$3 args
-  shift 3
-  for args in "$@"; do
+
+accuracy_section() {
+  echo "## 1. What accuracy costs in time"
+  echo
+  echo "Every mapper renders each scene at sample distances from 2 voxels down to $finest, at image sample distance 1 (solid) and 2 (dashed). The error is the RMSE, in grey levels, of the 8-bit RGB window image against a reference: this mapper's exact cast at $reference voxel (its convergence is shown first). FixedPoint runs with automatic adjustment off at the same world sample distance; FixedPoint has no isosurface mode. The full tables give the maximum error, the float-image RMSE of this mapper, and each mapper's error against its own image at the reference distance: what is left beside that is its model (gradient estimation, quantized tables, fixed-point arithmetic), not its sampling."
+  local scenes=("$head --tf mri --shade --elevation -80 --azimuth 30"
+    "$data/ironProt_68x68x68_uint8.raw --tf $tf/iron-protein-cloud.txt")
+  [ "$quick" = 1 ] || scenes+=("$data/poship_66x66x66_uint8.raw --blend iso --iso 120"
+    "$data/embryo_256x256x256_uint8.raw --tf ct-bone")
+  local names=("MRI head, dense, shaded" "iron protein, sparse cloud" "iron protein, isosurface 120"
+    "embryo 256^3, CT bone")
+  local i=0 args
+  for args in "${scenes[@]}"; do
     set -- $args
-    [ -f "$1" ] || continue
-    echo; echo "### $(basename "$1") $(echo "${*:2}" | sed "s|$here/||g"), 400x400"; echo
-    xrun "$here/build/bin/parc-render" "$@" --size 400 --sample-distance 0.5 \
-      --output "$here/out/benchmark.png" $option | sed -n "/^$first/,/^$last/p"
+    local name=${names[$i]}
+    i=$((i + 1))
+    present "$1" || continue
+    parc "$@" --size "$size" --accuracy-curve "$rounds" --finest-distance "$finest" \
+      --reference-distance "$reference" --csv "$out/accuracy.csv" --scene "$name" \
+      > "$out/accuracy-$i.md"
+  done
+  [ -f "$out/accuracy.csv" ] || return 0
+  echo
+  plot accuracy "$out/accuracy.csv" "$out"
+  echo "<details><summary>The full tables</summary>"
+  i=0
+  for args in "${scenes[@]}"; do
+    i=$((i + 1))
+    [ -f "$out/accuracy-$i.md" ] || continue
+    echo; echo "#### ${names[$((i - 1))]}: $(title $args), ${size}x${size}"; echo
+    sed -n '/^Reference/,/^[0-9]* interleaved/p' "$out/accuracy-$i.md"
+    rm "$out/accuracy-$i.md"
+  done
+  echo; echo "</details>"; echo
+}
+
+# Every acceleration mode of one scene side by side, at each of the table sizes.
+modes_table() { # title, file, options...
+  local name=$1 file=$2 s
+  shift 2
+  present "$file" || return 0
+  for s in $tables; do
+    echo; echo "#### $name, ${s}x${s}"; echo
+    parc "$file" --size "$s" "$@" --sample-distance 0.25 --repeat "$repeat" --compare-acceleration \
+      | sed -n '/^| mode/,/^PC supercells/p'
   done
 }
-{
-  echo "# PARC benchmark, $(date -u +%Y-%m-%dT%H:%MZ)"
+
+paper_section() {
+  echo "## 2. The paper's tables on real data"
   echo
-  echo "- machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores, $(free -g | awk '/Mem:/{print $2}') GiB"
-  echo "- OpenGL: $(xrun glxinfo -B 2>/dev/null | sed -n 's/^OpenGL renderer string: //p')"
-  echo "- commit: $(git -C "$here" rev-parse --short HEAD), build: Release"
-  echo "- settings: sample distance 0.25 voxel (spacing 1 in every volume here), 3 timed renders after the warm-up renders (which include the frames on which Auto tries each pass), perspective; supercell 2x2x2 (the default); times are means in seconds; total = the mapper's Render (projection + casting + display)"
+  echo "Sample distance 0.25 voxel, supercells of 2^3 cells unless named, perspective; every mode's float image is compared bit for bit with acceleration None (last column). Times are means of $repeat renders after the warm-up (which includes Auto's trial frames); total = the mapper's Render (projection + casting + display)."
   echo
-  echo "## Depth-buffer PARC: isosurfaces (issue 5; paper Table 2: 5.6x at 300^2, 6.3x at 600^2)"
+  echo "### Table 1: composite (paper: colour PARC 8.8x at 600^2 on a CT foot: samples 189.7M against 13.3M, 674 s against 75.9 s)"
   echo
-  echo "The paper's isosurface is the positive iron protein; iso value 120 leaves 5.36% of its 1.03-cell supercells possibly contributing, the paper's Table 4 gives 5.35%."
-  scene "iron protein, positive (poship), isosurface 120, supercell 2" "$data/poship_66x66x66_uint8.raw" --blend iso --iso 120
-  scene "iron protein, negative (neghip), isosurface 60, supercell 2" "$data/neghip_64x64x64_uint8.raw" --blend iso --iso 60
+  echo "No CT foot is available: the CT tooth and the MRI head stand in, each with a translucent surface over something opaque, like the paper's skin and bone (Data/TransferFunctions)."
+  modes_table "CT tooth, surface and enamel" "$data/tooth_103x94x161_uint8.raw" --tf "$tf/tooth-surface-enamel.txt" --elevation -70
+  modes_table "MRI head, scalp" "$head" --tf "$tf/mri-scalp.txt" --elevation -80 --azimuth 30
   echo
-  echo "## Several volumes: the paper's Table 2 scene (issue 13; paper: 5.7x at 300^2, 6.3x at 600^2; goal 8x at 600^2)"
+  echo "### Table 2: two volumes in one image (paper: 5.7x at 300^2, 6.3x at 600^2; cells 10.4M against 1.3M at 600^2)"
   echo
-  echo "One image of the iron protein through vtkPARCMultiVolume: poship as an isosurface (iso value 120, shaded) inside neghip as a translucent cloud ($tf/iron-protein-cloud.txt), centres aligned. Samples and cells are summed over both volumes (the paper's cells considered); Auto picks a mode per volume and the table names port 0's."
-  scene "iron protein, poship isosurface 120 in a neghip cloud" "$data/poship_66x66x66_uint8.raw" --blend iso --iso 120 \
+  echo "The iron protein through vtkPARCMultiVolume: poship as a shaded isosurface (120) inside neghip as a translucent cloud ($(basename "$tf")/iron-protein-cloud.txt), centres aligned. Samples and cells are summed over both volumes; Auto picks a mode per volume and the table names port 0's."
+  modes_table "poship isosurface in a neghip cloud" "$data/poship_66x66x66_uint8.raw" --blend iso --iso 120 \
     --second "$data/neghip_64x64x64_uint8.raw" --second-tf "$tf/iron-protein-cloud.txt"
-  scene "MRI head ch2, isosurface 60, supercell 2" "$head" --blend iso --iso 60 --elevation -80 --azimuth 30
   echo
-  echo "## Shadows: the paper's Table 3 (issue 14; paper: 3.5x primary, about 2x for the shadow rays, 2.5x total; goal: 1.5x each)"
+  echo "### Table 3: shadows (paper: 3.5x on primary rays, about 2x on shadow rays, 2.5x in total)"
   echo
-  echo "The paper's Figure 13 scene: the embryo (3.5% of its 64^3 supercells of 4^3 cells possibly contributing; the paper's neuron: 3.22% of 64^3) as an isosurface (80) over the generated 57x12x57 floor slab (parc-render --floor), two point lights casting shadows; depth PARC, colour PARC and Auto on primary and shadow rays against none, each its own mapper, frames interleaved (medians of 7). Cells are summed over both volumes. Total with shadows counts the light passes (256^2 buffers) as if the lights moved every frame; they are otherwise cached."
-  for size in 300 600; do
-    if [ ! -f "$data/embryo_256x256x256_uint8.raw" ]; then echo "(embryo not found, skipped)"; break; fi
-    echo; echo "### embryo over the floor, two lights, ${size}x${size}"; echo
-    xrun "$here/build/bin/parc-render" "$data/embryo_256x256x256_uint8.raw" --blend iso --iso 80 \
-      --floor --supercell 4,4,4 --light -250,500,350 --light 550,450,250 --elevation 55 --azimuth 20 \
-      --zoom 1.3 --size "$size" --sample-distance 0.25 --output "$here/out/benchmark.png" \
-      --shadow-table 7 | sed -n '/^| PARC/,/^7 interleaved/p'
+  echo "The paper's Figure 13 scene: the embryo as an isosurface (80, supercells of 4^3 cells) over the generated 57x12x57 floor slab, two point lights casting shadows; each mode its own mapper, frames interleaved (medians of 7). Cells are summed over both volumes. Total with shadows counts the light passes (256^2 buffers) as if the lights moved every frame; they are otherwise cached."
+  local s
+  for s in $tables; do
+    present "$data/embryo_256x256x256_uint8.raw" || break
+    echo; echo "#### embryo over the floor, two lights, ${s}x${s}"; echo
+    parc "$data/embryo_256x256x256_uint8.raw" --blend iso --iso 80 --floor --supercell 4,4,4 \
+      --light -250,500,350 --light 550,450,250 --elevation 55 --azimuth 20 --zoom 1.3 --size "$s" \
+      --sample-distance 0.25 --shadow-table 7 | sed -n '/^| PARC/,/^7 interleaved/p'
   done
   echo
-  echo "## Colour-buffer PARC: composite (issue 6; paper Table 1: 8.8x)"
+  echo "### Table 4: data statistics"
   echo
-  echo "No CT foot is available; the CT tooth stands in for it. Both transfer functions render a translucent surface and something opaque inside, like the paper's skin and bone (files in Data/TransferFunctions)."
-  scene "CT tooth, surface and enamel, supercell 2" "$data/tooth_103x94x161_uint8.raw" --tf "$tf/tooth-surface-enamel.txt" --elevation -70
-  scene "MRI head ch2, scalp, supercell 2" "$head" --tf "$tf/mri-scalp.txt" --elevation -80 --azimuth 30
+  echo "| volume | stands for | size in samples | size in units | supercell | possibly contributing supercells | paper |"
+  echo "|---|---|---|---|---|---|---|"
+  statistics_row "$data/poship_66x66x66_uint8.raw" "iron protein (positive), Figure 12" 1.03 "5.35% (1.03^3)" --blend iso --iso 120
+  statistics_row "$data/neghip_64x64x64_uint8.raw" "iron protein (negative), Figure 12" 1 "6.2% (1^3)" --tf "$tf/iron-protein-cloud.txt"
+  statistics_row "$data/tooth_103x94x161_uint8.raw" "CT foot, Figure 11" 2 "6.79% (3x5x5)" --tf "$tf/tooth-surface-enamel.txt"
+  statistics_row "$head" "CT foot, Figure 11" 2 "6.79% (3x5x5)" --tf "$tf/mri-scalp.txt"
+  statistics_row "$data/embryo_256x256x256_uint8.raw" "hippocampal cell, Figure 13" 4 "3.22% (6x4x3.125)" --blend iso --iso 80
   echo
-  echo "## Supercell size sweep: polygons against ray steps (600x600, Auto)"
-  for args in "$data/poship_66x66x66_uint8.raw --blend iso --iso 120" \
-              "$data/tooth_103x94x161_uint8.raw --tf $tf/tooth-surface-enamel.txt --elevation -70" \
-              "$head --tf $tf/mri-scalp.txt --elevation -80 --azimuth 30"; do
+}
+
+statistics_row() { # file, stands for, supercell, the paper's figure, options...
+  local file=$1 stands=$2 cell=$3 paper=$4 json
+  shift 4
+  [ -f "$file" ] || { echo "| $(basename "$file") (absent) | $stands | | | | | $paper |"; return 0; }
+  json=$(parc "$file" "$@" --size 100 --sweep-supercells "$cell" --json)
+  local pc dims spacing
+  pc=$(echo "$json" | awk -F'|' '/^\| [0-9.]+ \|/ {print $3; exit}')
+  dims=$(echo "$json" | sed -n 's/.*"dimensions": \[\(.*\)\].*/\1/p' | tr -d ' ' | tr , x)
+  spacing=$(echo "$json" | sed -n 's/.*"spacing": \[\(.*\)\].*/\1/p' | tr -d ' ')
+  local units
+  units=$(awk -v d="$dims" -v s="$spacing" 'BEGIN { split(d, n, "x"); split(s, h, ",");
+    printf "%gx%gx%g", (n[1]-1)*h[1], (n[2]-1)*h[2], (n[3]-1)*h[3] }')
+  echo "| $(basename "$file") | $stands | $dims | $units | $cell^3 |$pc| $paper |"
+}
+
+growth_section() {
+  echo "## 3. Cost as the work grows"
+  echo
+  echo "The MRI head, shaded, sample distance 0.5 voxel: this mapper with acceleration None and Auto (exact and quantized-normal shading) against FixedPoint, interleaved rounds (--versus-fixed-point), medians."
+  present "$head" || return 0
+  local sizes="300 600 1200" factors="0.5 1 2" s f table
+  [ "$quick" = 1 ] && sizes="150 300" && factors="0.5 1"
+  echo "series,x,y" > "$out/image-size.csv"
+  echo; echo "### Image size"; echo
+  echo "| image | PARC None (s) | PARC Auto (s) | PARC Auto, quantized normals (s) | FixedPoint (s) | FixedPoint / Auto |"
+  echo "|---|---|---|---|---|---|"
+  for s in $sizes; do
+    table=$(parc "$head" --tf mri --shade --elevation -80 --azimuth 30 --size "$s" --sample-distance 0.5 --versus-fixed-point "$rounds")
+    growth_row "${s}^2" "$((s * s))" "$table" "$out/image-size.csv"
+  done
+  plot lines "$out/image-size.csv" "$out/image-size.png" "MRI head, shaded: frame time against image size" "pixels" "median frame time (s)" --log-x --log-y
+  echo; echo "![time against image size](image-size.png)"
+  echo; echo "### Volume size (the head resampled trilinearly; sample distance 0.5 of the new voxels, image ${size}x${size})"; echo
+  echo "series,x,y" > "$out/volume-size.csv"
+  echo "| voxels | PARC None (s) | PARC Auto (s) | PARC Auto, quantized normals (s) | FixedPoint (s) | FixedPoint / Auto |"
+  echo "|---|---|---|---|---|---|"
+  for f in $factors; do
+    table=$(parc "$head" --tf mri --shade --elevation -80 --azimuth 30 --size "$size" --resample "$f" --versus-fixed-point "$rounds")
+    growth_row "$(awk -v f="$f" 'BEGIN{printf "%gx", f*f*f}')" "$(awk -v f="$f" 'BEGIN{printf "%d", 181*217*181*f*f*f}')" "$table" "$out/volume-size.csv"
+  done
+  plot lines "$out/volume-size.csv" "$out/volume-size.png" "MRI head, shaded: frame time against volume size" "voxels" "median frame time (s)" --log-x --log-y
+  echo; echo "![time against volume size](volume-size.png)"
+  echo; echo "### Threads (iron protein cloud, ${size}x${size}; one caster thread against $(nproc), medians of 7 interleaved frames; llvmpipe's GL passes use every core in both)"; echo
+  present "$data/ironProt_68x68x68_uint8.raw" && parc "$data/ironProt_68x68x68_uint8.raw" --tf "$tf/iron-protein-cloud.txt" --size "$size" --sample-distance 0.5 --thread-scaling 7 | grep '^|'
+  echo; echo "### The first frame after a transfer-function change against a warm frame (${size}x${size})"
+  local args
+  for args in "$head --tf mri --shade --elevation -80 --azimuth 30" "$data/ironProt_68x68x68_uint8.raw --tf $tf/iron-protein-cloud.txt"; do
     set -- $args
-    [ -f "$1" ] || continue
-    echo; echo "### $(basename "$1") $(echo "${*:2}" | sed "s|$here/||g")"; echo
-    render "$@" --size 600 --acceleration auto --sweep-supercells 1,1.5,2,3,4
+    present "$1" || continue
+    echo; echo "#### $(title "$@")"; echo
+    parc "$@" --size "$size" --sample-distance 0.5 --edit-cost $((rounds + 3)) | sed -n '/^| frame/,/^edit frame/p'
   done
+  echo; echo "### Memory: peak resident size of the process, and the bytes the mapper holds per structure (MRI head, shaded, ${size}x${size}, after Auto's trials)"; echo
+  local peak
+  for f in $factors; do
+    peak=$( { xrun /usr/bin/time -f "PEAK %M" "$render_bin" "$head" --tf mri --shade --elevation -80 --azimuth 30 --size "$size" --resample "$f" --memory --output "$scratch" > "$out/memory.txt"; } 2>&1 | sed -n 's/^PEAK //p')
+    echo "#### resampled by $f: peak resident size $((peak / 1024)) MiB"; echo
+    grep -E '^(Memory|Input)' "$out/memory.txt" | sed 's/^/    /'
+    echo
+  done
+  rm -f "$out/memory.txt"
+}
+
+growth_row() { # label, x, --versus-fixed-point table, csv
+  local none auto quantized fixed
+  none=$(echo "$3" | median_of "acceleration none, Exact")
+  auto=$(echo "$3" | median_of "Auto, Exact")
+  quantized=$(echo "$3" | median_of "Auto, QuantizedNormals")
+  fixed=$(echo "$3" | median_of "vtkFixedPoint")
+  echo "| $1 | $none | $auto | $quantized | $fixed | $(awk -v a="$auto" -v f="$fixed" 'BEGIN{printf "%.2fx", f/a}') |"
+  printf 'PARC None,%s,%s\nPARC Auto,%s,%s\nPARC Auto quantized normals,%s,%s\nvtkFixedPointVolumeRayCastMapper,%s,%s\n' \
+    "$2" "$none" "$2" "$auto" "$2" "$quantized" "$2" "$fixed" >> "$4"
+}
+
+stability_section() {
+  echo "## 4. Numerical stability of hard cases"
   echo
-  echo "## Against vtkFixedPointVolumeRayCastMapper (issue 11)"
+  xrun /usr/bin/python3 "$here/scripts/benchmark_stability.py" $([ "$quick" = 1 ] && echo --quick)
+}
+
+sweep_section() {
+  echo "## 5. Supercell sweep: polygons against ray steps (${sweep_size}x${sweep_size}, Auto)"
   echo
-  echo "Sample distance 0.5 voxel for both mappers, $(nproc) threads, wall time per frame of interleaved rounds (none, Auto, FixedPoint, repeated) after warm-up; the MRI head is dense and shaded or unshaded, the iron protein and the embryo are sparse. Shaded scenes show this mapper with each shading model: exact (the default) and quantized normals (SetShadingModelToQuantizedNormals, FixedPoint's model)."
+  echo "Each row is Auto at one supercell size (its choice in the last column); the optimum, the smallest total, is named below each table and is the lowest point of its line in the plot. The default is 2."
+  local args i=0 table best
+  echo "series,x,y" > "$out/sweep.csv"
+  local scenes=("$data/tooth_103x94x161_uint8.raw --tf $tf/tooth-surface-enamel.txt --elevation -70")
+  [ "$quick" = 1 ] || scenes+=("$data/poship_66x66x66_uint8.raw --blend iso --iso 120"
+    "$head --tf $tf/mri-scalp.txt --elevation -80 --azimuth 30")
+  for args in "${scenes[@]}"; do
+    set -- $args
+    present "$1" || continue
+    echo; echo "### $(title "$@")"; echo
+    table=$(parc "$@" --size "$sweep_size" --sample-distance 0.25 --repeat "$repeat" --sweep-supercells 1,1.5,2,3,4 | grep '^|')
+    echo "$table"
+    best=$(echo "$table" | awk -F'|' '$2 ~ /[0-9]/ { gsub(/ /, "", $2); gsub(/ /, "", $8); gsub(/ /, "", $9);
+      if (min == "" || $8 < min) { min = $8; at = $2; mode = $9 } } END { print at, min, mode }')
+    echo; echo "Optimum: supercell ${best%% *} ($(echo "$best" | cut -d' ' -f2) s total; Auto chose $(echo "$best" | cut -d' ' -f3) there)."
+    echo "$table" | awk -F'|' -v name="$(basename "$1")" '$2 ~ /[0-9]/ { gsub(/ /, "", $2); gsub(/ /, "", $8); print name "," $2 "," $8 }' >> "$out/sweep.csv"
+  done
+  plot lines "$out/sweep.csv" "$out/sweep.png" "Total frame time against supercell size (Auto)" "supercell edge (cells)" "total (s)" --log-y
+  echo; echo "![supercell sweep](sweep.png)"
+}
+
+caster_section() {
+  echo "## 6. The caster against FixedPoint, and Auto's choices"
+  echo
+  echo "Sample distance 0.5 voxel; wall time per frame of interleaved rounds."
+  local args s
   for args in "$head --tf mri --shade --elevation -80 --azimuth 30" \
               "$head --tf mri --elevation -80 --azimuth 30" \
               "$data/ironProt_68x68x68_uint8.raw --tf $tf/iron-protein-cloud.txt" \
               "$data/embryo_256x256x256_uint8.raw --tf ct-bone"; do
     set -- $args
-    [ -f "$1" ] || { echo; echo "($1 not found, skipped)"; continue; }
-    for size in 400 800; do
-      echo; echo "### $(basename "$1") $(echo "${*:2}" | sed "s|$here/||g"), ${size}x${size}"; echo
-      xrun "$here/build/bin/parc-render" "$@" --size "$size" --sample-distance 0.5 \
-        --output "$here/out/benchmark.png" --versus-fixed-point 5 | sed -n '/^| mapper/,/^Auto used/p'
+    present "$1" || continue
+    for s in 400 800; do
+      echo; echo "### $(title "$@"), ${s}x${s}"; echo
+      parc "$@" --size "$s" --sample-distance 0.5 --versus-fixed-point 5 | sed -n '/^| mapper/,/^Auto used/p'
     done
   done
-  echo
-  echo "## Interaction under a render-time budget (issue 15)"
-  echo
-  echo "A 30-frame rotation (3 degrees a frame) at a desired update rate of 10 frames per second (a budget of 0.1 s), each mapper with AutoAdjustSampleDistances on, frames interleaved, then a still frame (full quality)."
-  for size in 400 800; do
-    [ -f "$head" ] || { echo; echo "($head not found, skipped)"; break; }
-    echo; echo "### MRI head, shaded, ${size}x${size}"; echo
-    xrun "$here/build/bin/parc-render" "$head" --tf mri --shade --elevation -80 --azimuth 30 \
-      --size "$size" --sample-distance 0.5 --output "$here/out/benchmark.png" --budget 10 \
-      | sed -n '/^| mapper/,/^PARC.s image sample distance/p'
-  done
-  echo
-  echo "## Casting cost per sample (issue 11; goals: 10 ns per sample, 30 ns per contributing shaded sample)"
-  echo
-  echo "MRI head, 400x400, sample distance 0.5 voxel, acceleration none; the unshaded cast per sample, and the shaded minus the unshaded cast per contributing sample for each shading model, both per thread."
+  echo; echo "### Casting cost per sample (MRI head, 400x400, acceleration None: the unshaded cast per sample, and the shaded minus the unshaded cast per contributing sample, per thread)"
   for threads in 1 "$(nproc)"; do
-    echo; echo "### $threads thread(s)"; echo
-    xrun "$here/build/bin/parc-render" "$head" --tf mri --elevation -80 --azimuth 30 --size 400 \
-      --sample-distance 0.5 --threads "$threads" --output "$here/out/benchmark.png" --sample-cost 5 \
-      | sed -n '/^| casting/,/^minimum/p'
+    echo; echo "#### $threads thread(s)"; echo
+    parc "$head" --tf mri --elevation -80 --azimuth 30 --size 400 --sample-distance 0.5 \
+      --threads "$threads" --sample-cost 5 | sed -n '/^| casting/,/^minimum/p'
   done
+  echo; echo "### Interaction under a budget of 0.1 s (a 30-frame rotation, AutoAdjustSampleDistances on, then a still frame)"
+  echo; parc "$head" --tf mri --shade --elevation -80 --azimuth 30 --size 400 --sample-distance 0.5 \
+    --budget 10 | sed -n '/^| mapper/,/^PARC.s image sample distance/p'
+  echo; echo "### Auto's trial frames (a fresh mapper, 3 rounds, 400x400; the first frame also builds the classification and models and is not counted)"
+  for args in "$head --tf mri --shade --elevation -80 --azimuth 30" \
+              "$head --blend iso --iso 60 --elevation -80 --azimuth 30" \
+              "$data/embryo_256x256x256_uint8.raw --blend iso --iso 80"; do
+    set -- $args
+    present "$1" || continue
+    echo; echo "#### $(title "$@")"; echo
+    parc "$@" --size 400 --sample-distance 0.5 --auto-trials 3 | sed -n '/^| round/,/^slowest/p'
+  done
+}
+
+start=$(date +%s)
+{
+  header
+  accuracy_section
+  paper_section
+  growth_section
+  stability_section
+  sweep_section
+  [ "$quick" = 1 ] || caster_section
   echo
-  echo "## Accuracy against time (issue 11)"
-  echo
-  echo "MRI head, shaded, 400x400: RMSE in grey levels of the window image against this mapper's exact cast at 1/16 voxel (the reference), and against each mapper's own cast at 1/16 voxel (its sampling error alone; the rest is its model: quantized normals, FixedPoint's fixed-point arithmetic and tables), median of 3 interleaved frames per distance, $(nproc) threads."
-  echo
-  xrun "$here/build/bin/parc-render" "$head" --tf mri --shade --elevation -80 --azimuth 30 --size 400 \
-    --output "$here/out/benchmark.png" --accuracy-curve 3 | sed -n '/^| sample distance/,/^3 interleaved/p'
-  echo
-  echo "## Transfer-function edits (issue 11; goal: the frame after an edit at most 1.2x a warm one)"
-  at400 "--edit-cost 8" "| frame" "edit frame" \
-    "$head --tf mri --shade --elevation -80 --azimuth 30" \
-    "$head --tf mri --elevation -80 --azimuth 30" \
-    "$data/ironProt_68x68x68_uint8.raw --tf $tf/iron-protein-cloud.txt"
-  echo
-  echo "## Auto's trial frames (issue 11; goal: no trial frame slower than 1.2x the settled one)"
-  echo
-  echo "A fresh mapper in Auto, 3 rounds per scene, 400x400: every frame until Auto has settled, then 3 settled frames. Depth comes first; a mode is tried only when the measured frames predict it faster. The first frame also builds the classification and the models and is not counted."
-  at400 "--auto-trials 3" "| round" "slowest" \
-    "$head --tf mri --shade --elevation -80 --azimuth 30" \
-    "$head --blend iso --iso 60 --elevation -80 --azimuth 30" \
-    "$head --tf $tf/mri-scalp.txt --elevation -80 --azimuth 30" \
-    "$data/bolt_70x123x66_uint8.raw --blend mip" \
-    "$data/embryo_256x256x256_uint8.raw --blend iso --iso 80"
-  echo
-  echo "## Threads (issue 11; goal: 2 threads at least 1.8x in every mode)"
-  echo
-  echo "One caster thread against $(nproc), interleaved, median of 7 frames each; llvmpipe runs the GL passes on every core in both."
-  if [ -f "$data/ironProt_68x68x68_uint8.raw" ]; then
-    echo
-    xrun "$here/build/bin/parc-render" "$data/ironProt_68x68x68_uint8.raw" \
-      --tf "$tf/iron-protein-cloud.txt" --size 400 --sample-distance 0.5 \
-      --output "$here/out/benchmark.png" --thread-scaling 7 | grep '^|'
-  fi
-  echo
-  echo "## Memory held by the mapper, per structure (MRI head, shaded, 400x400, after Auto's trials)"
-  echo
-  xrun "$here/build/bin/parc-render" "$head" --tf mri --shade --elevation -80 --azimuth 30 --size 400 \
-    --sample-distance 0.5 --output "$here/out/benchmark.png" --memory | grep -E '^(Memory|Input)' | sed 's/^/    /'
-  echo
-  echo "## Reclassification of a 256^3 volume (embryo) after a transfer-function change"
-  if [ -f "$data/embryo_256x256x256_uint8.raw" ]; then
-    echo
-    render "$data/embryo_256x256x256_uint8.raw" --size 300 --tf ct-bone --compare-acceleration | tail -1
-  fi
-} | tee "$here/out/benchmark.md"
+  echo "---"
+  echo "The run took $(( ($(date +%s) - start) / 60 )) min $(( ($(date +%s) - start) % 60 )) s."
+} | tee "$out/index.md"
+rm -f "$scratch"

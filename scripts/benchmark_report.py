@@ -133,9 +133,10 @@ def verdict(rows):
         ranked = sorted(best.values(), key=lambda r: float(r["median_s"]))
         winners.setdefault(ranked[0]["mapper"], []).append(f"{error:g}")
         fastest = float(ranked[0]["median_s"])
-        parts = [f"{r['mapper']} {float(r['median_s']):.3f} s ({float(r['median_s']) / fastest:.1f}x; "
-                 f"sample distance {r['sample_distance']}, image sample distance "
-                 f"{r['image_sample_distance']})" for r in ranked]
+        parts = [f"{r['mapper']} {float(r['median_s']):.3f} s "
+                 f"({float(r['median_s']) / fastest:.1f}x; sample distance "
+                 f"{r['sample_distance']}, image sample distance {r['image_sample_distance']})"
+                 for r in ranked]
         parts[0] = "**" + parts[0].replace(" (1.0x; ", " (") + "**"
         text = f"- RMSE {error:g}: " + ", ".join(parts)
         if missing:
@@ -151,7 +152,8 @@ def accuracy(path, outdir):
         series = []
         for i, mapper in enumerate(mappers):
             for isd in sorted({r["image_sample_distance"] for r in rows}, key=float):
-                chosen = [r for r in rows if r["mapper"] == mapper and r["image_sample_distance"] == isd]
+                chosen = [r for r in rows
+                          if r["mapper"] == mapper and r["image_sample_distance"] == isd]
                 if not chosen:
                     continue
                 series.append((mapper,
@@ -159,7 +161,8 @@ def accuracy(path, outdir):
                                [float(r["rmse"]) for r in chosen],
                                PALETTE[i % len(PALETTE)], isd != "1"))
         name = f"accuracy-{slug(scene)}.png"
-        draw(series, f"{outdir}/{name}", f"{scene}: error against frame time (dashed: image sample distance 2)",
+        draw(series, f"{outdir}/{name}",
+             f"{scene}: error against frame time (dashed: image sample distance 2)",
              "median warm frame time (s)", "RMSE against the reference (grey levels)",
              log_x=True, log_y=True)
         print(f"### {scene}\n\n![{scene}]({name})\n")

@@ -87,7 +87,8 @@ def slab_section(quick):
           f"distance, seen face on in a parallel view: the centre pixel's opacity against "
           f"1 - (1 - a)^L = {expected:.9f}. This mapper's from its float image, FixedPoint's from "
           f"the 8-bit window over a black background (its resolution is 1/255).\n")
-    print("| sample distance (voxels) | this mapper | relative error | FixedPoint | relative error |")
+    print("| sample distance (voxels) | this mapper | relative error | FixedPoint | "
+          "relative error |")
     print("|---|---|---|---|---|")
     distances = [2, 1, 0.5, 0.25, 0.1, 0.01] + ([] if quick else [0.001])
     for d in distances:

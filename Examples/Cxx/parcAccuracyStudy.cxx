@@ -164,7 +164,8 @@ std::vector<Contender> Contenders(
     all.push_back({ "PARC Auto, quantized normals", quantized, quantized.Get(), false, {} });
   }
   const int blend = parc->GetBlendMode();
-  if (blend != vtkVolumeMapper::ISOSURFACE_BLEND && blend != vtkVolumeMapper::AVERAGE_INTENSITY_BLEND)
+  if (blend != vtkVolumeMapper::ISOSURFACE_BLEND &&
+    blend != vtkVolumeMapper::AVERAGE_INTENSITY_BLEND)
   {
     all.push_back({ "vtkFixedPointVolumeRayCastMapper", parctools::FixedPointLike(parc, image),
       nullptr, false, {} });
@@ -286,7 +287,7 @@ void Study(const Settings& settings, vtkRenderWindow* window, vtkVolume* volume,
           all[i].Name.c_str(), median, fastest, slowest, e.Rmse, e.Max, own, floatText);
         if (csv.is_open())
         {
-          csv << settings.Scene << ",\"" << all[i].Name << "\"," << isd << "," << d << ","
+          csv << "\"" << settings.Scene << "\",\"" << all[i].Name << "\"," << isd << "," << d << ","
               << median << "," << fastest << "," << slowest << "," << e.Rmse << "," << e.Max
               << "," << own << "," << floatText << "\n";
         }
