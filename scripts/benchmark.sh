@@ -50,18 +50,18 @@ header() {
   echo "- machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores, $(free -g | awk '/Mem:/{print $2}') GiB; this mapper and FixedPoint use $(nproc) threads unless a table says otherwise"
   echo "- VTK $(dpkg-query -W -f='${Version}' libvtk9-dev); OpenGL: $(xrun glxinfo -B 2>/dev/null | sed -n 's/^OpenGL renderer string: //p'), $(xrun glxinfo -B 2>/dev/null | sed -n 's/^OpenGL version string: //p'). There is no GPU here: vtkGPUVolumeRayCastMapper runs on Mesa's llvmpipe, on the same CPU cores."
   echo "- data: MRI head \`$head\` (mricron-data, 181x217x181, 8-bit, dense); from \`../shared/data\`: $(for f in ironProt_68x68x68 poship_66x66x66 neghip_64x64x64 tooth_103x94x161 embryo_256x256x256; do [ -f "$data/${f}_uint8.raw" ] && printf '%s ' "$f" || printf '%s (absent) ' "$f"; done)"
-  echo "- settings: images ${size}x${size} for the accuracy study, perspective, linear interpolation; sample distances in voxels of the smallest spacing; times are wall-clock seconds of warm frames (window->Render() until the GL work is done), interleaved across mappers (A B C A B C), median and spread (minimum-maximum) of $rounds rounds unless a table says otherwise"
+  echo "- settings: images ${size}x${size} for the accuracy study (parallel projection there, perspective elsewhere), linear interpolation; sample distances in voxels of the smallest spacing; times are wall-clock seconds of warm frames (window->Render() until the GL work is done), interleaved across mappers (A B C A B C), median and spread (minimum-maximum) of $rounds rounds unless a table says otherwise"
   echo
 }
 
 accuracy_section() {
   echo "## 1. What accuracy costs in time"
   echo
-  echo "Every mapper renders each scene at sample distances from 2 voxels down to $finest, at image sample distance 1 (solid) and 2 (dashed). The error is the RMSE, in grey levels, of the 8-bit RGB window image against a reference: this mapper's exact cast at $reference voxel (its convergence is shown first). FixedPoint runs with automatic adjustment off at the same world sample distance; FixedPoint has no isosurface mode. The full tables give the maximum error, the float-image RMSE of this mapper, and each mapper's error against its own image at the reference distance: what is left beside that is its model (gradient estimation, quantized tables, fixed-point arithmetic), not its sampling."
-  local scenes=("$head --tf mri --shade --elevation -80 --azimuth 30"
-    "$data/ironProt_68x68x68_uint8.raw --tf $tf/iron-protein-cloud.txt")
-  [ "$quick" = 1 ] || scenes+=("$data/poship_66x66x66_uint8.raw --blend iso --iso 120"
-    "$data/embryo_256x256x256_uint8.raw --tf ct-bone")
+  echo "Every mapper renders each scene, in a parallel view (VolPack has no other), at sample distances from 2 voxels down to $finest, at image sample distance 1 (solid) and 2 (dashed). VolPack, the shear-warp renderer the paper cites (Debian libvolpack1-dev, driven by Examples/Cxx/parcVolPack.cxx), takes one sample per slice: it is one point at sample distance 1, where its model allows the scene (8-bit composite; one thread). The error is the RMSE, in grey levels, of the 8-bit RGB window image against a reference: this mapper's exact cast at $reference voxel (its convergence is shown first). FixedPoint runs with automatic adjustment off at the same world sample distance; FixedPoint has no isosurface mode. The full tables give the maximum error, the float-image RMSE of this mapper, and each mapper's error against its own image at the reference distance: what is left beside that is its model (gradient estimation, quantized tables, fixed-point arithmetic), not its sampling."
+  local scenes=("$head --tf mri --shade --elevation -80 --azimuth 30 --parallel"
+    "$data/ironProt_68x68x68_uint8.raw --tf $tf/iron-protein-cloud.txt --parallel")
+  [ "$quick" = 1 ] || scenes+=("$data/poship_66x66x66_uint8.raw --blend iso --iso 120 --parallel"
+    "$data/embryo_256x256x256_uint8.raw --tf ct-bone --parallel")
   local names=("MRI head, dense, shaded" "iron protein, sparse cloud" "iron protein, isosurface 120"
     "embryo 256^3, CT bone")
   local i=0 args

@@ -6,7 +6,7 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-"$here/build"}
 
 packages=(build-essential cmake ninja-build libvtk9-dev python3-vtk9 python3-numpy
-  xvfb xauth libosmesa6-dev mesa-utils libgtest-dev mricron-data)
+  xvfb xauth libosmesa6-dev mesa-utils libgtest-dev mricron-data libvolpack1-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,12 +1,16 @@
 #include "parcAccuracyStudy.h"
 
 #include "parcRenderTools.h"
+#include "parcVolPack.h"
 #include "vtkPARCVolumeMapper.h"
 
+#include <vtkCamera.h>
 #include <vtkFixedPointVolumeRayCastMapper.h>
 #include <vtkGPUVolumeRayCastMapper.h>
 #include <vtkImageData.h>
 #include <vtkRenderWindow.h>
+#include <vtkRenderer.h>
+#include <vtkRendererCollection.h>
 #include <vtkSmartPointer.h>
 #include <vtkVolume.h>
 #include <vtkVolumeProperty.h>
@@ -16,6 +20,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -203,6 +208,48 @@ void ShowConvergence(vtkRenderWindow* window, vtkVolume* volume, Contender& parc
   std::printf("\n");
 }
 
+/// VolPack in the tables, and the sample distance it stands at (one sample per slice).
+constexpr const char* VolPackName = "VolPack (shear-warp, 1 thread)";
+constexpr double VolPackDistance = 1.0;
+
+/// One measurement: a contender's frame at a setting, and its error against its own image
+/// at the reference distance (negative: it has no other setting).
+struct Row
+{
+  double ImageSampleDistance;
+  double Distance;
+  std::string Name;
+  const Frame* F;
+  double OwnRmse;
+
+  /// Prints the markdown row, and the CSV row when csv is open.
+  void Print(const Frame& ref, const std::string& scene, std::ofstream& csv) const
+  {
+    const auto [fastest, median] = MinMedian(this->F->Times);
+    const double slowest = *std::max_element(this->F->Times.begin(), this->F->Times.end());
+    const ImageError e = Compare(this->F->Pixels, ref.Pixels);
+    const double floatRmse = FloatRmse(this->F->Ray, ref.Ray);
+    char floatText[32] = "", ownText[32] = "";
+    if (floatRmse >= 0.0)
+    {
+      std::snprintf(floatText, sizeof(floatText), "%.4f", floatRmse);
+    }
+    if (this->OwnRmse >= 0.0)
+    {
+      std::snprintf(ownText, sizeof(ownText), "%.3f", this->OwnRmse);
+    }
+    std::printf("| %g | %g | %s | %.4f | %.4f-%.4f | %.3f | %.0f | %s | %s |\n",
+      this->ImageSampleDistance, this->Distance, this->Name.c_str(), median, fastest, slowest,
+      e.Rmse, e.Max, ownText, floatText);
+    if (csv.is_open())
+    {
+      csv << "\"" << scene << "\",\"" << this->Name << "\"," << this->ImageSampleDistance << ","
+          << this->Distance << "," << median << "," << fastest << "," << slowest << "," << e.Rmse
+          << "," << e.Max << "," << ownText << "," << floatText << "\n";
+    }
+  }
+};
+
 /// Opens the CSV for appending; writes the header when the file is new.
 std::ofstream OpenCsv(const std::string& path)
 {
@@ -244,6 +291,23 @@ void Study(const Settings& settings, vtkRenderWindow* window, vtkVolume* volume,
     c.Own = FirstFrame(window, volume, c, false).Pixels;
   }
 
+  vtkCamera* camera = window->GetRenderers()->GetFirstRenderer()->GetActiveCamera();
+  const int* size = window->GetSize();
+  std::unique_ptr<parcvolpack::Renderer> volpack;
+  const std::string volpackMissing =
+    parcvolpack::Renderer::Unsupported(parc->GetBlendMode(), volume, image, camera);
+  if (volpackMissing.empty())
+  {
+    volpack = std::make_unique<parcvolpack::Renderer>(volume, image);
+    std::printf("VolPack classified the volume in %.3f s (once per transfer function; not in "
+                "its frame times).\n\n",
+      volpack->ClassificationTime());
+  }
+  else
+  {
+    std::printf("VolPack is left out: %s.\n\n", volpackMissing.c_str());
+  }
+
   std::ofstream csv;
   if (!settings.Csv.empty())
   {
@@ -262,6 +326,13 @@ void Study(const Settings& settings, vtkRenderWindow* window, vtkVolume* volume,
         Configure(c, d * voxel, isd);
         frames.push_back(FirstFrame(window, volume, c, isd == 1.0));
       }
+      // VolPack samples once per slice: it stands at sample distance 1, one ray a pixel.
+      Frame volpackFrame;
+      if (volpack && isd == 1.0 && d == VolPackDistance)
+      {
+        double seconds;
+        volpackFrame.Pixels = volpack->Render(camera, size[0], size[1], seconds);
+      }
       for (int r = 0; r < settings.Rounds; ++r) // interleaved: A B C A B C ...
       {
         for (std::size_t i = 0; i < all.size(); ++i)
@@ -269,28 +340,20 @@ void Study(const Settings& settings, vtkRenderWindow* window, vtkVolume* volume,
           volume->SetMapper(all[i].Mapper);
           frames[i].Times.push_back(TimedRender(window));
         }
+        if (!volpackFrame.Pixels.empty())
+        {
+          volpackFrame.Times.push_back(0.0);
+          volpack->Render(camera, size[0], size[1], volpackFrame.Times.back());
+        }
       }
       for (std::size_t i = 0; i < all.size(); ++i)
       {
-        const Frame& f = frames[i];
-        const auto [fastest, median] = MinMedian(f.Times);
-        const double slowest = *std::max_element(f.Times.begin(), f.Times.end());
-        const ImageError e = Compare(f.Pixels, ref.Pixels);
-        const double own = Compare(f.Pixels, all[i].Own).Rmse;
-        const double floatRmse = FloatRmse(f.Ray, ref.Ray);
-        char floatText[32] = "";
-        if (floatRmse >= 0.0)
-        {
-          std::snprintf(floatText, sizeof(floatText), "%.4f", floatRmse);
-        }
-        std::printf("| %g | %g | %s | %.4f | %.4f-%.4f | %.3f | %.0f | %.3f | %s |\n", isd, d,
-          all[i].Name.c_str(), median, fastest, slowest, e.Rmse, e.Max, own, floatText);
-        if (csv.is_open())
-        {
-          csv << "\"" << settings.Scene << "\",\"" << all[i].Name << "\"," << isd << "," << d << ","
-              << median << "," << fastest << "," << slowest << "," << e.Rmse << "," << e.Max
-              << "," << own << "," << floatText << "\n";
-        }
+        Row row{ isd, d, all[i].Name, &frames[i], Compare(frames[i].Pixels, all[i].Own).Rmse };
+        row.Print(ref, settings.Scene, csv);
+      }
+      if (!volpackFrame.Pixels.empty())
+      {
+        Row{ isd, d, VolPackName, &volpackFrame, -1.0 }.Print(ref, settings.Scene, csv);
       }
     }
   }
