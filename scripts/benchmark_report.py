@@ -66,11 +66,14 @@ def draw(series, out, title, xlabel, ylabel, log_x=False, log_y=False, mark=None
         table.AddColumn(xa)
         table.AddColumn(ya)
         tables.append(table)
-        plot = chart.AddPlot(vtkChart.LINE)
+        # A single point (VolPack's one setting) is a marker: a line needs two.
+        plot = chart.AddPlot(vtkChart.LINE if len(pairs) > 1 else vtkChart.POINTS)
         plot.SetInputData(table, 0, 1)
         plot.SetColor(*colour, 255)
         plot.SetWidth(2.0)
         plot.SetMarkerStyle(vtkPlotPoints.CIRCLE)
+        if len(pairs) == 1:
+            plot.SetMarkerSize(14.0)
         if dashed:  # a variant of the series before it, which the legend names
             plot.GetPen().SetLineType(vtkPen.DASH_LINE)
             plot.SetLegendVisibility(False)
