@@ -7,7 +7,7 @@
 # Usage: scripts/benchmark.sh [--quick]
 #   Writes out/benchmark/index.md (and shows it as it goes), its PNG plots and CSV data.
 #   --quick: smaller images, fewer rounds and scenes (under 5 minutes); the full run takes
-#   about 30. Data sets from ../shared/data are skipped, and said so, when absent.
+#   about 35. Data sets from ../shared/data are skipped, and said so, when absent.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 quick=0
@@ -225,7 +225,7 @@ stability_section() {
 sweep_section() {
   echo "## 5. Supercell sweep: polygons against ray steps (${sweep_size}x${sweep_size}, Auto)"
   echo
-  echo "Each row is Auto at one supercell size (its choice in the last column); the optimum, the smallest total, is named below each table and is the lowest point of its line in the plot. The default is 2."
+  echo "Each row is Auto at one supercell size (its choice in the last column); the optimum, the smallest total, is named below each table and marked with a large dot in the plot. The default is 2."
   local args i=0 table best
   echo "series,x,y" > "$out/sweep.csv"
   local scenes=("$data/tooth_103x94x161_uint8.raw --tf $tf/tooth-surface-enamel.txt --elevation -70")
@@ -242,7 +242,7 @@ sweep_section() {
     echo; echo "Optimum: supercell ${best%% *} ($(echo "$best" | cut -d' ' -f2) s total; Auto chose $(echo "$best" | cut -d' ' -f3) there)."
     echo "$table" | awk -F'|' -v name="$(basename "$1")" '$2 ~ /[0-9]/ { gsub(/ /, "", $2); gsub(/ /, "", $8); print name "," $2 "," $8 }' >> "$out/sweep.csv"
   done
-  plot lines "$out/sweep.csv" "$out/sweep.png" "Total frame time against supercell size (Auto)" "supercell edge (cells)" "total (s)" --log-y
+  plot lines "$out/sweep.csv" "$out/sweep.png" "Total frame time against supercell size (Auto)" "supercell edge (cells)" "total (s)" --log-y --mark-minimum
   echo; echo "![supercell sweep](sweep.png)"
 }
 

@@ -6,9 +6,9 @@
       against RMSE to the reference, a line per mapper and image sample distance), written
       to OUTDIR/accuracy-SCENE.png; prints per scene a markdown image link and the verdict:
       which mapper reaches each error fastest.
-  benchmark_report.py lines CSV OUT.png TITLE XLABEL YLABEL [--log-x] [--log-y] [--mark X]
-      A line per series of a CSV with columns series,x,y; --mark X draws a vertical line
-      at x = X (an optimum).
+  benchmark_report.py lines CSV OUT.png TITLE XLABEL YLABEL [--log-x] [--log-y] [--mark-minimum]
+      A line per series of a CSV with columns series,x,y; --mark-minimum marks each line's
+      smallest y (an optimum) with a large dot.
 """
 import csv
 import math
@@ -40,7 +40,7 @@ def column(values):
     return array
 
 
-def draw(series, out, title, xlabel, ylabel, log_x=False, log_y=False, mark=None):
+def draw(series, out, title, xlabel, ylabel, log_x=False, log_y=False):
     """series: list of (name, xs, ys, colour, dashed), each drawn in its order. Writes a PNG
     plot to out."""
     view = vtkContextView()
@@ -77,19 +77,6 @@ def draw(series, out, title, xlabel, ylabel, log_x=False, log_y=False, mark=None
         if dashed:  # a variant of the series before it, which the legend names
             plot.GetPen().SetLineType(vtkPen.DASH_LINE)
             plot.SetLegendVisibility(False)
-    if mark is not None:
-        ys = [y for _, _, s, _, _ in series for y in s if y > 0 or not log_y]
-        table = vtkTable()
-        xa, ya = column([mark, mark]), column([min(ys), max(ys)])
-        xa.SetName(xlabel)
-        ya.SetName("optimum")
-        table.AddColumn(xa)
-        table.AddColumn(ya)
-        tables.append(table)
-        plot = chart.AddPlot(vtkChart.LINE)
-        plot.SetInputData(table, 0, 1)
-        plot.SetColor(0, 0, 0, 255)
-        plot.GetPen().SetLineType(vtkPen.DOT_LINE)
     for axis, label, log in ((vtkAxis.BOTTOM, xlabel, log_x), (vtkAxis.LEFT, ylabel, log_y)):
         chart.GetAxis(axis).SetTitle(label)
         chart.GetAxis(axis).SetLogScale(log)
@@ -180,12 +167,14 @@ def lines(path, out, title, xlabel, ylabel, options):
             xs, ys = data.setdefault(row["series"], ([], []))
             xs.append(float(row["x"]))
             ys.append(float(row["y"]))
-    mark = None
-    if "--mark" in options:
-        mark = float(options[options.index("--mark") + 1])
-    series = [(name, xs, ys, PALETTE[i % len(PALETTE)], False)
-              for i, (name, (xs, ys)) in enumerate(data.items())]
-    draw(series, out, title, xlabel, ylabel, "--log-x" in options, "--log-y" in options, mark)
+    series = []
+    for i, (name, (xs, ys)) in enumerate(data.items()):
+        series.append((name, xs, ys, PALETTE[i % len(PALETTE)], False))
+        if "--mark-minimum" in options:
+            best = min(range(len(ys)), key=ys.__getitem__)
+            series.append((f"{name}: optimum", [xs[best]], [ys[best]], PALETTE[i % len(PALETTE)],
+                           False))
+    draw(series, out, title, xlabel, ylabel, "--log-x" in options, "--log-y" in options)
 
 
 def main(argv):
