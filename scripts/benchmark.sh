@@ -40,6 +40,20 @@ plot() { xrun /usr/bin/python3 "$here/scripts/benchmark_report.py" "$@"; }
 title() { echo "$(basename "$1") $(echo "${*:2}" | sed "s|$here/||g")"; }
 # Whether a data set is here; says so when it is not.
 present() { [ -f "$1" ] && return 0; echo; echo "($1 not found: skipped)"; return 1; }
+# One table per scene at sample distance 0.5: for each scene (a file and its options, one
+# word list; an absent file is said and skipped), parc-render at the image size with the
+# option words, its output from the line starting with `first` to the one starting with
+# `last`.
+per_scene() { # size, option words, first, last, scenes...
+  local pixels=$1 option=$2 first=$3 last=$4 args
+  shift 4
+  for args in "$@"; do
+    set -- $args
+    present "$1" || continue
+    echo; echo "#### $(title "$@")"; echo
+    parc "$@" --size "$pixels" --sample-distance 0.5 $option | sed -n "/^$first/,/^$last/p"
+  done
+}
 # The median of a mapper's row in a --versus-fixed-point table on stdin.
 median_of() { awk -F'|' -v row="$1" '$2 ~ row { gsub(/ /, "", $4); print $4; exit }'; }
 
@@ -48,7 +62,9 @@ header() {
   echo
   echo "- date: $(date -u +%Y-%m-%dT%H:%MZ); commit $(git -C "$here" rev-parse --short HEAD), Release build"
   echo "- machine: $(lscpu | sed -n 's/^Model name: *//p'), $(nproc) cores, $(free -g | awk '/Mem:/{print $2}') GiB; this mapper and FixedPoint use $(nproc) threads unless a table says otherwise"
-  echo "- VTK $(dpkg-query -W -f='${Version}' libvtk9-dev); OpenGL: $(xrun glxinfo -B 2>/dev/null | sed -n 's/^OpenGL renderer string: //p'), $(xrun glxinfo -B 2>/dev/null | sed -n 's/^OpenGL version string: //p'). There is no GPU here: vtkGPUVolumeRayCastMapper runs on Mesa's llvmpipe, on the same CPU cores."
+  local gl
+  gl=$(xrun glxinfo -B 2>/dev/null)
+  echo "- VTK $(dpkg-query -W -f='${Version}' libvtk9-dev); OpenGL: $(echo "$gl" | sed -n 's/^OpenGL renderer string: //p'), $(echo "$gl" | sed -n 's/^OpenGL version string: //p'). There is no GPU here: vtkGPUVolumeRayCastMapper runs on Mesa's llvmpipe, on the same CPU cores."
   echo "- data: MRI head \`$head\` (mricron-data, 181x217x181, 8-bit, dense); from \`../shared/data\`: $(for f in ironProt_68x68x68 poship_66x66x66 neghip_64x64x64 tooth_103x94x161 embryo_256x256x256; do [ -f "$data/${f}_uint8.raw" ] && printf '%s ' "$f" || printf '%s (absent) ' "$f"; done)"
   echo "- settings: images ${size}x${size} for the accuracy study (parallel projection there, perspective elsewhere), linear interpolation; sample distances in voxels of the smallest spacing; times are wall-clock seconds of warm frames (window->Render() until the GL work is done), interleaved across mappers (A B C A B C), median and spread (minimum-maximum) of $rounds rounds unless a table says otherwise"
   echo
@@ -187,13 +203,9 @@ growth_section() {
   echo; echo "### Threads (iron protein cloud, ${size}x${size}; one caster thread against $(nproc), medians of 7 interleaved frames; llvmpipe's GL passes use every core in both)"; echo
   present "$data/ironProt_68x68x68_uint8.raw" && parc "$data/ironProt_68x68x68_uint8.raw" --tf "$tf/iron-protein-cloud.txt" --size "$size" --sample-distance 0.5 --thread-scaling 7 | grep '^|'
   echo; echo "### The first frame after a transfer-function change against a warm frame (${size}x${size})"
-  local args
-  for args in "$head --tf mri --shade --elevation -80 --azimuth 30" "$data/ironProt_68x68x68_uint8.raw --tf $tf/iron-protein-cloud.txt"; do
-    set -- $args
-    present "$1" || continue
-    echo; echo "#### $(title "$@")"; echo
-    parc "$@" --size "$size" --sample-distance 0.5 --edit-cost $((rounds + 3)) | sed -n '/^| frame/,/^edit frame/p'
-  done
+  per_scene "$size" "--edit-cost $((rounds + 3))" "| frame" "edit frame" \
+    "$head --tf mri --shade --elevation -80 --azimuth 30" \
+    "$data/ironProt_68x68x68_uint8.raw --tf $tf/iron-protein-cloud.txt"
   echo; echo "### Memory: peak resident size of the process, and the bytes the mapper holds per structure (MRI head, shaded, ${size}x${size}, after Auto's trials)"; echo
   local peak
   for f in $factors; do
@@ -272,14 +284,10 @@ caster_section() {
   echo; parc "$head" --tf mri --shade --elevation -80 --azimuth 30 --size 400 --sample-distance 0.5 \
     --budget 10 | sed -n '/^| mapper/,/^PARC.s image sample distance/p'
   echo; echo "### Auto's trial frames (a fresh mapper, 3 rounds, 400x400; the first frame also builds the classification and models and is not counted)"
-  for args in "$head --tf mri --shade --elevation -80 --azimuth 30" \
-              "$head --blend iso --iso 60 --elevation -80 --azimuth 30" \
-              "$data/embryo_256x256x256_uint8.raw --blend iso --iso 80"; do
-    set -- $args
-    present "$1" || continue
-    echo; echo "#### $(title "$@")"; echo
-    parc "$@" --size 400 --sample-distance 0.5 --auto-trials 3 | sed -n '/^| round/,/^slowest/p'
-  done
+  per_scene 400 "--auto-trials 3" "| round" "slowest" \
+    "$head --tf mri --shade --elevation -80 --azimuth 30" \
+    "$head --blend iso --iso 60 --elevation -80 --azimuth 30" \
+    "$data/embryo_256x256x256_uint8.raw --blend iso --iso 80"
 }
 
 start=$(date +%s)

@@ -103,6 +103,11 @@ def slug(text):
     return "".join(c if c.isalnum() else "-" for c in text).strip("-")
 
 
+def contender(mapper):
+    """Who competes in the verdict: this mapper's modes and shading models are one."""
+    return "this mapper" if mapper.startswith("PARC") else mapper
+
+
 def verdict(rows):
     """Markdown: a one-line verdict, then for each error which mapper reaches it fastest
     (this mapper: its fastest acceleration mode and shading model) and how much slower the
@@ -111,12 +116,11 @@ def verdict(rows):
     for error in VERDICT_ERRORS:
         best = OrderedDict()  # contender -> its fastest row at or below the error
         for r in rows:
-            key = "this mapper" if r["mapper"].startswith("PARC") else r["mapper"]
+            key = contender(r["mapper"])
             if float(r["rmse"]) <= error and (
                     key not in best or float(r["median_s"]) < float(best[key]["median_s"])):
                 best[key] = r
-        missing = sorted({"this mapper" if r["mapper"].startswith("PARC") else r["mapper"]
-                          for r in rows} - set(best))
+        missing = sorted({contender(r["mapper"]) for r in rows} - set(best))
         if not best:
             lines.append(f"- RMSE {error:g}: no mapper reaches it here.")
             continue

@@ -117,8 +117,8 @@ struct Renderer::Internals
   vpContext* Context = vpCreateContext();
   std::vector<Voxel> Voxels;
   std::vector<float> Opacity = std::vector<float>(Densities);
-  /// The colour nodes: VolPack's materials, mixed by density with linear weights.
-  std::vector<double> NodeValues;
+  /// The colour function's nodes are VolPack's materials, mixed by density with linear
+  /// weights.
   std::vector<float> Weights;     ///< [density][material]
   std::vector<float> ColorTable;  ///< [normal][material][rgb]
   int Dims[3] = { 0, 0, 0 };
@@ -190,19 +190,20 @@ Renderer::Renderer(vtkVolume* volume, vtkImageData* image)
   Check(vpc, vpSetClassifierTable(vpc, 0, DensityField, this->I->Opacity.data(),
     static_cast<int>(this->I->Opacity.size() * sizeof(float))), "opacity table");
   vtkColorTransferFunction* color = property->GetRGBTransferFunction();
+  std::vector<double> nodeValues;
   std::vector<std::array<double, 3>> nodeColors;
   for (int i = 0; i < color->GetSize(); ++i)
   {
     double node[6];
     color->GetNodeValue(i, node);
-    this->I->NodeValues.push_back(node[0]);
+    nodeValues.push_back(node[0]);
     nodeColors.push_back({ node[1], node[2], node[3] });
   }
   const int materials = static_cast<int>(nodeColors.size());
   this->I->Weights.assign(static_cast<std::size_t>(Densities) * materials, 0.f);
   for (int v = 0; v < Densities; ++v)
   {
-    const auto& x0 = this->I->NodeValues;
+    const auto& x0 = nodeValues;
     const auto upper = std::upper_bound(x0.begin(), x0.end(), static_cast<double>(v));
     const int hi = std::min(static_cast<int>(upper - x0.begin()), materials - 1);
     const int lo = std::max(hi - 1, 0);
