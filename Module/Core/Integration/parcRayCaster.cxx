@@ -178,6 +178,8 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   k.GradientOpacityConstant =
     parameters->UseGradientOpacity && parameters->GradientOpacity.IsConstant(constant);
   k.GradientOpacityValue = static_cast<float>(constant);
+  k.OpacityByValue = labels.empty() && !parameters->Mask &&
+    (!parameters->UseGradientOpacity || k.GradientOpacityConstant);
   const double intensityWidth = parameters->IntensityRange[1] - parameters->IntensityRange[0];
   k.IntensityScale = intensityWidth > 0.0 ? 1.0 / intensityWidth : 0.0;
   // Zero opacity below every function's first non-zero value (labels included) and above
@@ -229,6 +231,12 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
     : std::vector<ShadingFactors>(); // frees the table of an earlier render
   k.GradientNeeded = (parameters->Shade && k.NormalShading.empty()) ||
     (parameters->UseGradientOpacity && !k.GradientOpacityConstant) || labelGradients;
+  k.ColorByValue = k.OpacityByValue && parameters->ColorShiftCount == 0;
+  k.ShadeLanesTogether = parameters->Shade && k.NormalShading.empty() &&
+    k.PositionalLights.empty() && k.DirectionalLights.size() <= MaxHoistedLights &&
+    k.IntegerSpecularPower >= 0 &&
+    std::none_of(k.DirectionalLights.begin(), k.DirectionalLights.end(),
+      [](const DirectionalLight& light) { return light.ShadowAttenuation > 0.f; });
   return true;
 }
 
@@ -392,6 +400,16 @@ struct RayContext
   const LabelFunctions* SampleLabel = nullptr;
   /// The block of lattice samples taken last.
   LatticeBlock Block;
+  /// The corrected opacities of the block's lanes (RenderConstants::OpacityByValue).
+  alignas(16) float Opacities[LatticeBlock::Size];
+  /// The lanes of a block that CompositeBlock composites, packed in ray order.
+  struct LaneBatch
+  {
+    int Count = 0;
+    int Lane[LatticeBlock::Size];
+    alignas(16) float Rgb[3][LatticeBlock::Size] = {};      ///< colour, channel by channel
+    alignas(16) float Gradient[3][LatticeBlock::Size] = {}; ///< world gradient, axis by axis
+  } Batch;
   /// One cell's voxel differences: the cache of a ray whose thread shares none.
   CellDifferences OwnDifferences;
   /// The cells whose differences are kept, direct-mapped by cell (one slot, OwnDifferences,
@@ -571,6 +589,24 @@ struct RayContext
   PARC_HOT_INLINE bool ContributingSamples(long k0, int n, int& visited, Visit&& visit)
   {
     this->SampleBlock(k0, n);
+    if (this->K.OpacityByValue)
+    {
+      for (unsigned lanes = this->LaneOpacities(this->MayContribute(n)); lanes != 0;
+           lanes &= lanes - 1)
+      {
+        const int j = CountTrailingZeros(lanes);
+        const double t = (k0 + j) * this->Dt;
+        ++this->Stats.ContributingSamples;
+        this->RecordHit(t);
+        const Vec3f g;
+        if (!visit(j, t, this->Opacities[j], g, false))
+        {
+          visited = j + 1;
+          return false;
+        }
+      }
+      return true;
+    }
     for (unsigned lanes = this->MayContribute(n); lanes != 0; lanes &= lanes - 1)
     {
       const int j = CountTrailingZeros(lanes);
@@ -585,6 +621,143 @@ struct RayContext
       }
     }
     return true;
+  }
+  /// The composite ray function over lattice samples k0 .. k0 + n - 1 into out, in stages
+  /// over the block's lanes (RenderConstants::ColorByValue, no events): the opacities, the
+  /// lanes composited before the ray may stop (the compositor's own alpha arithmetic, so
+  /// that no colour, gradient or shading is computed for a lane that is not), their colours,
+  /// their shading, then compositing in ray order. The same bits as ContributingSamples
+  /// with SampleColor, ShadeSample and Over; returns false (visited set) when the ray stops.
+  PARC_HOT_INLINE bool CompositeBlock(long k0, int n, int& visited, EventCompositor& out)
+  {
+    this->SampleBlock(k0, n);
+    const unsigned lanes = this->LaneOpacities(this->MayContribute(n));
+    LaneBatch& b = this->Batch;
+    b.Count = 0;
+    bool stops = false;
+    float alpha = out.Alpha;
+    for (unsigned m = lanes; m != 0; m &= m - 1)
+    {
+      const int j = CountTrailingZeros(m);
+      b.Lane[b.Count++] = j;
+      alpha += (1.f - alpha) * this->Opacities[j]; // EventCompositor::AddSample's alpha
+      if (!(alpha < this->P.TerminationOpacity))
+      {
+        stops = true;
+        visited = j + 1;
+        break;
+      }
+    }
+    for (int i = 0; i < b.Count; ++i)
+    {
+      float rgb[3];
+      this->P.Color.Lookup(this->Value(b.Lane[i]), rgb);
+      b.Rgb[0][i] = rgb[0];
+      b.Rgb[1][i] = rgb[1];
+      b.Rgb[2][i] = rgb[2];
+    }
+    if (this->P.Shade)
+    {
+      this->ShadeBatch(k0);
+    }
+    this->Stats.ContributingSamples += static_cast<std::uint64_t>(b.Count);
+    if (b.Count > 0)
+    {
+      this->RecordHit((k0 + b.Lane[0]) * this->Dt);
+    }
+    for (int i = 0; i < b.Count; ++i)
+    {
+      const float rgb[3] = { b.Rgb[0][i], b.Rgb[1][i], b.Rgb[2][i] };
+      out.AddSample(rgb, this->Opacities[b.Lane[i]]);
+    }
+    return !stops;
+  }
+  /// Shades the colours of Batch in place (see CompositeBlock).
+  PARC_HOT_INLINE void ShadeBatch(long k0)
+  {
+    LaneBatch& b = this->Batch;
+    if (!this->K.ShadeLanesTogether)
+    {
+      for (int i = 0; i < b.Count; ++i)
+      {
+        float rgb[3] = { b.Rgb[0][i], b.Rgb[1][i], b.Rgb[2][i] };
+        this->ShadeSample(rgb, (k0 + b.Lane[i]) * this->Dt, b.Lane[i], Vec3f(), false);
+        for (int c = 0; c < 3; ++c)
+        {
+          b.Rgb[c][i] = rgb[c];
+        }
+      }
+      return;
+    }
+    for (int i = 0; i < b.Count; ++i)
+    {
+      const Vec3f g = this->WorldGradient((k0 + b.Lane[i]) * this->Dt, b.Lane[i]);
+      b.Gradient[0][i] = g.X;
+      b.Gradient[1][i] = g.Y;
+      b.Gradient[2][i] = g.Z;
+    }
+    this->ShadeLanes();
+  }
+  /// Shade for the lanes of Batch together (RenderConstants::ShadeLanesTogether): the same
+  /// operations in the same order, lane by lane, so the same bits.
+  void ShadeLanes();
+  /// The opacities of the given lanes (bits 1 << j) into Opacities, corrected; returns the
+  /// lanes whose opacity is not 0 before the correction.
+  PARC_HOT_INLINE unsigned LaneOpacities(unsigned lanes)
+  {
+    float* a = this->Opacities;
+    std::fill_n(a, LatticeBlock::Size, 0.f);
+    for (unsigned m = lanes; m != 0; m &= m - 1)
+    {
+      const int j = CountTrailingZeros(m);
+      a[j] = this->P.Opacity.Evaluate(this->Value(j));
+    }
+    if (this->K.GradientOpacityConstant)
+    {
+      for (int j = 0; j < LatticeBlock::Size; ++j)
+      {
+        a[j] *= this->K.GradientOpacityValue;
+      }
+    }
+    unsigned nonZero = 0;
+    for (int j = 0; j < LatticeBlock::Size; ++j)
+    {
+      nonZero |= static_cast<unsigned>(a[j] != 0.f) << j;
+    }
+    this->CorrectOpacities(a);
+    return lanes & nonZero;
+  }
+  /// CorrectOpacity for every lane of a.
+  PARC_HOT_INLINE void CorrectOpacities(float* a) const
+  {
+    const float exponent = this->K.OpacityExponent;
+    if (exponent == 1.f)
+    {
+      return;
+    }
+#if defined(__SSE2__)
+    if (exponent == 0.5f || exponent == 0.25f)
+    {
+      const __m128 one = _mm_set1_ps(1.f);
+      for (int j = 0; j < LatticeBlock::Size; j += 4)
+      {
+        const __m128 v = _mm_loadu_ps(a + j);
+        __m128 root = _mm_sqrt_ps(_mm_sub_ps(one, v));
+        if (exponent == 0.25f)
+        {
+          root = _mm_sqrt_ps(root);
+        }
+        const __m128 opaque = _mm_cmpge_ps(v, one);
+        const __m128 corrected = _mm_sub_ps(one, root);
+        _mm_storeu_ps(a + j, _mm_or_ps(_mm_and_ps(opaque, v), _mm_andnot_ps(opaque, corrected)));
+      }
+      return;
+    }
+#endif
+    for (int j = 0; j < LatticeBlock::Size; ++j)
+    {
+      a[j] = this->CorrectOpacity(a[j]);
+    }
   }
   /// The lanes j < n of the block whose opacity may be non-zero, as bits 1 << j: the
   /// others are 0 without evaluating the opacity function.
@@ -786,6 +959,82 @@ PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f
 }
 
 template <class View>
+void RayContext<View>::ShadeLanes()
+{
+  LaneBatch& b = this->Batch;
+#if defined(__SSE2__)
+  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.f);
+  const __m128 ambient = _mm_set1_ps(static_cast<float>(this->P.Ambient));
+  const __m128 signBit = _mm_set1_ps(-0.f);
+  auto dot = [](__m128 ax, __m128 ay, __m128 az, const Vec3f& v) {
+    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, _mm_set1_ps(v.X)), _mm_mul_ps(ay, _mm_set1_ps(v.Y))),
+      _mm_mul_ps(az, _mm_set1_ps(v.Z)));
+  };
+  auto select = [](__m128 mask, __m128 a, __m128 b) {
+    return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
+  };
+  const RayCaster::DirectionalLight* lights = this->K.DirectionalLights.data();
+  const std::size_t count = this->K.DirectionalLights.size();
+  for (int i = 0; i < b.Count; i += 4)
+  {
+    const __m128 gx = _mm_load_ps(b.Gradient[0] + i), gy = _mm_load_ps(b.Gradient[1] + i);
+    const __m128 gz = _mm_load_ps(b.Gradient[2] + i);
+    const __m128 length = _mm_sqrt_ps(_mm_add_ps(
+      _mm_add_ps(_mm_mul_ps(gx, gx), _mm_mul_ps(gy, gy)), _mm_mul_ps(gz, gz)));
+    const __m128 valid = _mm_cmpgt_ps(length, zero);
+    // FlipUnlessPositive: the normal faces the eye.
+    const __m128 back = _mm_cmpngt_ps(dot(gx, gy, gz, this->ToEye), zero);
+    const __m128 scale = _mm_xor_ps(_mm_div_ps(one, length), _mm_and_ps(back, signBit));
+    const __m128 nx = _mm_mul_ps(scale, gx), ny = _mm_mul_ps(scale, gy);
+    const __m128 nz = _mm_mul_ps(scale, gz);
+    __m128 diffuse[3] = { zero, zero, zero }, specular[3] = { zero, zero, zero };
+    for (std::size_t l = 0; l < count; ++l)
+    {
+      const RayCaster::DirectionalLight& light = lights[l];
+      const __m128 ndl = dot(nx, ny, nz, light.ToLight);
+      const __m128 lit = _mm_and_ps(valid, _mm_cmpgt_ps(ndl, zero));
+      const __m128 ndh = dot(nx, ny, nz, this->HalfVectors[l]);
+      // IntegerPower, lane by lane.
+      __m128 power = one, x = ndh;
+      for (int e = this->K.IntegerSpecularPower; e > 0; e >>= 1)
+      {
+        if (e & 1)
+        {
+          power = _mm_mul_ps(power, x);
+        }
+        x = _mm_mul_ps(x, x);
+      }
+      const __m128 spec = _mm_and_ps(_mm_cmpgt_ps(ndh, zero), power);
+      for (int c = 0; c < 3; ++c)
+      {
+        const __m128 d = _mm_set1_ps((&light.Diffuse.X)[c]);
+        const __m128 sc = _mm_set1_ps((&light.Specular.X)[c]);
+        diffuse[c] = select(lit, _mm_add_ps(diffuse[c], _mm_mul_ps(ndl, d)), diffuse[c]);
+        specular[c] = select(lit, _mm_add_ps(specular[c], _mm_mul_ps(spec, sc)), specular[c]);
+      }
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      const __m128 rgb = _mm_load_ps(b.Rgb[c] + i);
+      const __m128 shaded =
+        _mm_add_ps(_mm_mul_ps(rgb, _mm_add_ps(ambient, diffuse[c])), specular[c]);
+      _mm_store_ps(b.Rgb[c] + i, _mm_min_ps(one, shaded)); // std::min(shaded, 1.f)
+    }
+  }
+#else
+  for (int i = 0; i < b.Count; ++i)
+  {
+    float rgb[3] = { b.Rgb[0][i], b.Rgb[1][i], b.Rgb[2][i] };
+    this->Shade(rgb, 0.0, Vec3f(b.Gradient[0][i], b.Gradient[1][i], b.Gradient[2][i]));
+    for (int c = 0; c < 3; ++c)
+    {
+      b.Rgb[c][i] = rgb[c];
+    }
+  }
+#endif
+}
+
+template <class View>
 void RayContext<View>::ShadeQuantized(float rgb[3], double t, int j) const
 {
   const NormalVolume& normals = *this->P.Normals;
@@ -895,6 +1144,10 @@ struct CompositeFunction
 
   bool operator()(long k0, int n, bool, int& visited)
   {
+    if (this->C.K.ColorByValue && !this->C.Events)
+    {
+      return this->C.CompositeBlock(k0, n, visited, this->Out);
+    }
     return this->C.ContributingSamples(k0, n, visited,
       [this](int j, double t, float a, const Vec3f& g, bool haveGradient) {
         float rgb[3];

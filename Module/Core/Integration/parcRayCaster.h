@@ -206,6 +206,14 @@ public:
     bool GradientNeeded = false;
     bool GradientOpacityConstant = false; ///< then every sample's factor is GradientOpacityValue
     float GradientOpacityValue = 1.f;
+    /// A sample's opacity depends on its value alone (no labels, mask or varying gradient
+    /// opacity): the caster evaluates a block's opacities together.
+    bool OpacityByValue = false;
+    /// ... and so does its colour: the composite function works in stages over a block.
+    bool ColorByValue = false;
+    /// Shaded samples are shaded several at a time: exact shading, directional lights only
+    /// (at most 8, none casting shadows) and a whole specular power.
+    bool ShadeLanesTogether = false;
     /// The opacity function is 0 at every sample value s <= ZeroOpacityBelow or s >=
     /// ZeroOpacityAbove (floats on the safe side of its first and last non-zero value).
     float ZeroOpacityBelow = 0.f;
