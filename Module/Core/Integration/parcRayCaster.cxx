@@ -407,6 +407,7 @@ struct RayContext
   {
     int Count = 0;
     int Lane[LatticeBlock::Size];
+    float Weight[LatticeBlock::Size]; ///< the compositor's weight of each
     alignas(16) float Rgb[3][LatticeBlock::Size] = {};      ///< colour, channel by channel
     alignas(16) float Gradient[3][LatticeBlock::Size] = {}; ///< world gradient, axis by axis
   } Batch;
@@ -624,9 +625,9 @@ struct RayContext
   }
   /// The composite ray function over lattice samples k0 .. k0 + n - 1 into out, in stages
   /// over the block's lanes (RenderConstants::ColorByValue, no events): the opacities, the
-  /// lanes composited before the ray may stop (the compositor's own alpha arithmetic, so
-  /// that no colour, gradient or shading is computed for a lane that is not), their colours,
-  /// their shading, then compositing in ray order. The same bits as ContributingSamples
+  /// lanes composited before the ray may stop with their weights (the compositor's own
+  /// arithmetic, so that no colour, gradient or shading is computed for a lane that is
+  /// not), their colours, their shading, then the weighted colours in ray order. The same bits as ContributingSamples
   /// with SampleColor, ShadeSample and Over; returns false (visited set) when the ray stops.
   PARC_HOT_INLINE bool CompositeBlock(long k0, int n, int& visited, EventCompositor& out)
   {
@@ -639,8 +640,10 @@ struct RayContext
     for (unsigned m = lanes; m != 0; m &= m - 1)
     {
       const int j = CountTrailingZeros(m);
+      // EventCompositor::AddSample's weight and alpha.
+      b.Weight[b.Count] = (1.f - alpha) * this->Opacities[j];
+      alpha += b.Weight[b.Count];
       b.Lane[b.Count++] = j;
-      alpha += (1.f - alpha) * this->Opacities[j]; // EventCompositor::AddSample's alpha
       if (!(alpha < this->P.TerminationOpacity))
       {
         stops = true;
@@ -667,9 +670,12 @@ struct RayContext
     }
     for (int i = 0; i < b.Count; ++i)
     {
-      const float rgb[3] = { b.Rgb[0][i], b.Rgb[1][i], b.Rgb[2][i] };
-      out.AddSample(rgb, this->Opacities[b.Lane[i]]);
+      for (int c = 0; c < 3; ++c)
+      {
+        out.Rgb[c] += b.Weight[i] * b.Rgb[c][i];
+      }
     }
+    out.Alpha = alpha;
     return !stops;
   }
   /// Shades the colours of Batch in place (see CompositeBlock).
@@ -705,6 +711,10 @@ struct RayContext
   /// lanes whose opacity is not 0 before the correction.
   PARC_HOT_INLINE unsigned LaneOpacities(unsigned lanes)
   {
+    if (lanes == 0)
+    {
+      return 0;
+    }
     float* a = this->Opacities;
     std::fill_n(a, LatticeBlock::Size, 0.f);
     for (unsigned m = lanes; m != 0; m &= m - 1)
@@ -765,12 +775,24 @@ struct RayContext
   {
     const float below = this->K.ZeroOpacityBelow, above = this->K.ZeroOpacityAbove;
     unsigned lanes = 0;
+#if defined(__SSE2__)
+    const __m128 low = _mm_set1_ps(below), high = _mm_set1_ps(above);
+    for (int j = 0; j < n; j += LatticeBlock::Lanes) // the lanes SampleBlock computed
+    {
+      const __m128 s = _mm_loadu_ps(this->Block.Values + j);
+      const __m128 inside = _mm_and_ps(_mm_cmpgt_ps(s, low), _mm_cmplt_ps(s, high));
+      lanes |= static_cast<unsigned>(_mm_movemask_ps(inside)) << j;
+    }
+    static_assert(LatticeBlock::Lanes == 4, "four lanes to an SSE register");
+    return lanes & ((1u << n) - 1u);
+#else
     for (int j = 0; j < n; ++j)
     {
       const float s = this->Block.Values[j];
       lanes |= static_cast<unsigned>(s > below && s < above) << j;
     }
     return lanes;
+#endif
   }
   /// SampleOpacity with a label map (see CastParameters::Labels); keeps the sample's label
   /// functions in SampleLabel.
