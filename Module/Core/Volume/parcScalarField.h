@@ -462,7 +462,7 @@ private:
     {
       c[n] = static_cast<LaneValue>(v[corner[n]]);
     }
-    alignas(16) LaneValue e[8][4];
+    LaneValue e[8][4];
     for (int a = 0; a < 3; ++a)
     {
       const std::ptrdiff_t s = this->Step[a];
@@ -485,7 +485,15 @@ private:
     {
       e[n][3] = 0;
 #if defined(__SSE2__)
-      _mm_store_ps(d[n], LoadLanes(e[n]));
+      // Built in registers: a load spanning the four separate stores would wait for them.
+      if constexpr (std::is_same<LaneValue, std::int32_t>::value)
+      {
+        _mm_store_ps(d[n], _mm_cvtepi32_ps(_mm_setr_epi32(e[n][0], e[n][1], e[n][2], 0)));
+      }
+      else
+      {
+        _mm_store_ps(d[n], _mm_setr_ps(e[n][0], e[n][1], e[n][2], 0.f));
+      }
 #else
       for (int a = 0; a < 4; ++a)
       {
