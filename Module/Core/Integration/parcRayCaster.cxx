@@ -651,14 +651,7 @@ struct RayContext
         break;
       }
     }
-    for (int i = 0; i < b.Count; ++i)
-    {
-      float rgb[3];
-      this->P.Color.Lookup(this->Value(b.Lane[i]), rgb);
-      b.Rgb[0][i] = rgb[0];
-      b.Rgb[1][i] = rgb[1];
-      b.Rgb[2][i] = rgb[2];
-    }
+    this->BatchColors();
     if (this->P.Shade)
     {
       this->ShadeBatch(k0);
@@ -677,6 +670,37 @@ struct RayContext
     }
     out.Alpha = alpha;
     return !stops;
+  }
+  /// The colours of the lanes of Batch (see CompositeBlock).
+  PARC_HOT_INLINE void BatchColors()
+  {
+    LaneBatch& b = this->Batch;
+#if defined(__SSE2__)
+    for (int i = 0; i < b.Count; i += 4)
+    {
+      // Four lanes' (red, green, blue, 0), turned into channels of four lanes.
+      __m128 c[4];
+      for (int l = 0; l < 4; ++l)
+      {
+        c[l] = this->P.Color.LookupVector(this->Value(b.Lane[std::min(i + l, b.Count - 1)]));
+      }
+      _MM_TRANSPOSE4_PS(c[0], c[1], c[2], c[3]);
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        _mm_store_ps(b.Rgb[ch] + i, c[ch]);
+      }
+    }
+#else
+    for (int i = 0; i < b.Count; ++i)
+    {
+      float rgb[3];
+      this->P.Color.Lookup(this->Value(b.Lane[i]), rgb);
+      for (int ch = 0; ch < 3; ++ch)
+      {
+        b.Rgb[ch][i] = rgb[ch];
+      }
+    }
+#endif
   }
   /// Shades the colours of Batch in place (see CompositeBlock).
   PARC_HOT_INLINE void ShadeBatch(long k0)

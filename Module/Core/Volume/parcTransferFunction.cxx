@@ -162,7 +162,11 @@ double PiecewiseLinearFunction::LastNonZero() const
 void ColorTable::SetTable(double lo, double hi, std::vector<float> rgb)
 {
   this->Count = static_cast<int>(rgb.size() / 3);
-  this->RGB = std::move(rgb);
+  this->RGBA.assign(4 * static_cast<std::size_t>(this->Count), 0.f);
+  for (int i = 0; i < this->Count; ++i)
+  {
+    std::copy_n(&rgb[3 * static_cast<std::size_t>(i)], 3, &this->RGBA[4 * static_cast<std::size_t>(i)]);
+  }
   this->Lo = lo;
   this->Hi = hi > lo ? hi : lo;
   this->Scale = (this->Hi > this->Lo) ? (this->Count - 1) / (this->Hi - this->Lo) : 0.0;
