@@ -29,13 +29,16 @@ struct EventCompositor
   /// Adds a sample of colour rgb and opacity a behind what was added before.
   void AddSample(const float rgb[3], float a)
   {
-    const float w = (1.f - this->Alpha) * a;
+    const float w = Weight(this->Alpha, a);
     for (int c = 0; c < 3; ++c)
     {
       this->Rgb[c] += w * rgb[c];
     }
     this->Alpha += w;
   }
+  /// The weight of a sample of opacity a behind accumulated opacity alpha: its colour's
+  /// share of the result, and what it adds to alpha.
+  static float Weight(float alpha, float a) { return (1.f - alpha) * a; }
   /// Adds e behind what was added before.
   void Add(const RayEvent& e)
   {

@@ -307,6 +307,14 @@ int CountTrailingZeros(unsigned x)
 #endif
 }
 
+#if defined(__SSE2__)
+/// mask ? a : b, lane by lane (mask lanes all ones or all zeros).
+__m128 Select(__m128 mask, __m128 a, __m128 b)
+{
+  return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
+}
+#endif
+
 /// x^n for a whole n >= 0 by repeated squaring.
 float IntegerPower(float x, int n)
 {
@@ -400,7 +408,8 @@ struct RayContext
   const LabelFunctions* SampleLabel = nullptr;
   /// The block of lattice samples taken last.
   LatticeBlock Block;
-  /// The corrected opacities of the block's lanes (RenderConstants::OpacityByValue).
+  /// The corrected opacities of the block's lanes (RenderConstants::OpacityByValue; 0 for
+  /// the lanes LaneOpacities was not given).
   alignas(16) float Opacities[LatticeBlock::Size];
   /// The lanes of a block that CompositeBlock composites, packed in ray order.
   struct LaneBatch
@@ -563,9 +572,14 @@ struct RayContext
     {
       return false;
     }
+    this->CountContribution(t);
+    return true;
+  }
+  /// Counts a contributing sample at t and records it as a hit.
+  void CountContribution(double t)
+  {
     ++this->Stats.ContributingSamples;
     this->RecordHit(t);
-    return true;
   }
   /// ContributingOpacity without counting or recording the sample.
   bool SampleOpacity(int j, double t, float& a, Vec3f& g, bool& haveGradient)
@@ -590,32 +604,29 @@ struct RayContext
   PARC_HOT_INLINE bool ContributingSamples(long k0, int n, int& visited, Visit&& visit)
   {
     this->SampleBlock(k0, n);
-    if (this->K.OpacityByValue)
+    const bool byValue = this->K.OpacityByValue;
+    unsigned lanes = this->MayContribute(n);
+    if (byValue)
     {
-      for (unsigned lanes = this->LaneOpacities(this->MayContribute(n)); lanes != 0;
-           lanes &= lanes - 1)
-      {
-        const int j = CountTrailingZeros(lanes);
-        const double t = (k0 + j) * this->Dt;
-        ++this->Stats.ContributingSamples;
-        this->RecordHit(t);
-        const Vec3f g;
-        if (!visit(j, t, this->Opacities[j], g, false))
-        {
-          visited = j + 1;
-          return false;
-        }
-      }
-      return true;
+      lanes = this->LaneOpacities(lanes);
     }
-    for (unsigned lanes = this->MayContribute(n); lanes != 0; lanes &= lanes - 1)
+    for (; lanes != 0; lanes &= lanes - 1)
     {
       const int j = CountTrailingZeros(lanes);
       const double t = (k0 + j) * this->Dt;
       float a;
       Vec3f g;
       bool haveGradient = false;
-      if (this->ContributingOpacity(j, t, a, g, haveGradient) && !visit(j, t, a, g, haveGradient))
+      if (byValue)
+      {
+        a = this->Opacities[j];
+        this->CountContribution(t);
+      }
+      else if (!this->ContributingOpacity(j, t, a, g, haveGradient))
+      {
+        continue;
+      }
+      if (!visit(j, t, a, g, haveGradient))
       {
         visited = j + 1;
         return false;
@@ -627,8 +638,9 @@ struct RayContext
   /// over the block's lanes (RenderConstants::ColorByValue, no events): the opacities, the
   /// lanes composited before the ray may stop with their weights (the compositor's own
   /// arithmetic, so that no colour, gradient or shading is computed for a lane that is
-  /// not), their colours, their shading, then the weighted colours in ray order. The same bits as ContributingSamples
-  /// with SampleColor, ShadeSample and Over; returns false (visited set) when the ray stops.
+  /// not), their colours, their shading, then the weighted colours in ray order. The same
+  /// bits and counts as ContributingSamples with SampleColor, ShadeSample and Over; returns
+  /// false (visited set) when the ray stops.
   PARC_HOT_INLINE bool CompositeBlock(long k0, int n, int& visited, EventCompositor& out)
   {
     this->SampleBlock(k0, n);
@@ -640,8 +652,7 @@ struct RayContext
     for (unsigned m = lanes; m != 0; m &= m - 1)
     {
       const int j = CountTrailingZeros(m);
-      // EventCompositor::AddSample's weight and alpha.
-      b.Weight[b.Count] = (1.f - alpha) * this->Opacities[j];
+      b.Weight[b.Count] = EventCompositor::Weight(alpha, this->Opacities[j]);
       alpha += b.Weight[b.Count];
       b.Lane[b.Count++] = j;
       if (!(alpha < this->P.TerminationOpacity))
@@ -659,7 +670,7 @@ struct RayContext
     this->Stats.ContributingSamples += static_cast<std::uint64_t>(b.Count);
     if (b.Count > 0)
     {
-      this->RecordHit((k0 + b.Lane[0]) * this->Dt);
+      this->RecordHit((k0 + b.Lane[0]) * this->Dt); // the first is the nearest
     }
     for (int i = 0; i < b.Count; ++i)
     {
@@ -783,7 +794,7 @@ struct RayContext
         }
         const __m128 opaque = _mm_cmpge_ps(v, one);
         const __m128 corrected = _mm_sub_ps(one, root);
-        _mm_storeu_ps(a + j, _mm_or_ps(_mm_and_ps(opaque, v), _mm_andnot_ps(opaque, corrected)));
+        _mm_storeu_ps(a + j, Select(opaque, v, corrected));
       }
       return;
     }
@@ -1013,11 +1024,8 @@ void RayContext<View>::ShadeLanes()
   const __m128 ambient = _mm_set1_ps(static_cast<float>(this->P.Ambient));
   const __m128 signBit = _mm_set1_ps(-0.f);
   auto dot = [](__m128 ax, __m128 ay, __m128 az, const Vec3f& v) {
-    return _mm_add_ps(_mm_add_ps(_mm_mul_ps(ax, _mm_set1_ps(v.X)), _mm_mul_ps(ay, _mm_set1_ps(v.Y))),
-      _mm_mul_ps(az, _mm_set1_ps(v.Z)));
-  };
-  auto select = [](__m128 mask, __m128 a, __m128 b) {
-    return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
+    const __m128 x = _mm_mul_ps(ax, _mm_set1_ps(v.X)), y = _mm_mul_ps(ay, _mm_set1_ps(v.Y));
+    return _mm_add_ps(_mm_add_ps(x, y), _mm_mul_ps(az, _mm_set1_ps(v.Z)));
   };
   const RayCaster::DirectionalLight* lights = this->K.DirectionalLights.data();
   const std::size_t count = this->K.DirectionalLights.size();
@@ -1055,8 +1063,8 @@ void RayContext<View>::ShadeLanes()
       {
         const __m128 d = _mm_set1_ps((&light.Diffuse.X)[c]);
         const __m128 sc = _mm_set1_ps((&light.Specular.X)[c]);
-        diffuse[c] = select(lit, _mm_add_ps(diffuse[c], _mm_mul_ps(ndl, d)), diffuse[c]);
-        specular[c] = select(lit, _mm_add_ps(specular[c], _mm_mul_ps(spec, sc)), specular[c]);
+        diffuse[c] = Select(lit, _mm_add_ps(diffuse[c], _mm_mul_ps(ndl, d)), diffuse[c]);
+        specular[c] = Select(lit, _mm_add_ps(specular[c], _mm_mul_ps(spec, sc)), specular[c]);
       }
     }
     for (int c = 0; c < 3; ++c)
@@ -1070,6 +1078,7 @@ void RayContext<View>::ShadeLanes()
 #else
   for (int i = 0; i < b.Count; ++i)
   {
+    // No shadows here: Shade needs no ray parameter.
     float rgb[3] = { b.Rgb[0][i], b.Rgb[1][i], b.Rgb[2][i] };
     this->Shade(rgb, 0.0, Vec3f(b.Gradient[0][i], b.Gradient[1][i], b.Gradient[2][i]));
     for (int c = 0; c < 3; ++c)
