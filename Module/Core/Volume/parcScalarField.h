@@ -94,7 +94,7 @@ struct SampleLocation
 /// one lane per sample: values and, for linear interpolation, locations.
 struct LatticeBlock
 {
-  static constexpr int Size = 8;  ///< lanes of a block
+  static constexpr int Size = 16; ///< lanes of a block
   static constexpr int Lanes = 4; ///< lanes computed together (a multiple of 2, dividing Size)
   float Values[Size];
   int Cell[3][Size];
