@@ -10,6 +10,7 @@
 #include <cstring>
 #include <functional>
 #include <random>
+#include <string>
 
 using parc::BlendMode;
 using parc::CastParameters;
@@ -87,12 +88,13 @@ TEST(SceneCaster, OneVolumeIsItsOwnImage)
   }
 }
 
-// A lone composite volume is cast in stages over each block of samples (opacities, the
-// lanes composited before the ray stops, colours, shading several lanes at a time); in a
-// scene each sample goes the whole way alone. Both give the same bits and counts under
-// lights from every side with odd, even and fractional specular powers, opacity
-// corrections by square roots and by powers, constant and varying gradient opacity, and
-// rays that stop early.
+// A composite volume whose opacity and colour depend on the sample's value alone is cast
+// in stages over each block of samples (opacities, the lanes composited before the ray
+// stops, colours, shading several lanes at a time); behind a mask (here all ones, hiding
+// nothing) each sample goes the whole way alone. Both give the same bits, events and counts,
+// alone and in a scene, under lights from every side with odd, even and fractional
+// specular powers, opacity corrections by square roots and by powers, constant and varying
+// gradient opacity, and rays that stop early.
 TEST(SceneCaster, StagedCompositingIsPerSampleCompositing)
 {
   const parc::ScalarField field = Blobs();
@@ -132,23 +134,35 @@ TEST(SceneCaster, StagedCompositingIsPerSampleCompositing)
        p.UseGradientOpacity = true;
        p.GradientOpacity.SetNodes({ 0.0, 20.0 }, { 0.2, 1.0 }, true); } },
   };
+  const parc::ScalarField ones =
+    parctest::MakeField(field.GetDimensions(), [](int, int, int) { return 1.f; });
+  const parc::WholeRaySource whole;
+  auto expectSame = [](const parctest::SceneImage& a, const parctest::SceneImage& b,
+                      const std::string& what) {
+    EXPECT_TRUE(parctest::Identical(a, b)) << what;
+    EXPECT_EQ(a.Stats.Samples, b.Stats.Samples) << what;
+    EXPECT_EQ(a.Stats.ContributingSamples, b.Stats.ContributingSamples) << what;
+    EXPECT_EQ(a.Stats.GradientEvaluations, b.Stats.GradientEvaluations) << what;
+  };
   for (const Variant& variant : variants)
   {
-    CastParameters p = CloudParameters();
-    variant.Apply(p);
-    parc::RayCaster caster;
-    ASSERT_TRUE(caster.Prepare(&field, &p));
+    CastParameters staged = CloudParameters();
+    variant.Apply(staged);
+    CastParameters masked = staged;
+    masked.Mask = &ones;
+    parc::RayCaster stagedCaster, maskedCaster;
+    ASSERT_TRUE(stagedCaster.Prepare(&field, &staged));
+    ASSERT_TRUE(maskedCaster.Prepare(&field, &masked));
     for (const double angle : { 0.3, 2.0 })
     {
       const parc::Camera view = ParallelView(angle);
-      parctest::SceneImage own(view);
-      caster.CastImage(view, nullptr, parc::WholeRaySource(), own.RGBA.data(), own.Stats);
-      const parc::WholeRaySource whole;
-      const parctest::SceneImage scene = parctest::CastScene({ { &caster, &whole } }, view);
-      EXPECT_TRUE(parctest::Identical(own, scene)) << variant.Name << ", angle " << angle;
-      EXPECT_EQ(own.Stats.Samples, scene.Stats.Samples) << variant.Name;
-      EXPECT_EQ(own.Stats.ContributingSamples, scene.Stats.ContributingSamples) << variant.Name;
-      EXPECT_EQ(own.Stats.GradientEvaluations, scene.Stats.GradientEvaluations) << variant.Name;
+      const std::string what = std::string(variant.Name) + ", angle " + std::to_string(angle);
+      parctest::SceneImage alone(view), aloneMasked(view);
+      stagedCaster.CastImage(view, nullptr, whole, alone.RGBA.data(), alone.Stats);
+      maskedCaster.CastImage(view, nullptr, whole, aloneMasked.RGBA.data(), aloneMasked.Stats);
+      expectSame(alone, aloneMasked, what + ", alone");
+      expectSame(parctest::CastScene({ { &stagedCaster, &whole } }, view),
+        parctest::CastScene({ { &maskedCaster, &whole } }, view), what + ", in a scene");
     }
   }
 }

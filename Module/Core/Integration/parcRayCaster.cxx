@@ -634,13 +634,13 @@ struct RayContext
     }
     return true;
   }
-  /// The composite ray function over lattice samples k0 .. k0 + n - 1 into out, in stages
-  /// over the block's lanes (RenderConstants::ColorByValue, no events): the opacities, the
-  /// lanes composited before the ray may stop with their weights (the compositor's own
-  /// arithmetic, so that no colour, gradient or shading is computed for a lane that is
-  /// not), their colours, their shading, then the weighted colours in ray order. The same
-  /// bits and counts as ContributingSamples with SampleColor, ShadeSample and Over; returns
-  /// false (visited set) when the ray stops.
+  /// The composite ray function over lattice samples k0 .. k0 + n - 1 into out (and the
+  /// events, when kept), in stages over the block's lanes (RenderConstants::ColorByValue):
+  /// the opacities, the lanes composited before the ray may stop with their weights (the
+  /// compositor's own arithmetic, so that no colour, gradient or shading is computed for a
+  /// lane that is not), their colours, their shading, then the weighted colours in ray
+  /// order. The same bits, events and counts as ContributingSamples with SampleColor,
+  /// ShadeSample and Over; returns false (visited set) when the ray stops.
   PARC_HOT_INLINE bool CompositeBlock(long k0, int n, int& visited, EventCompositor& out)
   {
     this->SampleBlock(k0, n);
@@ -680,6 +680,15 @@ struct RayContext
       }
     }
     out.Alpha = alpha;
+    if (this->Events)
+    {
+      for (int i = 0; i < b.Count; ++i)
+      {
+        const float rgb[3] = { b.Rgb[0][i], b.Rgb[1][i], b.Rgb[2][i] };
+        AppendEvent(*this->Events, (k0 + b.Lane[i]) * this->Dt, rgb,
+          this->Opacities[b.Lane[i]], false);
+      }
+    }
     return !stops;
   }
   /// The colours of the lanes of Batch (see CompositeBlock).
@@ -1199,7 +1208,7 @@ struct CompositeFunction
 
   bool operator()(long k0, int n, bool, int& visited)
   {
-    if (this->C.K.ColorByValue && !this->C.Events)
+    if (this->C.K.ColorByValue)
     {
       return this->C.CompositeBlock(k0, n, visited, this->Out);
     }
