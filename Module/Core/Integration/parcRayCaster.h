@@ -7,7 +7,12 @@
 // image (DESIGN.md sections 1-2). The samples of a lattice range are taken in blocks of up
 // to LatticeBlock::Size (FieldView::SampleLattice: no branch on the data, several lanes at
 // once), each with the arithmetic of a single sample; a ray that stops early has taken at
-// most a block's worth in vain, which the statistics do not count.
+// most a block's worth in vain, which the statistics do not count. When a sample's opacity
+// and colour depend on its value alone (no mask, labels or varying gradient opacity), the
+// composite function works on a block in stages: the opacities, then which lanes are
+// composited before the ray stops (the compositor's own arithmetic), then only their
+// colours, gradients and shading, four lanes at a time where it can, then the compositing.
+// Each lane gets the bits it would get alone, so a stage changes speed, never the image.
 //
 // Ray functions (one functor each, dispatched in one switch):
 // - Composite: front-to-back "over" with opacity correction
