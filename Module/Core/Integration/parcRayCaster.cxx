@@ -417,8 +417,10 @@ struct RayContext
     int Count = 0;
     int Lane[LatticeBlock::Size];
     float Weight[LatticeBlock::Size]; ///< the compositor's weight of each
-    alignas(16) float Rgb[3][LatticeBlock::Size] = {};      ///< colour, channel by channel
-    alignas(16) float Gradient[3][LatticeBlock::Size] = {}; ///< world gradient, axis by axis
+    /// Colour, channel by channel (BatchColors writes whole groups of four lanes).
+    alignas(16) float Rgb[3][LatticeBlock::Size];
+    /// World gradient, axis by axis (zeros past Count: ShadeLanes reads groups of four).
+    alignas(16) float Gradient[3][LatticeBlock::Size] = {};
   } Batch;
   /// One cell's voxel differences: the cache of a ray whose thread shares none.
   CellDifferences OwnDifferences;
