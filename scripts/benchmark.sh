@@ -66,7 +66,7 @@ header() {
   gl=$(xrun glxinfo -B 2>/dev/null)
   echo "- VTK $(dpkg-query -W -f='${Version}' libvtk9-dev); OpenGL: $(echo "$gl" | sed -n 's/^OpenGL renderer string: //p'), $(echo "$gl" | sed -n 's/^OpenGL version string: //p'). There is no GPU here: vtkGPUVolumeRayCastMapper runs on Mesa's llvmpipe, on the same CPU cores."
   echo "- data: MRI head \`$head\` (mricron-data, 181x217x181, 8-bit, dense); from \`../shared/data\`: $(for f in ironProt_68x68x68 poship_66x66x66 neghip_64x64x64 tooth_103x94x161 embryo_256x256x256; do [ -f "$data/${f}_uint8.raw" ] && printf '%s ' "$f" || printf '%s (absent) ' "$f"; done)"
-  echo "- settings: images ${size}x${size} for the accuracy study (parallel projection there, perspective elsewhere), linear interpolation; sample distances in voxels of the smallest spacing; times are wall-clock seconds of warm frames (window->Render() until the GL work is done), interleaved across mappers (A B C A B C), median and spread (minimum-maximum) of $rounds rounds unless a table says otherwise"
+  echo "- settings: images ${size}x${size} for the accuracy study (parallel projection there, perspective elsewhere), linear interpolation; offscreen windows without multisampling (--multisamples 0, as VTK's volume tests set it); sample distances in voxels of the smallest spacing; times are wall-clock seconds of warm frames (window->Render() until the GL work is done), interleaved across mappers (A B C A B C), median and spread (minimum-maximum) of $rounds rounds unless a table says otherwise"
   echo
 }
 
