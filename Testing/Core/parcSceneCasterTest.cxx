@@ -262,6 +262,108 @@ TEST(SceneCaster, SurfaceInsideACloudFromBothSides)
   EXPECT_GT(hits, 50); // the cloud is in front of the surface on most rays
 }
 
+/// Casts a scene of casters (each unaccelerated, termination opacity 0.99) over view and
+/// expects, pixel by pixel, the bits of the merge of every volume's whole events by (ray
+/// parameter, member index), stopped where the merged opacity reaches 0.99. Returns the
+/// samples the scene took of member, and in whole those its caster takes alone.
+std::uint64_t ExpectMergeOfWholeEvents(const std::vector<const parc::RayCaster*>& casters,
+  const parc::Camera& view, std::size_t member, std::uint64_t& whole)
+{
+  constexpr double Termination = 0.99;
+  const parc::WholeRaySource wholeRay;
+  std::vector<parc::SceneCaster::Member> members;
+  for (const parc::RayCaster* caster : casters)
+  {
+    members.push_back({ caster, &wholeRay });
+  }
+  parc::SceneCaster scene;
+  EXPECT_TRUE(scene.SetMembers(members, Termination));
+  const std::size_t n = casters.size();
+  std::uint64_t taken = 0;
+  whole = 0;
+  std::vector<parc::Segment> segments;
+  std::vector<parc::LatticeRange> ranges;
+  std::vector<std::vector<parc::RayEvent>> sceneEvents, events(n);
+  std::vector<parc::CastStatistics> sceneStats(n);
+  for (int py = 0; py < view.Height; ++py)
+  {
+    for (int px = 0; px < view.Width; ++px)
+    {
+      const parc::RayQuery query = parc::RayQuery::AtPixel(view.MakeRay(px, py), px, py);
+      float merged[4], own[4];
+      sceneStats.assign(n, parc::CastStatistics());
+      scene.CastRay(query, segments, ranges, sceneEvents, merged, sceneStats.data());
+      taken += sceneStats[member].Samples;
+      for (std::size_t v = 0; v < n; ++v)
+      {
+        parc::CastStatistics stats;
+        events[v].clear();
+        casters[v]->CastRay(query, wholeRay, segments, ranges, own, stats, nullptr, &events[v]);
+        whole += v == member ? stats.Samples : 0;
+      }
+      parc::EventCompositor reference;
+      std::vector<std::size_t> next(n, 0);
+      while (reference.Alpha < Termination)
+      {
+        std::size_t best = n;
+        for (std::size_t v = 0; v < n; ++v)
+        {
+          if (next[v] < events[v].size() &&
+            (best == n || events[v][next[v]].T < events[best][next[best]].T))
+          {
+            best = v;
+          }
+        }
+        if (best == n)
+        {
+          break;
+        }
+        reference.Add(events[best][next[best]++]);
+      }
+      float expected[4];
+      reference.Finish(expected);
+      EXPECT_EQ(0, std::memcmp(merged, expected, sizeof(merged)))
+        << "pixel " << px << ", " << py;
+    }
+  }
+  return taken;
+}
+
+// A volume whose own opacity stops the ray stops it for every volume: the volumes cast
+// after it are cast only a little beyond, and the image is the merge of every volume's
+// whole events, stopped where the merged opacity reaches the termination opacity, bit for
+// bit, whatever the members' order. An opaque surface in a translucent cloud: the cloud
+// behind the surface is not sampled. An opaque surface just inside a translucent one of
+// another volume: the translucent crossing just before the stop is found.
+TEST(SceneCaster, OpaqueVolumesStopTheOthers)
+{
+  const parc::ScalarField sphere = parctest::DistanceField(33, { 16, 16, 16 });
+  const parc::ScalarField cloud = Blobs();
+  const CastParameters opaqueParams = SurfaceParameters(10.0);
+  CastParameters translucentParams = SurfaceParameters(10.2);
+  translucentParams.Opacity.SetConstant(0.3);
+  CastParameters cloudParams = CloudParameters();
+  cloudParams.Opacity.SetNodes({ 0.0, 20.0, 255.0 }, { 0.0, 0.05, 0.2 }, true);
+  parc::RayCaster opaque, translucent, cloudCaster;
+  ASSERT_TRUE(opaque.Prepare(&sphere, &opaqueParams));
+  ASSERT_TRUE(translucent.Prepare(&sphere, &translucentParams));
+  ASSERT_TRUE(cloudCaster.Prepare(&cloud, &cloudParams));
+  const parc::Camera view = ParallelView(0.6);
+  std::uint64_t whole = 0;
+  for (const std::size_t cloudIndex : { 0, 1 })
+  {
+    std::vector<const parc::RayCaster*> casters = { &opaque };
+    casters.insert(casters.begin() + cloudIndex, &cloudCaster);
+    const std::uint64_t taken = ExpectMergeOfWholeEvents(casters, view, cloudIndex, whole);
+    EXPECT_LT(taken, whole * 9 / 10) << "cloud " << cloudIndex;
+  }
+  // Both isosurfaces: cast in member order, the translucent one after the opaque one.
+  const std::uint64_t taken =
+    ExpectMergeOfWholeEvents({ &opaque, &translucent }, view, 1, whole);
+  EXPECT_LT(taken, whole * 9 / 10);
+  ExpectMergeOfWholeEvents({ &translucent, &opaque }, view, 1, whole);
+}
+
 // Each volume through its own exact segment source (the oracle of its own supercells, at
 // its own transform), in overlapping scenes: bit-identical to unaccelerated casting.
 TEST(SceneCaster, PerVolumeSourcesGiveBitIdenticalImages)

@@ -34,6 +34,15 @@ static_assert((DifferenceCacheCells & (DifferenceCacheCells - 1)) == 0, "a power
 constexpr int NotALatticeSample = -1;
 /// Directional lights whose half vectors are computed once per ray.
 constexpr std::size_t MaxHoistedLights = 8;
+/// Lattice steps beyond a scene ray's stop that its composite and isosurface volumes are
+/// still cast (SceneCaster::CastRay).
+constexpr double StopMarginSteps = 2.0;
+
+/// Whether a volume of this ray function can stop a ray by its own opacity.
+bool CanStopRay(BlendMode blend)
+{
+  return blend == BlendMode::Composite || blend == BlendMode::IsoSurface;
+}
 
 /// The ray-parameter interval of the ray (origin o, direction d in voxel-index
 /// coordinates) inside the field's box, [ray.TMin, ray.TMax] and the clipping planes.
@@ -2120,6 +2129,24 @@ bool SceneCaster::SetMembers(std::vector<Member> members, double terminationOpac
   }
   this->Members = std::move(members);
   this->TerminationOpacity = terminationOpacity;
+  this->CastOrder.clear();
+  for (const BlendMode first : { BlendMode::IsoSurface, BlendMode::Composite })
+  {
+    for (std::size_t v = 0; v < this->Members.size(); ++v)
+    {
+      if (this->Members[v].Caster->GetParameters()->Blend == first)
+      {
+        this->CastOrder.push_back(v);
+      }
+    }
+  }
+  for (std::size_t v = 0; v < this->Members.size(); ++v)
+  {
+    if (!CanStopRay(this->Members[v].Caster->GetParameters()->Blend))
+    {
+      this->CastOrder.push_back(v);
+    }
+  }
   return true;
 }
 
@@ -2130,15 +2157,32 @@ void SceneCaster::CastRay(const RayQuery& query, std::vector<Segment>& segments,
   const std::size_t n = this->Members.size();
   events.resize(n);
   float own[4];
-  for (std::size_t v = 0; v < n; ++v)
+  double stop = std::numeric_limits<double>::infinity(); // see the header's file comment
+  RayQuery clamped = query;
+  for (const std::size_t v : this->CastOrder)
   {
     const Member& m = this->Members[v];
     events[v].clear();
-    if (!query.HasPixel || m.Caster->CastsEveryRay() ||
-      m.Source->MayHaveSegments(query.Pixel[0], query.Pixel[1]))
+    if (query.HasPixel && !m.Caster->CastsEveryRay() &&
+      !m.Source->MayHaveSegments(query.Pixel[0], query.Pixel[1]))
+    {
+      continue;
+    }
+    const CastParameters& p = *m.Caster->GetParameters();
+    if (!CanStopRay(p.Blend))
     {
       m.Caster->CastRay(
         query, *m.Source, segments, ranges, own, stats[v], nullptr, &events[v], shadows);
+      continue;
+    }
+    // Two lattice steps beyond the stop: every sample at or before it, and the sample
+    // after it that an isosurface crossing before it is found with.
+    clamped.Path.TMax = std::min(query.Path.TMax, stop + StopMarginSteps * p.SampleDistance);
+    m.Caster->CastRay(
+      clamped, *m.Source, segments, ranges, own, stats[v], nullptr, &events[v], shadows);
+    if (!events[v].empty() && !(own[3] < p.TerminationOpacity))
+    {
+      stop = std::min(stop, events[v].back().T);
     }
   }
   // Merge by (ray parameter, volume index): each volume's events are in ray order.
@@ -2155,7 +2199,7 @@ void SceneCaster::CastRay(const RayQuery& query, std::vector<Segment>& segments,
         best = v;
       }
     }
-    if (best == n)
+    if (best == n || events[best][next[best]].T > stop)
     {
       break;
     }

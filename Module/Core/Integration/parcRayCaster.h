@@ -32,7 +32,13 @@
 // gives one event per contributing sample or surface crossing; a maximum, minimum or
 // average intensity or additive volume gives its whole-ray result as one event, placed at
 // its first sample with the extreme value, its first averaged sample or its first
-// contributing sample. One volume alone gives the same bits as its own caster.
+// contributing sample. One volume alone gives the same bits as its own caster. The merge
+// ends at the first event behind the stop of the ray: the ray parameter of the last event
+// of a composite or isosurface volume whose own opacity reached its termination opacity
+// there (the smallest such; the merged opacity has reached it by then, up to rounding).
+// The volumes are cast one after another, and each composite or isosurface volume is
+// cast only up to a little beyond the stop the volumes cast before it found: what lies
+// behind a surface costs nothing, and the events the merge takes are the same.
 // Shadows (paper section 5, DESIGN.md section 5): with Occluders set, each shaded
 // contribution at world point x is lit by each light with ShadowAttenuation > 0 only as far
 // as the light gets through: its diffuse and specular terms (when not zero) are scaled by
@@ -318,6 +324,10 @@ public:
 
 private:
   std::vector<Member> Members;
+  /// The order the members are cast in: isosurface volumes, then composite ones (those
+  /// whose own opacity can stop a ray, surfaces usually soonest and cheapest), then the
+  /// others, each group in member order.
+  std::vector<std::size_t> CastOrder;
   double TerminationOpacity = 1.0;
 };
 
