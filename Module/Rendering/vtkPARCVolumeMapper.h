@@ -88,9 +88,11 @@
  * in depth order (at equal depth, the lower port first); a maximum, minimum or average
  * intensity or additive volume contributes its whole-ray result (its colour and opacity
  * as it would show alone) at one depth, that of its first sample with the extreme value,
- * its first averaged sample or its first contributing sample. Each volume samples its
- * own lattice (the common SampleDistance, or half its own smallest voxel edge). With a
- * plain vtkVolume, only port 0 is rendered.
+ * its first averaged sample or its first contributing sample. A ray stops where the
+ * composited opacity reaches TerminationOpacity, and at the latest where one composite or
+ * isosurface volume's own opacity reaches it: nothing behind an opaque surface is sampled.
+ * Each volume samples its own lattice (the common SampleDistance, or half its own smallest
+ * voxel edge). With a plain vtkVolume, only port 0 is rendered.
  *
  * Events: each render that casts emits VolumeMapperRenderStartEvent, then after every band
  * of image rows VolumeMapperRenderProgressEvent (call data: a double*, the fraction cast)
