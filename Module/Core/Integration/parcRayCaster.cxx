@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <type_traits>
 
@@ -42,6 +43,12 @@ constexpr double StopMarginSteps = 2.0;
 bool CanStopRay(BlendMode blend)
 {
   return blend == BlendMode::Composite || blend == BlendMode::IsoSurface;
+}
+
+/// Where a volume of this ray function comes in SceneCaster's cast order.
+int CastRank(BlendMode blend)
+{
+  return blend == BlendMode::IsoSurface ? 0 : blend == BlendMode::Composite ? 1 : 2;
 }
 
 /// The ray-parameter interval of the ray (origin o, direction d in voxel-index
@@ -2129,24 +2136,13 @@ bool SceneCaster::SetMembers(std::vector<Member> members, double terminationOpac
   }
   this->Members = std::move(members);
   this->TerminationOpacity = terminationOpacity;
-  this->CastOrder.clear();
-  for (const BlendMode first : { BlendMode::IsoSurface, BlendMode::Composite })
-  {
-    for (std::size_t v = 0; v < this->Members.size(); ++v)
-    {
-      if (this->Members[v].Caster->GetParameters()->Blend == first)
-      {
-        this->CastOrder.push_back(v);
-      }
-    }
-  }
-  for (std::size_t v = 0; v < this->Members.size(); ++v)
-  {
-    if (!CanStopRay(this->Members[v].Caster->GetParameters()->Blend))
-    {
-      this->CastOrder.push_back(v);
-    }
-  }
+  this->CastOrder.resize(this->Members.size());
+  std::iota(this->CastOrder.begin(), this->CastOrder.end(), std::size_t(0));
+  const auto rank = [this](std::size_t v) {
+    return CastRank(this->Members[v].Caster->GetParameters()->Blend);
+  };
+  std::stable_sort(this->CastOrder.begin(), this->CastOrder.end(),
+    [&rank](std::size_t a, std::size_t b) { return rank(a) < rank(b); });
   return true;
 }
 
@@ -2169,18 +2165,16 @@ void SceneCaster::CastRay(const RayQuery& query, std::vector<Segment>& segments,
       continue;
     }
     const CastParameters& p = *m.Caster->GetParameters();
-    if (!CanStopRay(p.Blend))
-    {
-      m.Caster->CastRay(
-        query, *m.Source, segments, ranges, own, stats[v], nullptr, &events[v], shadows);
-      continue;
-    }
-    // Two lattice steps beyond the stop: every sample at or before it, and the sample
-    // after it that an isosurface crossing before it is found with.
-    clamped.Path.TMax = std::min(query.Path.TMax, stop + StopMarginSteps * p.SampleDistance);
+    const bool canStop = CanStopRay(p.Blend);
+    // A volume that can stop the ray is cast two lattice steps beyond the stop: every
+    // sample at or before it, and the sample after it that an isosurface crossing before
+    // it is found with. The others give their whole-ray result.
+    clamped.Path.TMax = canStop
+      ? std::min(query.Path.TMax, stop + StopMarginSteps * p.SampleDistance)
+      : query.Path.TMax;
     m.Caster->CastRay(
       clamped, *m.Source, segments, ranges, own, stats[v], nullptr, &events[v], shadows);
-    if (!events[v].empty() && !(own[3] < p.TerminationOpacity))
+    if (canStop && !events[v].empty() && !(own[3] < p.TerminationOpacity))
     {
       stop = std::min(stop, events[v].back().T);
     }
