@@ -15,9 +15,7 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <stdexcept>
 
 #ifdef PARC_HAVE_VOLPACK
@@ -27,11 +25,6 @@
 namespace parcvolpack
 {
 #ifndef PARC_HAVE_VOLPACK
-bool Available()
-{
-  return false;
-}
-
 struct Renderer::Internals
 {
 };
@@ -105,11 +98,6 @@ void SetMatrix(vpContext* vpc, int which, vtkMatrix4x4* matrix)
   Check(vpc, vpCurrentMatrix(vpc, which), "matrix");
   Check(vpc, vpSetMatrix(vpc, m), "matrix");
 }
-}
-
-bool Available()
-{
-  return true;
 }
 
 struct Renderer::Internals

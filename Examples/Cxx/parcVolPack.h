@@ -20,9 +20,6 @@ class vtkVolume;
 
 namespace parcvolpack
 {
-/// Whether this build has VolPack.
-bool Available();
-
 /// VolPack with a volume's data, transfer functions and shading, classified once.
 class Renderer
 {

@@ -163,9 +163,9 @@ void ColorTable::SetTable(double lo, double hi, std::vector<float> rgb)
 {
   this->Count = static_cast<int>(rgb.size() / 3);
   this->RGBA.assign(4 * static_cast<std::size_t>(this->Count), 0.f);
-  for (int i = 0; i < this->Count; ++i)
+  for (std::size_t i = 0; i < static_cast<std::size_t>(this->Count); ++i)
   {
-    std::copy_n(&rgb[3 * static_cast<std::size_t>(i)], 3, &this->RGBA[4 * static_cast<std::size_t>(i)]);
+    std::copy_n(&rgb[3 * i], 3, &this->RGBA[4 * i]);
   }
   this->Lo = lo;
   this->Hi = hi > lo ? hi : lo;
