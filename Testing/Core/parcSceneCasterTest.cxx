@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <functional>
@@ -191,7 +192,7 @@ TEST(SceneCaster, DisjointVolumesMergeInDepthOrder)
     const parc::Ray ray = MakeRay({ 2.5, 2.5, zEye }, { 0, 0, zEye < 0 ? 1.0 : -1.0 });
     std::vector<parc::Segment> segments;
     std::vector<parc::LatticeRange> ranges;
-    std::vector<std::vector<parc::RayEvent>> events;
+    parc::SceneScratch scratch;
     parc::CastStatistics stats, sceneStats[2];
     float a[4], b[4], merged[4], swapped[4];
     frontCaster.CastRay(parc::RayQuery::Anywhere(ray), whole, segments, ranges, a, stats);
@@ -202,9 +203,9 @@ TEST(SceneCaster, DisjointVolumesMergeInDepthOrder)
     }
     parc::SceneCaster scene;
     ASSERT_TRUE(scene.SetMembers({ { &frontCaster, &whole }, { &backCaster, &whole } }, 0.99));
-    scene.CastRay(parc::RayQuery::Anywhere(ray), segments, ranges, events, merged, sceneStats);
+    scene.CastRay(parc::RayQuery::Anywhere(ray), segments, ranges, scratch, merged, sceneStats);
     ASSERT_TRUE(scene.SetMembers({ { &backCaster, &whole }, { &frontCaster, &whole } }, 0.99));
-    scene.CastRay(parc::RayQuery::Anywhere(ray), segments, ranges, events, swapped, sceneStats);
+    scene.CastRay(parc::RayQuery::Anywhere(ray), segments, ranges, scratch, swapped, sceneStats);
     EXPECT_EQ(0, std::memcmp(merged, swapped, sizeof(merged)));
     for (int c = 0; c < 4; ++c)
     {
@@ -243,11 +244,11 @@ TEST(SceneCaster, SurfaceInsideACloudFromBothSides)
     parc::Ray ray = MakeRay(from, target - from);
     std::vector<parc::Segment> segments;
     std::vector<parc::LatticeRange> ranges;
-    std::vector<std::vector<parc::RayEvent>> events;
+    parc::SceneScratch scratch;
     parc::CastStatistics stats, sceneStats[2];
     float merged[4], hitColor[4], front[4];
     double hit;
-    scene.CastRay(parc::RayQuery::Anywhere(ray), segments, ranges, events, merged, sceneStats);
+    scene.CastRay(parc::RayQuery::Anywhere(ray), segments, ranges, scratch, merged, sceneStats);
     surface.CastRay(parc::RayQuery::Anywhere(ray), whole, segments, ranges, hitColor, stats, &hit);
     ASSERT_TRUE(std::isfinite(hit)) << "trial " << trial;
     ray.TMax = hit; // the cloud in front of the surface
@@ -283,7 +284,8 @@ std::uint64_t ExpectMergeOfWholeEvents(const std::vector<const parc::RayCaster*>
   whole = 0;
   std::vector<parc::Segment> segments;
   std::vector<parc::LatticeRange> ranges;
-  std::vector<std::vector<parc::RayEvent>> sceneEvents, events(n);
+  parc::SceneScratch sceneScratch;
+  std::vector<std::vector<parc::RayEvent>> events(n);
   std::vector<parc::CastStatistics> sceneStats(n);
   for (int py = 0; py < view.Height; ++py)
   {
@@ -292,7 +294,7 @@ std::uint64_t ExpectMergeOfWholeEvents(const std::vector<const parc::RayCaster*>
       const parc::RayQuery query = parc::RayQuery::AtPixel(view.MakeRay(px, py), px, py);
       float merged[4], own[4];
       sceneStats.assign(n, parc::CastStatistics());
-      scene.CastRay(query, segments, ranges, sceneEvents, merged, sceneStats.data());
+      scene.CastRay(query, segments, ranges, sceneScratch, merged, sceneStats.data());
       taken += sceneStats[member].Samples;
       for (std::size_t v = 0; v < n; ++v)
       {
@@ -362,6 +364,43 @@ TEST(SceneCaster, OpaqueVolumesStopTheOthers)
     ExpectMergeOfWholeEvents({ &opaque, &translucent }, view, 1, whole);
   EXPECT_LT(taken, whole * 9 / 10);
   ExpectMergeOfWholeEvents({ &translucent, &opaque }, view, 1, whole);
+}
+
+// The last composite volume cast composites its samples with the other volumes' events in
+// between (SceneCaster::Streamed): a translucent surface crossed inside a cloud, and a
+// minimum-intensity volume whose one event lies at a lattice position of the cloud's own
+// (the same sample distance), before or after the cloud's sample there as their member
+// indices say; in every member order, the bits of the merge of every volume's events.
+TEST(SceneCaster, EventsOfOtherVolumesComeBetweenACloudsSamples)
+{
+  const parc::ScalarField sphere = parctest::DistanceField(33, { 16, 16, 16 });
+  const parc::ScalarField cloud = Blobs();
+  CastParameters surfaceParams = SurfaceParameters(6.0);
+  surfaceParams.Opacity.SetConstant(0.3);
+  CastParameters nearestParams = CloudParameters();
+  nearestParams.Blend = BlendMode::MinimumIntensity;
+  nearestParams.Opacity.SetConstant(0.3);
+  nearestParams.Color.SetTable(0.0, 30.0, { 0.f, 1.f, 0.f, 0.f, 1.f, 1.f });
+  CastParameters cloudParams = CloudParameters();
+  cloudParams.Opacity.SetNodes({ 0.0, 20.0, 255.0 }, { 0.0, 0.05, 0.2 }, true);
+  parc::RayCaster surface, nearest, cloudCaster;
+  ASSERT_TRUE(surface.Prepare(&sphere, &surfaceParams));
+  ASSERT_TRUE(nearest.Prepare(&sphere, &nearestParams));
+  ASSERT_TRUE(cloudCaster.Prepare(&cloud, &cloudParams));
+  std::vector<const parc::RayCaster*> casters = { &cloudCaster, &nearest, &surface };
+  std::sort(casters.begin(), casters.end());
+  do
+  {
+    const std::size_t cloudIndex =
+      std::find(casters.begin(), casters.end(), &cloudCaster) - casters.begin();
+    for (const double angle : { 0.0, 0.9 })
+    {
+      std::uint64_t whole = 0;
+      const std::uint64_t taken =
+        ExpectMergeOfWholeEvents(casters, ParallelView(angle), cloudIndex, whole);
+      EXPECT_GT(taken, 0u);
+    }
+  } while (std::next_permutation(casters.begin(), casters.end()));
 }
 
 // Each volume through its own exact segment source (the oracle of its own supercells, at

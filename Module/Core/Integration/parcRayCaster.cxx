@@ -48,7 +48,29 @@ bool CanStopRay(BlendMode blend)
 /// Where a volume of this ray function comes in SceneCaster's cast order.
 int CastRank(BlendMode blend)
 {
-  return blend == BlendMode::IsoSurface ? 0 : blend == BlendMode::Composite ? 1 : 2;
+  return blend == BlendMode::IsoSurface ? 0 : blend == BlendMode::Composite ? 2 : 1;
+}
+
+/// The first lattice index k of member `member` (sample distance dt) whose sample at ray
+/// parameter k dt comes after an event at t of member `from` in the merge by (ray
+/// parameter, member index); the lattice position is computed as the caster computes it.
+long FirstSampleAfter(double t, std::size_t from, double dt, std::size_t member)
+{
+  const auto after = [&](long k) {
+    const double tk = k * dt;
+    return tk > t || (tk == t && member > from);
+  };
+  constexpr double Limit = 4503599627370496.0; // 2^52: lattice indices stay exact
+  long k = static_cast<long>(std::max(-Limit, std::min(std::floor(t / dt), Limit)));
+  while (!after(k))
+  {
+    ++k;
+  }
+  while (after(k - 1))
+  {
+    --k;
+  }
+  return k;
 }
 
 /// The ray-parameter interval of the ray (origin o, direction d in voxel-index
@@ -1223,8 +1245,38 @@ struct CompositeFunction
   static constexpr bool WholeRay = false;
   Context& C;
   EventCompositor Out;
+  /// Other volumes' events to composite between the samples (null: none).
+  MergedEvents* Merge = nullptr;
 
   bool operator()(long k0, int n, bool, int& visited)
+  {
+    return this->Merge ? this->Interleaved(k0, n, visited) : this->Block(k0, n, visited);
+  }
+  /// The block of samples k0 .. k0 + n - 1 in parts between the events of Merge, each
+  /// event composited before the first sample that comes after it; stops at Merge->End.
+  bool Interleaved(long k0, int n, int& visited)
+  {
+    const double termination = this->C.P.TerminationOpacity;
+    for (int done = 0; done < n;)
+    {
+      const long k = k0 + done;
+      if (!this->Merge->AddBefore(k, this->Out, termination) || k >= this->Merge->End)
+      {
+        visited = done;
+        return false;
+      }
+      const int part = static_cast<int>(std::min<long>(n - done, this->Merge->NextPosition() - k));
+      int partVisited = part;
+      if (!this->Block(k, part, partVisited))
+      {
+        visited = done + partVisited;
+        return false;
+      }
+      done += part;
+    }
+    return true;
+  }
+  bool Block(long k0, int n, int& visited)
   {
     if (this->C.K.ColorByValue)
     {
@@ -1746,6 +1798,16 @@ void RayCaster::CastRay(const RayQuery& query, const SegmentSource& source,
   });
 }
 
+void RayCaster::CastRayMerged(const RayQuery& query, const SegmentSource& source,
+  std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, MergedEvents& merge,
+  float rgba[4], CastStatistics& stats, ShadowScratch* shadows) const
+{
+  this->Field->Dispatch([&](const auto& field) {
+    this->CastRayIn(field, query, source, segments, ranges, rgba, stats, nullptr, nullptr,
+      nullptr, shadows, &merge);
+  });
+}
+
 std::uint64_t RayCaster::UnacceleratedSamples(const Ray& ray) const
 {
   double tEnter, tExit;
@@ -1858,7 +1920,7 @@ template <class View>
 void RayCaster::CastRayIn(const View& field, const RayQuery& query, const SegmentSource& source,
   std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
   CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events,
-  std::vector<CellDifferences>* differences, ShadowScratch* shadows) const
+  std::vector<CellDifferences>* differences, ShadowScratch* shadows, MergedEvents* merge) const
 {
   rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0.f;
   if (events)
@@ -1939,7 +2001,7 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
     switch (this->Params->Blend)
     {
       case BlendMode::Composite:
-        stop = Run(CompositeFunction<Context>{ context, {} }, ranges, rgba);
+        stop = Run(CompositeFunction<Context>{ context, {}, merge }, ranges, rgba);
         break;
       case BlendMode::MaximumIntensity:
         stop = Run(ExtremeFunction<Context, 1>{ context }, ranges, rgba);
@@ -1973,7 +2035,7 @@ struct RayScratch
 {
   std::vector<Segment> Segments;
   std::vector<LatticeRange> Ranges;
-  std::vector<std::vector<RayEvent>> Events; ///< per volume (SceneCaster)
+  SceneScratch Scene; ///< SceneCaster
   CastStatistics Stats;
   std::vector<CastStatistics> MemberStats; ///< per volume (SceneCaster)
   std::vector<CellDifferences> Differences; ///< of one volume's cells (RayCaster)
@@ -2143,44 +2205,39 @@ bool SceneCaster::SetMembers(std::vector<Member> members, double terminationOpac
   };
   std::stable_sort(this->CastOrder.begin(), this->CastOrder.end(),
     [&rank](std::size_t a, std::size_t b) { return rank(a) < rank(b); });
+  this->Streamed = this->Members.size();
+  if (!this->CastOrder.empty())
+  {
+    const RayCaster& last = *this->Members[this->CastOrder.back()].Caster;
+    if (last.GetParameters()->Blend == BlendMode::Composite && last.GetComponents().empty() &&
+      last.GetParameters()->TerminationOpacity == terminationOpacity)
+    {
+      this->Streamed = this->CastOrder.back();
+    }
+  }
   return true;
 }
 
-void SceneCaster::CastRay(const RayQuery& query, std::vector<Segment>& segments,
-  std::vector<LatticeRange>& ranges, std::vector<std::vector<RayEvent>>& events, float rgba[4],
-  CastStatistics* stats, ShadowScratch* shadows) const
+bool SceneCaster::Skips(std::size_t v, const RayQuery& query) const
+{
+  const Member& m = this->Members[v];
+  return query.HasPixel && !m.Caster->CastsEveryRay() &&
+    !m.Source->MayHaveSegments(query.Pixel[0], query.Pixel[1]);
+}
+
+void SceneCaster::MergeEvents(
+  const std::vector<std::vector<RayEvent>>& events, double stop, MergedEvents& merged) const
 {
   const std::size_t n = this->Members.size();
-  events.resize(n);
-  float own[4];
-  double stop = std::numeric_limits<double>::infinity(); // see the header's file comment
-  RayQuery clamped = query;
-  for (const std::size_t v : this->CastOrder)
-  {
-    const Member& m = this->Members[v];
-    events[v].clear();
-    if (query.HasPixel && !m.Caster->CastsEveryRay() &&
-      !m.Source->MayHaveSegments(query.Pixel[0], query.Pixel[1]))
-    {
-      continue;
-    }
-    const CastParameters& p = *m.Caster->GetParameters();
-    const bool canStop = CanStopRay(p.Blend);
-    // A volume that can stop the ray is cast two lattice steps beyond the stop: every
-    // sample at or before it, and the sample after it that an isosurface crossing before
-    // it is found with. The others give their whole-ray result.
-    clamped.Path.TMax = canStop
-      ? std::min(query.Path.TMax, stop + StopMarginSteps * p.SampleDistance)
-      : query.Path.TMax;
-    m.Caster->CastRay(
-      clamped, *m.Source, segments, ranges, own, stats[v], nullptr, &events[v], shadows);
-    if (canStop && !events[v].empty() && !(own[3] < p.TerminationOpacity))
-    {
-      stop = std::min(stop, events[v].back().T);
-    }
-  }
-  // Merge by (ray parameter, volume index): each volume's events are in ray order.
-  EventCompositor compositor;
+  const bool streams = this->Streamed < n;
+  const double dt =
+    streams ? this->Members[this->Streamed].Caster->GetParameters()->SampleDistance : 1.0;
+  merged.Entries.clear();
+  merged.Next = 0;
+  merged.End = streams && stop < std::numeric_limits<double>::infinity()
+    ? FirstSampleAfter(stop, this->Streamed, dt, this->Streamed)
+    : std::numeric_limits<long>::max();
+  // Each member's events are in ray order.
   std::size_t next[MaxSceneVolumes] = {};
   for (;;)
   {
@@ -2197,12 +2254,59 @@ void SceneCaster::CastRay(const RayQuery& query, std::vector<Segment>& segments,
     {
       break;
     }
-    compositor.Add(events[best][next[best]++]);
-    if (!(compositor.Alpha < this->TerminationOpacity))
+    const RayEvent& e = events[best][next[best]++];
+    merged.Entries.push_back(
+      { streams ? FirstSampleAfter(e.T, best, dt, this->Streamed) : 0, e });
+  }
+}
+
+void SceneCaster::CastRay(const RayQuery& query, std::vector<Segment>& segments,
+  std::vector<LatticeRange>& ranges, SceneScratch& scratch, float rgba[4],
+  CastStatistics* stats, ShadowScratch* shadows) const
+{
+  std::vector<std::vector<RayEvent>>& events = scratch.Events;
+  events.resize(this->Members.size());
+  float own[4];
+  double stop = std::numeric_limits<double>::infinity(); // see the header's file comment
+  RayQuery clamped = query;
+  // A volume that can stop the ray is cast two lattice steps beyond the stop: every sample
+  // at or before it, and the sample after it that an isosurface crossing before it is
+  // found with. The others give their whole-ray result.
+  auto clampFor = [&](const CastParameters& p) {
+    clamped.Path.TMax = CanStopRay(p.Blend)
+      ? std::min(query.Path.TMax, stop + StopMarginSteps * p.SampleDistance)
+      : query.Path.TMax;
+  };
+  for (const std::size_t v : this->CastOrder)
+  {
+    events[v].clear();
+    if (v == this->Streamed || this->Skips(v, query))
     {
-      break;
+      continue;
+    }
+    const Member& m = this->Members[v];
+    const CastParameters& p = *m.Caster->GetParameters();
+    clampFor(p);
+    m.Caster->CastRay(
+      clamped, *m.Source, segments, ranges, own, stats[v], nullptr, &events[v], shadows);
+    if (CanStopRay(p.Blend) && !events[v].empty() && !(own[3] < p.TerminationOpacity))
+    {
+      stop = std::min(stop, events[v].back().T);
     }
   }
+  MergedEvents& merged = scratch.Merged;
+  this->MergeEvents(events, stop, merged);
+  std::fill_n(rgba, 4, 0.f);
+  if (this->Streamed < this->Members.size() && !this->Skips(this->Streamed, query))
+  {
+    const Member& m = this->Members[this->Streamed];
+    clampFor(*m.Caster->GetParameters());
+    m.Caster->CastRayMerged(
+      clamped, *m.Source, segments, ranges, merged, rgba, stats[this->Streamed], shadows);
+  }
+  // The events after the streamed volume's samples, or all of them.
+  EventCompositor compositor{ { rgba[0], rgba[1], rgba[2] }, rgba[3] };
+  merged.AddBefore(std::numeric_limits<long>::max(), compositor, this->TerminationOpacity);
   compositor.Finish(rgba);
 }
 
@@ -2212,7 +2316,7 @@ bool SceneCaster::CastImage(const Camera& view, const float* depth, float* rgba,
   const std::size_t n = this->Members.size();
   auto castOne = [&](const RayQuery& query, RayScratch& scratch, float* pixel) {
     scratch.MemberStats.resize(n);
-    this->CastRay(query, scratch.Segments, scratch.Ranges, scratch.Events, pixel,
+    this->CastRay(query, scratch.Segments, scratch.Ranges, scratch.Scene, pixel,
       scratch.MemberStats.data(), &scratch.Shadows);
   };
   auto mayHave = [&](int px, int py) {

@@ -36,9 +36,12 @@
 // ends at the first event behind the stop of the ray: the ray parameter of the last event
 // of a composite or isosurface volume whose own opacity reached its termination opacity
 // there (the smallest such; the merged opacity has reached it by then, up to rounding).
-// The volumes are cast one after another, and each composite or isosurface volume is
-// cast only up to a little beyond the stop the volumes cast before it found: what lies
-// behind a surface costs nothing, and the events the merge takes are the same.
+// The volumes are cast one after another (isosurface, whole-ray, then composite volumes),
+// and each composite or isosurface volume is cast only up to a little beyond the stop the
+// volumes cast before it found: what lies behind a surface costs nothing, and the events
+// the merge takes are the same. The last composite volume cast keeps no events: its
+// samples are composited as it takes them, the others' events merged in between, and the
+// ray stops where the merged opacity reaches the termination opacity.
 // Shadows (paper section 5, DESIGN.md section 5): with Occluders set, each shaded
 // contribution at world point x is lit by each light with ShadowAttenuation > 0 only as far
 // as the light gets through: its diffuse and specular terms (when not zero) are scaled by
@@ -77,6 +80,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <vector>
 
 namespace parc
@@ -96,6 +100,46 @@ struct ShadowScratch
 
 /// The most independent components a caster combines (VTK's limit).
 constexpr std::size_t MaxComponents = 4;
+
+/// Other volumes' events for the samples of one composite volume to be composited between
+/// (SceneCaster's last composite volume; RayCaster::CastRayMerged): the merge by (ray
+/// parameter, volume index) without keeping that volume's events.
+struct MergedEvents
+{
+  /// An event, with the first lattice index of the composite volume whose sample comes
+  /// after it in the merge.
+  struct Entry
+  {
+    long FirstAfter;
+    RayEvent Event;
+  };
+  std::vector<Entry> Entries; ///< in merge order
+  std::size_t Next = 0;       ///< the first not composited yet
+  /// The composite volume's samples from this lattice index on lie behind the ray's stop.
+  long End = std::numeric_limits<long>::max();
+
+  /// Composites into out the events that come before lattice sample k, while out's opacity
+  /// stays below termination; false once it does not.
+  bool AddBefore(long k, EventCompositor& out, double termination)
+  {
+    for (; this->Next < this->Entries.size() && this->Entries[this->Next].FirstAfter <= k;
+         ++this->Next)
+    {
+      if (!(out.Alpha < termination))
+      {
+        return false;
+      }
+      out.Add(this->Entries[this->Next].Event);
+    }
+    return out.Alpha < termination;
+  }
+  /// The lattice index before which the next event is composited (End when none is left).
+  long NextPosition() const
+  {
+    return this->Next < this->Entries.size() ? this->Entries[this->Next].FirstAfter
+                                             : this->End;
+  }
+};
 
 /// Casts rays through one scalar field.
 class RayCaster
@@ -124,6 +168,14 @@ public:
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
     CastStatistics& stats, double* firstHit = nullptr,
     std::vector<RayEvent>* events = nullptr, ShadowScratch* shadows = nullptr) const;
+
+  /// A composite ray (no components) like CastRay, with merge's events composited in
+  /// between its samples (from merge.Next on) and its samples from merge.End on left out:
+  /// rgba receives what was composited until the ray stopped or its samples ended; the
+  /// events after that are left from merge.Next on. No events are kept.
+  void CastRayMerged(const RayQuery& query, const SegmentSource& source,
+    std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, MergedEvents& merge,
+    float rgba[4], CastStatistics& stats, ShadowScratch* shadows = nullptr) const;
 
   /// The components 1, 2, ... of a field of independent components, this caster being
   /// component 0 (see the file comment); empty (the default) for one component. Each must
@@ -251,12 +303,13 @@ private:
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, Vec3& indexOrigin,
     Vec3& indexDirection, std::size_t& sourceSegments, double& tEnter, double& tExit) const;
   /// differences (optional): a thread's cache of cell differences for gradients, a power
-  /// of two of them, shared by the rays of one image.
+  /// of two of them, shared by the rays of one image. merge (optional): CastRayMerged's.
   template <class View>
   void CastRayIn(const View& field, const RayQuery& query, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
     CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events,
-    std::vector<CellDifferences>* differences, ShadowScratch* shadows) const;
+    std::vector<CellDifferences>* differences, ShadowScratch* shadows,
+    MergedEvents* merge = nullptr) const;
   template <class View>
   float TransmittanceIn(const View& field, const RayQuery& query, const SegmentSource& source,
     ShadowScratch& scratch, CastStatistics& stats) const;
@@ -297,6 +350,13 @@ private:
   WholeRaySource WholeRay;
 };
 
+/// Scratch storage of one thread's scene rays (reused from ray to ray).
+struct SceneScratch
+{
+  std::vector<std::vector<RayEvent>> Events; ///< per member
+  MergedEvents Merged;
+};
+
 /// Several volumes cast together into one image (see the file comment): every ray meets
 /// every volume, each through its own segment source.
 class SceneCaster
@@ -312,11 +372,11 @@ public:
   /// ray stops.
   bool SetMembers(std::vector<Member> members, double terminationOpacity);
 
-  /// One ray's premultiplied RGBA; events holds one scratch vector per member, stats one
-  /// entry per member; shadows (optional) like RayCaster::CastRay's.
+  /// One ray's premultiplied RGBA; stats has one entry per member; shadows (optional)
+  /// like RayCaster::CastRay's.
   void CastRay(const RayQuery& query, std::vector<Segment>& segments,
-    std::vector<LatticeRange>& ranges, std::vector<std::vector<RayEvent>>& events,
-    float rgba[4], CastStatistics* stats, ShadowScratch* shadows = nullptr) const;
+    std::vector<LatticeRange>& ranges, SceneScratch& scratch, float rgba[4],
+    CastStatistics* stats, ShadowScratch* shadows = nullptr) const;
   /// A whole image, like RayCaster::CastImage; stats receives one entry per member.
   bool CastImage(const Camera& view, const float* depth, float* rgba,
     std::vector<CastStatistics>& stats,
@@ -324,10 +384,22 @@ public:
 
 private:
   std::vector<Member> Members;
-  /// The order the members are cast in: isosurface volumes, then composite ones (those
-  /// whose own opacity can stop a ray, surfaces usually soonest and cheapest), then the
-  /// others, each group in member order.
+  /// Whether member v has nothing on the ray of query's pixel (its source says so).
+  bool Skips(std::size_t v, const RayQuery& query) const;
+  /// Merges the events of every member but Streamed by (ray parameter, member index), up
+  /// to stop, into merged (Streamed's dt places them between its samples).
+  void MergeEvents(const std::vector<std::vector<RayEvent>>& events, double stop,
+    MergedEvents& merged) const;
+
+  /// The order the members are cast in: isosurface volumes (their own opacity can stop a
+  /// ray, usually soonest and cheapest), the whole-ray ones, then the composite ones, each
+  /// group in member order.
   std::vector<std::size_t> CastOrder;
+  /// The member whose samples are composited with the other members' events merged in
+  /// between instead of becoming events (RayCaster::CastRayMerged): the last one cast,
+  /// when it is a composite volume of one component that stops at TerminationOpacity;
+  /// else the number of members.
+  std::size_t Streamed = 0;
   double TerminationOpacity = 1.0;
 };
 
