@@ -133,6 +133,43 @@ TEST(RayCaster, IsosurfaceOfASphereDistanceField)
   }
 }
 
+// An iso value that no float holds (0.7) between a region of exactly the float below it
+// and one above it: the crossing is found wherever it falls in a block of samples, in
+// both directions, with one iso value and with more than the caster counts lane by lane.
+TEST(RayCaster, IsosurfaceBetweenTwoFloatsIsFound)
+{
+  const float below = static_cast<float>(0.7); // rounds down
+  ASSERT_LT(static_cast<double>(below), 0.7);
+  const int n[3] = { 40, 4, 4 };
+  const parc::ScalarField field =
+    parctest::MakeField(n, [below](int i, int, int) { return i < 20 ? below : 1.f; });
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 100.0 }, { 1.0, 1.0 });
+  p.Blend = BlendMode::IsoSurface;
+  p.SampleDistance = 0.5;
+  for (const std::size_t count : { 1, 9 })
+  {
+    p.IsoValues = { 0.7 };
+    for (std::size_t i = 1; i < count; ++i)
+    {
+      p.IsoValues.push_back(2.0 + i); // never crossed
+    }
+    for (int shift = 0; shift < 32; ++shift) // the crossing in every lane of a block
+    {
+      for (const double direction : { 1.0, -1.0 })
+      {
+        const double x0 = direction > 0 ? -5.0 - 0.5 * shift : 44.0 + 0.5 * shift;
+        const parc::Ray ray = MakeRay({ x0, 1.5, 1.5 }, { direction, 0, 0 });
+        const auto r = CastOne(field, p, ray);
+        ASSERT_TRUE(std::isfinite(r.FirstHit))
+          << count << " values, shift " << shift << ", direction " << direction;
+        EXPECT_NEAR(x0 + direction * r.FirstHit, 19.0, 0.01);
+        EXPECT_FLOAT_EQ(r.RGBA[3], 1.f);
+      }
+    }
+  }
+}
+
 TEST(RayCaster, IsosurfaceMissedRayIsTransparent)
 {
   const int n[3] = { 33, 33, 33 };

@@ -35,9 +35,20 @@ static_assert((DifferenceCacheCells & (DifferenceCacheCells - 1)) == 0, "a power
 constexpr int NotALatticeSample = -1;
 /// Directional lights whose half vectors are computed once per ray.
 constexpr std::size_t MaxHoistedLights = 8;
+/// Iso values up to which the isosurface function finds a block's crossings by counting,
+/// lane by lane, the values above each sample (RenderConstants::IsoThresholds).
+constexpr std::size_t MaxThresholdIsoValues = 8;
 /// Lattice steps beyond a scene ray's stop that its composite and isosurface volumes are
 /// still cast (SceneCaster::CastRay).
 constexpr double StopMarginSteps = 2.0;
+
+/// The smallest float at least v: a float s is below v exactly when s is below it.
+float FloatAtLeast(double v)
+{
+  const float f = static_cast<float>(v);
+  return static_cast<double>(f) < v ? std::nextafter(f, std::numeric_limits<float>::infinity())
+                                    : f;
+}
 
 /// Whether a volume of this ray function can stop a ray by its own opacity.
 bool CanStopRay(BlendMode blend)
@@ -264,6 +275,14 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
     }
   }
   k.SortedIsoValues = UsedIsoValues(*parameters);
+  k.IsoThresholds.clear();
+  if (k.SortedIsoValues.size() <= MaxThresholdIsoValues)
+  {
+    for (const double v : k.SortedIsoValues)
+    {
+      k.IsoThresholds.push_back(FloatAtLeast(v));
+    }
+  }
   k.NormalShading = QuantizedNormalsApply(*field, *parameters)
     ? NormalShadingTable(*parameters)
     : std::vector<ShadingFactors>(); // frees the table of an earlier render
@@ -1643,26 +1662,76 @@ struct IsoSurfaceFunction
   bool operator()(long k0, int n, bool follows, int& visited)
   {
     this->C.SampleBlock(k0, n);
-    for (int j = 0; j < n; ++j)
+    const float* s = this->C.Block.Values;
+    for (unsigned lanes = this->CrossingLanes(n, follows); lanes != 0; lanes &= lanes - 1)
     {
-      if (!this->Crossings((k0 + j) * this->C.Dt, this->C.Value(j), j > 0 || follows))
+      const int j = CountTrailingZeros(lanes);
+      if (!this->Crossings((k0 + j) * this->C.Dt, j > 0 ? s[j - 1] : this->Previous, s[j]))
       {
         visited = j + 1;
         return false;
       }
     }
+    this->Previous = s[n - 1];
     return true;
   }
-  /// Composites the crossings between the previous sample and sample s1 at t1; false once
-  /// the ray may stop.
-  bool Crossings(double t1, float s1, bool previousSampled)
+  /// The lanes j < n of the block (bits 1 << j) whose sample may lie on the other side of
+  /// an iso value than the sample before it (Previous for lane 0, when the block follows
+  /// it): with at most MaxThresholdIsoValues values, exactly those where the number of
+  /// values above each differs; with more, those where the two differ.
+  PARC_HOT_INLINE unsigned CrossingLanes(int n, bool follows) const
   {
-    const float s0 = this->Previous;
-    this->Previous = s1;
-    if (!previousSampled || s0 == s1)
+    const float* values = this->C.Block.Values;
+    alignas(16) float before[LatticeBlock::Size];
+    before[0] = this->Previous;
+    std::copy_n(values, LatticeBlock::Size - 1, before + 1);
+    const std::vector<float>& thresholds = this->C.K.IsoThresholds;
+    const bool counted = this->IsoValues.size() <= MaxThresholdIsoValues;
+    unsigned lanes = 0;
+#if defined(__SSE2__)
+    static_assert(LatticeBlock::Lanes == 4, "four lanes to an SSE register");
+    for (int j = 0; j < n; j += LatticeBlock::Lanes) // the lanes SampleBlock computed
     {
-      return true;
+      const __m128 s0 = _mm_load_ps(before + j), s1 = _mm_loadu_ps(values + j);
+      __m128 differ = _mm_cmpneq_ps(s0, s1);
+      if (counted)
+      {
+        // Minus the count of values above: each comparison is all ones (-1) or 0.
+        __m128i c0 = _mm_setzero_si128(), c1 = _mm_setzero_si128();
+        for (const float v : thresholds)
+        {
+          const __m128 threshold = _mm_set1_ps(v);
+          c0 = _mm_add_epi32(c0, _mm_castps_si128(_mm_cmplt_ps(s0, threshold)));
+          c1 = _mm_add_epi32(c1, _mm_castps_si128(_mm_cmplt_ps(s1, threshold)));
+        }
+        differ = _mm_andnot_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(c0, c1)), differ);
+      }
+      lanes |= static_cast<unsigned>(_mm_movemask_ps(differ)) << j;
     }
+#else
+    for (int j = 0; j < n; ++j)
+    {
+      bool differ = before[j] != values[j];
+      if (counted)
+      {
+        int c0 = 0, c1 = 0;
+        for (const float v : thresholds)
+        {
+          c0 += before[j] < v;
+          c1 += values[j] < v;
+        }
+        differ = differ && c0 != c1;
+      }
+      lanes |= static_cast<unsigned>(differ) << j;
+    }
+#endif
+    lanes &= (1u << n) - 1u;
+    return follows ? lanes : lanes & ~1u;
+  }
+  /// Composites the crossings between sample s0 and sample s1 at t1; false once the ray
+  /// may stop.
+  bool Crossings(double t1, float s0, float s1)
+  {
     // Crossed values lie between s0 and s1; visit them in ray order.
     const double lo = std::min(s0, s1), hi = std::max(s0, s1);
     const auto first = std::lower_bound(this->IsoValues.begin(), this->IsoValues.end(), lo);

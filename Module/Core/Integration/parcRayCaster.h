@@ -289,6 +289,9 @@ public:
     std::vector<DirectionalLight> DirectionalLights;
     std::vector<PositionalLight> PositionalLights;
     std::vector<double> SortedIsoValues;
+    /// Per sorted iso value v, when there are only a few, the smallest float at least v: a
+    /// float sample lies below v exactly when it lies below that float.
+    std::vector<float> IsoThresholds;
     /// Per normal code, its shading factors when shaded samples use the quantized normals
     /// (CastParameters::Shading); empty for exact shading.
     std::vector<ShadingFactors> NormalShading;
