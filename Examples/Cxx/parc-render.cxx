@@ -833,34 +833,46 @@ void AutoTrialFrames(vtkRenderWindow* window, vtkVolume* volume, vtkPARCVolumeMa
 }
 
 /// Scaling with threads: per acceleration mode, rounds frames with one thread interleaved
-/// with frames with all threads (markdown table of medians and their ratio).
+/// with frames with all threads (markdown table of the medians of the frame, of the
+/// mapper's casting and of its GL passes, and the frame's and the casting's ratios).
 void ThreadScaling(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, int rounds)
 {
   const int all = vtkSMPTools::GetEstimatedNumberOfThreads();
   const int modes[] = { vtkPARCVolumeMapper::ACCELERATION_NONE,
     vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER, vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER,
     vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_AUTO };
-  std::printf("| mode | 1 thread, median (s) | %d threads, median (s) | speedup |\n|---|---|---|---|\n",
-    all);
+  std::printf("| mode | 1 thread, median (s) | %d threads, median (s) | speedup | casting, 1 "
+              "thread (s) | casting, %d threads (s) | casting speedup | passes, 1 thread (s) | "
+              "passes, %d threads (s) |\n|---|---|---|---|---|---|---|---|---|\n",
+    all, all, all);
   for (int mode : modes)
   {
     mapper->SetAccelerationMode(mode);
     WarmUp(window, mapper);
-    std::vector<double> times[2];
+    std::vector<double> frames[2], casting[2], passes[2];
     for (int r = 0; r < rounds; ++r)
     {
       for (int i = 0; i < 2; ++i)
       {
         vtkSMPTools::Initialize(i == 0 ? 1 : all);
-        times[i].push_back(TimedRender(window));
+        frames[i].push_back(TimedRender(window));
+        casting[i].push_back(mapper->GetLastCastingTime());
+        passes[i].push_back(mapper->GetLastProjectionTime());
       }
     }
-    const double one = MinMedian(times[0]).second, many = MinMedian(times[1]).second;
+    double median[3][2];
+    for (int i = 0; i < 2; ++i)
+    {
+      median[0][i] = MinMedian(frames[i]).second;
+      median[1][i] = MinMedian(casting[i]).second;
+      median[2][i] = MinMedian(passes[i]).second;
+    }
     const std::string used =
       vtkPARCVolumeMapper::GetAccelerationModeAsString(mapper->GetLastAccelerationMode());
-    std::printf("| %s | %.4f | %.4f | %.2fx |\n",
-      (mode == vtkPARCVolumeMapper::ACCELERATION_AUTO ? "Auto: " + used : used).c_str(), one, many,
-      one / many);
+    std::printf("| %s | %.4f | %.4f | %.2fx | %.4f | %.4f | %.2fx | %.4f | %.4f |\n",
+      (mode == vtkPARCVolumeMapper::ACCELERATION_AUTO ? "Auto: " + used : used).c_str(),
+      median[0][0], median[0][1], median[0][0] / median[0][1], median[1][0], median[1][1],
+      median[1][0] / median[1][1], median[2][0], median[2][1]);
   }
   vtkSMPTools::Initialize(all);
 }
