@@ -200,7 +200,7 @@ growth_section() {
   done
   plot lines "$out/volume-size.csv" "$out/volume-size.png" "MRI head, shaded: frame time against volume size" "voxels" "median frame time (s)" --log-x --log-y
   echo; echo "![time against volume size](volume-size.png)"
-  echo; echo "### Threads (iron protein cloud, ${size}x${size}; one caster thread against $(nproc), medians of 7 interleaved frames; llvmpipe's GL passes use every core in both)"; echo
+  echo; echo "### Threads (iron protein cloud, ${size}x${size}; one caster thread against $(nproc), medians of 7 interleaved frames: the whole frame, the mapper's casting and its GL passes, which llvmpipe runs on every core at either setting)"; echo
   present "$data/ironProt_68x68x68_uint8.raw" && parc "$data/ironProt_68x68x68_uint8.raw" --tf "$tf/iron-protein-cloud.txt" --size "$size" --sample-distance 0.5 --thread-scaling 7 | grep '^|'
   echo; echo "### The first frame after a transfer-function change against a warm frame (${size}x${size})"
   per_scene "$size" "--edit-cost $((rounds + 3))" "| frame" "edit frame" \
