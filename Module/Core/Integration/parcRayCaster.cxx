@@ -2287,11 +2287,15 @@ bool SceneCaster::SetMembers(std::vector<Member> members, double terminationOpac
   return true;
 }
 
-bool SceneCaster::Skips(std::size_t v, const RayQuery& query) const
+bool SceneCaster::Skips(std::size_t v, int px, int py) const
 {
   const Member& m = this->Members[v];
-  return query.HasPixel && !m.Caster->CastsEveryRay() &&
-    !m.Source->MayHaveSegments(query.Pixel[0], query.Pixel[1]);
+  return !m.Caster->CastsEveryRay() && !m.Source->MayHaveSegments(px, py);
+}
+
+bool SceneCaster::Skips(std::size_t v, const RayQuery& query) const
+{
+  return query.HasPixel && this->Skips(v, query.Pixel[0], query.Pixel[1]);
 }
 
 void SceneCaster::MergeEvents(
@@ -2389,10 +2393,14 @@ bool SceneCaster::CastImage(const Camera& view, const float* depth, float* rgba,
       scratch.MemberStats.data(), &scratch.Shadows);
   };
   auto mayHave = [&](int px, int py) {
-    return std::any_of(this->Members.begin(), this->Members.end(),
-      [px, py](const Member& m) {
-        return m.Caster->CastsEveryRay() || m.Source->MayHaveSegments(px, py);
-      });
+    for (std::size_t v = 0; v < n; ++v)
+    {
+      if (!this->Skips(v, px, py))
+      {
+        return true;
+      }
+    }
+    return false;
   };
   stats.assign(n, CastStatistics());
   auto skipOne = [](int, int, RayScratch&) {}; // Auto's fit is the single volume's

@@ -387,7 +387,9 @@ public:
 
 private:
   std::vector<Member> Members;
-  /// Whether member v has nothing on the ray of query's pixel (its source says so).
+  /// Whether member v has nothing on the ray of pixel (px, py) (its source says so), or
+  /// on query's ray when it has a pixel.
+  bool Skips(std::size_t v, int px, int py) const;
   bool Skips(std::size_t v, const RayQuery& query) const;
   /// Merges the events of every member but Streamed by (ray parameter, member index), up
   /// to stop, into merged (Streamed's dt places them between its samples).
