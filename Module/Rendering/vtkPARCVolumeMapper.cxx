@@ -319,6 +319,8 @@ public:
   /// Voxel index -> render frame (world minus the camera position), of the last
   /// PrepareParameters; every world quantity the core sees is in that frame.
   parc::Matrix4 IndexToFrame;
+  /// Field, Parameters and IndexToFrame as the caster is prepared on them.
+  parc::Volume CoreVolume;
   parc::RayCaster Caster;
   parc::CastStatistics Stats; ///< of the last render
   int LastMode = ACCELERATION_NONE;
@@ -943,7 +945,8 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(in.Port, 0));
   in.IndexToFrame = IndexToFrame(image, vol, frame, in.CellOffset);
   const parc::Matrix4& indexToWorld = in.IndexToFrame;
-  if (!parc::Invert(indexToWorld, p.WorldToIndex))
+  in.CoreVolume = { &in.Field, &p };
+  if (!in.CoreVolume.SetIndexToWorld(indexToWorld))
   {
     vtkErrorMacro("The volume's index-to-world transform is singular (zero scale?).");
     return false;
@@ -993,7 +996,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   // The quantized normals are of one component: several are shaded exactly.
   in.PrepareShadingModel(
     this->ShadingModel == SHADING_QUANTIZED_NORMALS && in.Components.empty(), ren);
-  if (!in.Caster.Prepare(&in.Field, &p) || !this->PrepareComponents(in, property, fixes))
+  if (!in.Caster.Prepare(in.CoreVolume) || !this->PrepareComponents(in, property, fixes))
   {
     vtkErrorMacro("Invalid rendering parameters (sample distance " << p.SampleDistance
                                                                    << ", opacity unit distance "
@@ -1029,7 +1032,7 @@ bool vtkPARCVolumeMapper::PrepareComponents(
     }
     q.ComponentWeight = property->GetComponentWeight(c);
     std::copy_n(range, 2, q.IntensityRange);
-    if (!component.Caster.Prepare(&component.Field, &q))
+    if (!component.Caster.Prepare({ &component.Field, &q, in.CoreVolume.WorldToIndex }))
     {
       return false;
     }
@@ -1364,7 +1367,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     {
       in.Plan.ReleaseDepthVertices();
     }
-    in.DepthSource.Set(passView.Camera, std::move(nearFar), &grid, in.Parameters.WorldToIndex);
+    in.DepthSource.Set(passView.Camera, std::move(nearFar), &grid, in.CoreVolume.WorldToIndex);
     in.PolygonCount += static_cast<vtkIdType>(in.Plan.GetDepthQuads());
   }
   if (ok && color)
@@ -1376,7 +1379,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     std::vector<std::uint32_t> bits = in.PlaneSource.ReleaseBuffer();
     int words = 0;
     std::vector<parc::Vec3> starts, directions;
-    passView.Camera.RayBounds(in.Parameters.WorldToIndex, starts, directions);
+    passView.Camera.RayBounds(in.CoreVolume.WorldToIndex, starts, directions);
     ok = in.Rasterizer->RenderPlanes(window, model, version, indexToWorld, passView,
       parc::RayAxisSign(model, starts, directions), bits, words, in.PassCount);
     if (in.Rasterizer->HasModel(window, true, version))
@@ -1384,7 +1387,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
       in.Plan.ReleaseColorVertices(axis);
     }
     in.PlaneSource.Set(passView.Camera, std::move(bits), words, &grid, axis, model.FirstPlane,
-      in.Parameters.WorldToIndex);
+      in.CoreVolume.WorldToIndex);
     in.PlaneCount = model.PlaneCount;
     in.PolygonCount += static_cast<vtkIdType>(in.Plan.GetColorQuads(axis));
   }

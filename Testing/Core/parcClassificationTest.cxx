@@ -652,7 +652,7 @@ TEST(SegmentOracle, CastingWithTheOracleIsBitIdentical)
         s.Params.Shade = (rng() % 2) == 0;
         s.Params.Lights.push_back(parc::Light());
         s.Params.Lights.back().Position = { 0, 0, 1 };
-        const parc::SegmentOracle oracle(s.Grid, s.Params.WorldToIndex);
+        const parc::SegmentOracle oracle(s.Grid, parc::Matrix4()); // voxel-index rays
         for (int r = 0; r < 40; ++r)
         {
           const Vec3 target(6.5 + 6 * u(rng), 5.5 + 5 * u(rng), 7.5 + 7 * u(rng));

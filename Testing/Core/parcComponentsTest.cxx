@@ -60,8 +60,8 @@ struct TwoComponents
   /// distance, lights) are copied into it.
   bool Prepare()
   {
-    return this->Casters[0].Prepare(&this->Fields[0], &this->Params[0]) &&
-      this->Casters[1].Prepare(&this->Fields[1], &this->Params[1]) &&
+    return this->Casters[0].Prepare({ &this->Fields[0], &this->Params[0] }) &&
+      this->Casters[1].Prepare({ &this->Fields[1], &this->Params[1] }) &&
       this->Casters[0].SetComponents({ { &this->Casters[1], 1 } });
   }
   std::array<float, 4> Cast(const parc::Ray& ray, parc::CastStatistics& stats) const
@@ -182,7 +182,7 @@ TEST(Components, ZeroWeightCostsNothing)
   volume.Params[1].ComponentWeight = 0.0;
   ASSERT_TRUE(volume.Prepare());
   parc::RayCaster alone;
-  ASSERT_TRUE(alone.Prepare(&volume.Fields[0], &volume.Params[0]));
+  ASSERT_TRUE(alone.Prepare({ &volume.Fields[0], &volume.Params[0] }));
   const parc::Camera view = ParallelView(32, 32, 0.4);
   std::vector<float> both(4 * 32 * 32), single(4 * 32 * 32);
   parc::CastStatistics s1, s2;
@@ -265,8 +265,8 @@ TEST(Components, UnionClassificationGivesBitIdenticalImages)
   EXPECT_GT(both.GetNumberOfContributing(), first.GetNumberOfContributing());
   EXPECT_LT(both.GetNumberOfContributing(), both.GetNumberOfSupercells());
 
-  const parc::SegmentOracle oracle(both, volume.Params[0].WorldToIndex);
-  const parc::SegmentOracle firstOracle(first, volume.Params[0].WorldToIndex);
+  const parc::SegmentOracle oracle(both, volume.Casters[0].GetWorldToIndex());
+  const parc::SegmentOracle firstOracle(first, volume.Casters[0].GetWorldToIndex());
   const std::size_t values = 4 * 48 * 40;
   for (const double angle : { 0.4, 2.2 })
   {
@@ -298,7 +298,7 @@ TEST(Components, RejectsComponentsItCannotCombine)
   EXPECT_EQ(volume.Casters[0].GetComponents().size(), 1u);
 
   volume.Params[1].SampleDistance = 0.5; // another lattice
-  ASSERT_TRUE(volume.Casters[1].Prepare(&volume.Fields[1], &volume.Params[1]));
+  ASSERT_TRUE(volume.Casters[1].Prepare({ &volume.Fields[1], &volume.Params[1] }));
   EXPECT_FALSE(volume.Casters[0].SetComponents({ { &volume.Casters[1], 1 } }));
   EXPECT_TRUE(volume.Casters[0].GetComponents().empty());
 

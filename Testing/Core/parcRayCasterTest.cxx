@@ -301,13 +301,13 @@ TEST(RayCaster, BinaryMaskConfinesTheSamples)
   EXPECT_NEAR(front.RGBA[3], 1.0 - std::exp(-sigma * 50.5), 2e-3) << "up to z = 50.5";
   p.Blend = BlendMode::MaximumIntensity;
   parc::RayCaster caster;
-  EXPECT_FALSE(caster.Prepare(&field, &p)) << "masks apply to compositing ray functions";
+  EXPECT_FALSE(caster.Prepare({ &field, &p })) << "masks apply to compositing ray functions";
   p.Blend = BlendMode::Composite;
-  EXPECT_TRUE(caster.Prepare(&field, &p));
+  EXPECT_TRUE(caster.Prepare({ &field, &p }));
   const int shorter[3] = { 4, 4, 100 };
   const parc::ScalarField other = parctest::MakeField(shorter, [](int, int, int) { return 1.f; });
   p.Mask = &other;
-  EXPECT_FALSE(caster.Prepare(&field, &p)) << "a mask of other dimensions";
+  EXPECT_FALSE(caster.Prepare({ &field, &p })) << "a mask of other dimensions";
 }
 
 // A label map: samples whose nearest mask voxel has a label with functions take
@@ -349,11 +349,11 @@ TEST(RayCaster, LabelMapBlendsTheLabelsFunctions)
   // Label maps apply to composite blending, with sorted positive labels and a mask.
   parc::RayCaster caster;
   p.Labels = { red };
-  EXPECT_FALSE(caster.Prepare(&field, &p)) << "no mask";
+  EXPECT_FALSE(caster.Prepare({ &field, &p })) << "no mask";
   p.Mask = &labels;
-  EXPECT_TRUE(caster.Prepare(&field, &p));
+  EXPECT_TRUE(caster.Prepare({ &field, &p }));
   p.Blend = BlendMode::MaximumIntensity;
-  EXPECT_FALSE(caster.Prepare(&field, &p));
+  EXPECT_FALSE(caster.Prepare({ &field, &p }));
 }
 
 TEST(RayCaster, CompositingIsFrontToBack)
@@ -446,8 +446,9 @@ TEST(RayCaster, GradientOpacityUsesTheWorldGradient)
   p.GradientOpacity.SetNodes({ 0.0, 1.0, 2.0 }, { 0.0, 0.0, 1.0 }, true);
   const auto plain = CastOne(field, p, MakeRay({ -5.0, 2.0, 2.0 }, { 1, 0, 0 }));
   EXPECT_GT(plain.RGBA[3], 0.f) << "|grad| = 3 per unit: opacity kept";
-  p.WorldToIndex(0, 0) = 0.25; // voxels 4 world units apart: |grad| = 0.75, opacity 0
-  const auto stretched = CastOne(field, p, MakeRay({ -5.0, 2.0, 2.0 }, { 1, 0, 0 }));
+  parc::Volume volume{ &field, &p };
+  volume.WorldToIndex(0, 0) = 0.25; // voxels 4 world units apart: |grad| = 0.75, opacity 0
+  const auto stretched = CastOne(volume, MakeRay({ -5.0, 2.0, 2.0 }, { 1, 0, 0 }));
   EXPECT_EQ(stretched.RGBA[3], 0.f);
   EXPECT_GT(stretched.Stats.GradientEvaluations, 0u);
 }
@@ -476,7 +477,7 @@ public:
     }
     std::mt19937 rng(this->Seed + 7919u * px + 104729u * py);
     const CastParameters& p = *this->Caster.GetParameters();
-    const Matrix4Ref m = p.WorldToIndex;
+    const Matrix4Ref m = this->Caster.GetWorldToIndex();
     const double dt = p.SampleDistance;
     for (long k = static_cast<long>(std::ceil(t0 / dt)); k * dt <= t1; ++k)
     {
@@ -530,7 +531,7 @@ TEST(RayCaster, SparseSegmentsGiveBitIdenticalImages)
       light.Position = { 0.0, 50.0, 50.0 };
       p.Lights = { light };
       parc::RayCaster caster;
-      ASSERT_TRUE(caster.Prepare(&field, &p));
+      ASSERT_TRUE(caster.Prepare({ &field, &p }));
       const parc::Camera view = ParallelView(48, 40, 0.4);
       std::vector<float> whole(4 * 48 * 40), sparse(4 * 48 * 40);
       parc::CastStatistics s1, s2;
@@ -559,7 +560,7 @@ TEST(RayCaster, ConstantGradientOpacityNeedsNoGradient)
   const parc::Camera view = ParallelView(32, 32, 0.3);
   auto cast = [&](std::vector<float>& image, parc::CastStatistics& stats) {
     parc::RayCaster caster;
-    ASSERT_TRUE(caster.Prepare(&field, &p));
+    ASSERT_TRUE(caster.Prepare({ &field, &p }));
     image.assign(4 * 32 * 32, 0.f);
     caster.CastImage(view, nullptr, parc::WholeRaySource(), image.data(), stats);
   };
@@ -591,7 +592,7 @@ TEST(RayCaster, ImageIsTheSameForOneAndManyThreads)
   const parc::ScalarField field = Blobs();
   CastParameters p = BlobParameters();
   parc::RayCaster caster;
-  ASSERT_TRUE(caster.Prepare(&field, &p));
+  ASSERT_TRUE(caster.Prepare({ &field, &p }));
   const parc::Camera view = ParallelView(64, 64, 0.3);
   std::vector<float> one(4 * 64 * 64), many(4 * 64 * 64);
   parc::CastStatistics s1, s2;
@@ -611,7 +612,7 @@ TEST(RayCaster, NeighbouringRaysShareCellDifferences)
   CastParameters p = BlobParameters();
   p.Shade = true;
   parc::RayCaster caster;
-  ASSERT_TRUE(caster.Prepare(&field, &p));
+  ASSERT_TRUE(caster.Prepare({ &field, &p }));
   const int size = 96; // rays about 0.4 voxel apart
   const parc::Camera view = ParallelView(size, size, 0.3);
   std::vector<float> image(4 * size * size), alone(4 * size * size);
@@ -640,7 +641,7 @@ TEST(RayCaster, ProgressCanAbortTheImage)
   CastParameters p;
   p.Opacity.SetNodes({ 0.0, 255.0 }, { 0.1, 0.1 }, true);
   parc::RayCaster caster;
-  ASSERT_TRUE(caster.Prepare(&field, &p));
+  ASSERT_TRUE(caster.Prepare({ &field, &p }));
   const parc::Camera view = ParallelView(64, 256, 0.0);
   std::vector<float> image(4 * 64 * 256);
   parc::CastStatistics s;
@@ -662,17 +663,17 @@ TEST(RayCaster, RejectsUnusableParameters)
   CastParameters p;
   parc::RayCaster caster;
   p.SampleDistance = 0.0;
-  EXPECT_FALSE(caster.Prepare(&field, &p));
+  EXPECT_FALSE(caster.Prepare({ &field, &p }));
   p.SampleDistance = 1.0;
   p.OpacityUnitDistance = -1.0;
-  EXPECT_FALSE(caster.Prepare(&field, &p));
+  EXPECT_FALSE(caster.Prepare({ &field, &p }));
   const int flat[3] = { 5, 5, 1 };
   const parc::ScalarField slice = parctest::MakeField(flat, [](int, int, int) { return 1.f; });
   p.OpacityUnitDistance = 1.0;
-  EXPECT_FALSE(caster.Prepare(&slice, &p)) << "one slice has no cells";
-  EXPECT_TRUE(caster.Prepare(&field, &p));
+  EXPECT_FALSE(caster.Prepare({ &slice, &p })) << "one slice has no cells";
+  EXPECT_TRUE(caster.Prepare({ &field, &p }));
   p.ColorShiftCount = 2;
-  EXPECT_FALSE(caster.Prepare(&field, &p)) << "colour from 0, 1 or 3 other components";
+  EXPECT_FALSE(caster.Prepare({ &field, &p })) << "colour from 0, 1 or 3 other components";
 }
 
 TEST(Camera, PerspectiveRaysStartAtTheEyeAndParallelRaysOnTheCameraPlane)
@@ -709,7 +710,7 @@ TEST(RayCaster, LabelMapClassificationGivesBitIdenticalImages)
   light.Position = { 0.0, 50.0, 50.0 };
   p.Lights = { light };
   parc::RayCaster caster;
-  ASSERT_TRUE(caster.Prepare(&field, &p));
+  ASSERT_TRUE(caster.Prepare({ &field, &p }));
   EXPECT_TRUE(caster.NeedsGradient());
   parc::RangePyramid pyramid;
   pyramid.Build(field);
@@ -726,8 +727,8 @@ TEST(RayCaster, LabelMapClassificationGivesBitIdenticalImages)
     grids[g].Classify(pyramid, rule, p.Interp);
   }
   EXPECT_GT(grids[0].GetNumberOfContributing(), grids[1].GetNumberOfContributing());
-  const parc::SegmentOracle oracle(grids[0], p.WorldToIndex);
-  const parc::SegmentOracle lossy(grids[1], p.WorldToIndex);
+  const parc::SegmentOracle oracle(grids[0], caster.GetWorldToIndex());
+  const parc::SegmentOracle lossy(grids[1], caster.GetWorldToIndex());
   const parc::Camera view = ParallelView(48, 40, 0.6);
   std::vector<float> whole(4 * 48 * 40), accelerated(whole.size()), lost(whole.size());
   parc::CastStatistics s1, s2, s3;

@@ -77,7 +77,7 @@ TEST(SceneCaster, OneVolumeIsItsOwnImage)
     p.AverageRange[1] = 220.0;
     p.Opacity.SetNodes({ 0.0, 60.0, 200.0 }, { 0.1, 0.1, 0.6 }, true);
     parc::RayCaster caster;
-    ASSERT_TRUE(caster.Prepare(&field, &p));
+    ASSERT_TRUE(caster.Prepare({ &field, &p }));
     const parc::Camera view = ParallelView(0.4);
     parctest::SceneImage own(view);
     caster.CastImage(view, nullptr, parc::WholeRaySource(), own.RGBA.data(), own.Stats);
@@ -152,8 +152,8 @@ TEST(SceneCaster, StagedCompositingIsPerSampleCompositing)
     CastParameters masked = staged;
     masked.Mask = &ones;
     parc::RayCaster stagedCaster, maskedCaster;
-    ASSERT_TRUE(stagedCaster.Prepare(&field, &staged));
-    ASSERT_TRUE(maskedCaster.Prepare(&field, &masked));
+    ASSERT_TRUE(stagedCaster.Prepare({ &field, &staged }));
+    ASSERT_TRUE(maskedCaster.Prepare({ &field, &masked }));
     for (const double angle : { 0.3, 2.0 })
     {
       const parc::Camera view = ParallelView(angle);
@@ -181,11 +181,9 @@ TEST(SceneCaster, DisjointVolumesMergeInDepthOrder)
   back = front;
   back.Opacity.SetConstant(0.3);
   back.Color.SetTable(0.0, 255.0, { 0.f, 0.f, 1.f, 0.f, 0.f, 1.f });
-  front.WorldToIndex = Shifted({ 0, 0, 0 });  // z in [0, 10]
-  back.WorldToIndex = Shifted({ 0, 0, 20 }); // z in [20, 30]
   parc::RayCaster frontCaster, backCaster;
-  ASSERT_TRUE(frontCaster.Prepare(&slab, &front));
-  ASSERT_TRUE(backCaster.Prepare(&slab, &back));
+  ASSERT_TRUE(frontCaster.Prepare({ &slab, &front, Shifted({ 0, 0, 0 }) }));  // z in [0, 10]
+  ASSERT_TRUE(backCaster.Prepare({ &slab, &back, Shifted({ 0, 0, 20 }) })); // z in [20, 30]
   const parc::WholeRaySource whole;
   for (const double zEye : { -10.0, 40.0 })
   {
@@ -228,8 +226,8 @@ TEST(SceneCaster, SurfaceInsideACloudFromBothSides)
   cloudParams.Shade = false;
   cloudParams.Opacity.SetNodes({ 0.0, 20.0, 255.0 }, { 0.0, 0.05, 0.2 }, true);
   parc::RayCaster surface, cloudCaster;
-  ASSERT_TRUE(surface.Prepare(&sphere, &surfaceParams));
-  ASSERT_TRUE(cloudCaster.Prepare(&cloud, &cloudParams));
+  ASSERT_TRUE(surface.Prepare({ &sphere, &surfaceParams }));
+  ASSERT_TRUE(cloudCaster.Prepare({ &cloud, &cloudParams }));
   const parc::WholeRaySource whole;
   parc::SceneCaster scene;
   ASSERT_TRUE(scene.SetMembers({ { &surface, &whole }, { &cloudCaster, &whole } }, 1.0));
@@ -347,9 +345,9 @@ TEST(SceneCaster, OpaqueVolumesStopTheOthers)
   CastParameters cloudParams = CloudParameters();
   cloudParams.Opacity.SetNodes({ 0.0, 20.0, 255.0 }, { 0.0, 0.05, 0.2 }, true);
   parc::RayCaster opaque, translucent, cloudCaster;
-  ASSERT_TRUE(opaque.Prepare(&sphere, &opaqueParams));
-  ASSERT_TRUE(translucent.Prepare(&sphere, &translucentParams));
-  ASSERT_TRUE(cloudCaster.Prepare(&cloud, &cloudParams));
+  ASSERT_TRUE(opaque.Prepare({ &sphere, &opaqueParams }));
+  ASSERT_TRUE(translucent.Prepare({ &sphere, &translucentParams }));
+  ASSERT_TRUE(cloudCaster.Prepare({ &cloud, &cloudParams }));
   const parc::Camera view = ParallelView(0.6);
   std::uint64_t whole = 0;
   for (const std::size_t cloudIndex : { 0, 1 })
@@ -384,9 +382,9 @@ TEST(SceneCaster, EventsOfOtherVolumesComeBetweenACloudsSamples)
   CastParameters cloudParams = CloudParameters();
   cloudParams.Opacity.SetNodes({ 0.0, 20.0, 255.0 }, { 0.0, 0.05, 0.2 }, true);
   parc::RayCaster surface, nearest, cloudCaster;
-  ASSERT_TRUE(surface.Prepare(&sphere, &surfaceParams));
-  ASSERT_TRUE(nearest.Prepare(&sphere, &nearestParams));
-  ASSERT_TRUE(cloudCaster.Prepare(&cloud, &cloudParams));
+  ASSERT_TRUE(surface.Prepare({ &sphere, &surfaceParams }));
+  ASSERT_TRUE(nearest.Prepare({ &sphere, &nearestParams }));
+  ASSERT_TRUE(cloudCaster.Prepare({ &cloud, &cloudParams }));
   std::vector<const parc::RayCaster*> casters = { &cloudCaster, &nearest, &surface };
   std::sort(casters.begin(), casters.end());
   do
@@ -413,6 +411,7 @@ TEST(SceneCaster, PerVolumeSourcesGiveBitIdenticalImages)
   {
     const parc::ScalarField* Field;
     CastParameters Params;
+    parc::Matrix4 WorldToIndex;
     parc::RangePyramid Pyramid;
     parc::SupercellGrid Grid;
     parc::RayCaster Caster;
@@ -424,7 +423,7 @@ TEST(SceneCaster, PerVolumeSourcesGiveBitIdenticalImages)
     volumes[0].Params = CloudParameters();
     volumes[1].Field = &sphere;
     volumes[1].Params = SurfaceParameters(7.0);
-    volumes[1].Params.WorldToIndex = Shifted(offset); // partial, no or full overlap
+    volumes[1].WorldToIndex = Shifted(offset); // partial, no or full overlap
     for (Volume& v : volumes)
     {
       v.Pyramid.Build(*v.Field);
@@ -433,11 +432,11 @@ TEST(SceneCaster, PerVolumeSourcesGiveBitIdenticalImages)
       const double size[3] = { 2.0, 2.0, 2.0 };
       ASSERT_TRUE(v.Grid.Configure(v.Pyramid.GetCellDimensions(), size));
       v.Grid.Classify(v.Pyramid, rule, v.Params.Interp);
-      ASSERT_TRUE(v.Caster.Prepare(v.Field, &v.Params));
+      ASSERT_TRUE(v.Caster.Prepare({ v.Field, &v.Params, v.WorldToIndex }));
     }
     const parc::WholeRaySource whole;
-    const parc::SegmentOracle oracle0(volumes[0].Grid, volumes[0].Params.WorldToIndex);
-    const parc::SegmentOracle oracle1(volumes[1].Grid, volumes[1].Params.WorldToIndex);
+    const parc::SegmentOracle oracle0(volumes[0].Grid, volumes[0].WorldToIndex);
+    const parc::SegmentOracle oracle1(volumes[1].Grid, volumes[1].WorldToIndex);
     for (const double angle : { 0.0, 0.7, 2.5 })
     {
       const parc::Camera view = ParallelView(angle);

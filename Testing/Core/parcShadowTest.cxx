@@ -76,7 +76,7 @@ struct Volume
     const double size[3] = { 2.0, 2.0, 2.0 };
     ASSERT_TRUE(this->Grid.Configure(this->Pyramid.GetCellDimensions(), size));
     this->Grid.Classify(this->Pyramid, rule, this->Params.Interp);
-    ASSERT_TRUE(this->Caster.Prepare(&this->Field, &this->Params));
+    ASSERT_TRUE(this->Caster.Prepare({ &this->Field, &this->Params }));
   }
 };
 }
@@ -93,7 +93,7 @@ TEST(Shadows, ConstantSlabTransmittance)
   p.SampleDistance = 0.5;
   p.OpacityUnitDistance = 0.5;
   parc::RayCaster caster;
-  ASSERT_TRUE(caster.Prepare(&slab, &p));
+  ASSERT_TRUE(caster.Prepare({ &slab, &p }));
   parc::Occluders occluders;
   occluders.SetMembers({ { &caster, {} } });
   parc::ShadowScratch scratch;
@@ -132,7 +132,7 @@ TEST(Shadows, OpaqueSurfaceBlocks)
   const parc::ScalarField sphere = parctest::DistanceField(33, { 16, 16, 16 });
   const CastParameters p = SphereParameters(6.0);
   parc::RayCaster caster;
-  ASSERT_TRUE(caster.Prepare(&sphere, &p));
+  ASSERT_TRUE(caster.Prepare({ &sphere, &p }));
   parc::Occluders occluders;
   occluders.SetMembers({ { &caster, {} } });
   parc::ShadowScratch scratch;
@@ -222,8 +222,8 @@ TEST(Shadows, SegmentSourcesGiveBitIdenticalShadowedImages)
       v->Params.Lights = lightSets[set];
       v->Prepare();
     }
-    const parc::SegmentOracle sphereOracle(sphere.Grid, sphere.Params.WorldToIndex);
-    const parc::SegmentOracle cloudOracle(cloud.Grid, cloud.Params.WorldToIndex);
+    const parc::SegmentOracle sphereOracle(sphere.Grid, sphere.Caster.GetWorldToIndex());
+    const parc::SegmentOracle cloudOracle(cloud.Grid, cloud.Caster.GetWorldToIndex());
     const std::size_t lights = lightSets[set].size();
     parc::Occluders wholeShadows, oracleShadows;
     wholeShadows.SetMembers({ { &sphere.Caster, {} }, { &cloud.Caster, {} } });

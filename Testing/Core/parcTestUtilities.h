@@ -139,11 +139,11 @@ struct CastResult
   double FirstHit;
   parc::CastStatistics Stats;
 };
-inline CastResult CastOne(const parc::ScalarField& field, const parc::CastParameters& p,
-  const parc::Ray& ray, const parc::SegmentSource* source = nullptr)
+inline CastResult CastOne(const parc::Volume& volume, const parc::Ray& ray,
+  const parc::SegmentSource* source = nullptr)
 {
   parc::RayCaster caster;
-  caster.Prepare(&field, &p);
+  caster.Prepare(volume);
   parc::WholeRaySource whole;
   std::vector<parc::Segment> segments;
   std::vector<parc::LatticeRange> ranges;
@@ -151,6 +151,12 @@ inline CastResult CastOne(const parc::ScalarField& field, const parc::CastParame
   caster.CastRay(parc::RayQuery::Anywhere(ray), source ? *source : whole, segments, ranges, r.RGBA, r.Stats,
     &r.FirstHit);
   return r;
+}
+/// CastOne of field with parameters p, in voxel-index coordinates.
+inline CastResult CastOne(const parc::ScalarField& field, const parc::CastParameters& p,
+  const parc::Ray& ray, const parc::SegmentSource* source = nullptr)
+{
+  return CastOne(parc::Volume{ &field, &p }, ray, source);
 }
 }
 

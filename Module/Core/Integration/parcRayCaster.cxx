@@ -122,7 +122,8 @@ bool QuantizedNormalsApply(const ScalarField& field, const CastParameters& p)
 /// The shading factors of every normal code: Blinn-Phong of the directional lights, as
 /// RayContext::Shade computes it, for the world direction of the code's voxel-index
 /// normal, turned towards the eye and seen from p.ShadingViewDirection.
-std::vector<RayCaster::ShadingFactors> NormalShadingTable(const CastParameters& p)
+std::vector<RayCaster::ShadingFactors> NormalShadingTable(
+  const CastParameters& p, const Matrix4& worldToIndex)
 {
   std::vector<RayCaster::ShadingFactors> table(NormalVolume::Count);
   const Vec3 toEye = p.ShadingViewDirection;
@@ -146,7 +147,7 @@ std::vector<RayCaster::ShadingFactors> NormalShadingTable(const CastParameters& 
     Vec3 n;
     for (int r = 0; r < 3; ++r)
     {
-      n[r] = p.WorldToIndex(0, r) * g.X + p.WorldToIndex(1, r) * g.Y + p.WorldToIndex(2, r) * g.Z;
+      n[r] = worldToIndex(0, r) * g.X + worldToIndex(1, r) * g.Y + worldToIndex(2, r) * g.Z;
     }
     if (!(Length(n) > 0.0))
     {
@@ -180,10 +181,13 @@ std::vector<RayCaster::ShadingFactors> NormalShadingTable(const CastParameters& 
 }
 }
 
-bool RayCaster::Prepare(const ScalarField* field, const CastParameters* parameters)
+bool RayCaster::Prepare(const Volume& volume)
 {
+  const ScalarField* field = volume.Field;
+  const CastParameters* parameters = volume.Parameters;
   this->Field = field;
   this->Params = parameters;
+  this->WorldToIndex = volume.WorldToIndex;
   if (!field || !parameters || !(parameters->SampleDistance > 0.0) ||
     !(parameters->OpacityUnitDistance > 0.0))
   {
@@ -248,7 +252,7 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
   {
     for (int c = 0; c < 3; ++c)
     {
-      k.GradientToWorld[3 * r + c] = static_cast<float>(parameters->WorldToIndex(c, r));
+      k.GradientToWorld[3 * r + c] = static_cast<float>(volume.WorldToIndex(c, r));
     }
   }
   const double power = parameters->SpecularPower;
@@ -284,7 +288,7 @@ bool RayCaster::Prepare(const ScalarField* field, const CastParameters* paramete
     }
   }
   k.NormalShading = QuantizedNormalsApply(*field, *parameters)
-    ? NormalShadingTable(*parameters)
+    ? NormalShadingTable(*parameters, volume.WorldToIndex)
     : std::vector<ShadingFactors>(); // frees the table of an earlier render
   k.GradientNeeded = (parameters->Shade && k.NormalShading.empty()) ||
     (parameters->UseGradientOpacity && !k.GradientOpacityConstant) || labelGradients;
@@ -318,8 +322,8 @@ bool RayCaster::SetComponents(std::vector<Component> components)
     if (!q || !std::equal(dims, dims + 3, c.Caster->Field->GetDimensions()) ||
       c.Caster->Field->GetScalarType() != this->Field->GetScalarType() ||
       q->Blend != p->Blend || q->SampleDistance != p->SampleDistance ||
-      q->WorldToIndex.M != p->WorldToIndex.M || q->ClipPlanes.size() != p->ClipPlanes.size() ||
-      q->Crop.Enabled != p->Crop.Enabled)
+      c.Caster->WorldToIndex.M != this->WorldToIndex.M ||
+      q->ClipPlanes.size() != p->ClipPlanes.size() || q->Crop.Enabled != p->Crop.Enabled)
     {
       return false;
     }
@@ -330,7 +334,7 @@ bool RayCaster::SetComponents(std::vector<Component> components)
 
 bool RayCaster::ClipRay(const Ray& ray, double& tEnter, double& tExit) const
 {
-  const Matrix4& w2i = this->Params->WorldToIndex;
+  const Matrix4& w2i = this->WorldToIndex;
   return ClipToField(*this->Field, *this->Params, w2i.TransformPoint(ray.Origin),
     w2i.TransformVector(ray.Direction), ray, tEnter, tExit);
 }
@@ -1890,7 +1894,7 @@ bool RayCaster::RangesOf(const RayQuery& query, const SegmentSource& source,
   Vec3& indexDirection, std::size_t& sourceSegments, double& tEnter, double& tExit) const
 {
   const Ray& ray = query.Path;
-  const Matrix4& w2i = this->Params->WorldToIndex;
+  const Matrix4& w2i = this->WorldToIndex;
   indexOrigin = w2i.TransformPoint(ray.Origin);
   indexDirection = w2i.TransformVector(ray.Direction);
   if (!ClipToField(*this->Field, *this->Params, indexOrigin, indexDirection, ray, tEnter, tExit))

@@ -76,6 +76,7 @@
 #include "parcScalarField.h"
 #include "parcSegmentSource.h"
 #include "parcStatistics.h"
+#include "parcVolume.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -152,9 +153,9 @@ public:
     /// Where the component's values lie in memory relative to component 0's, in values.
     std::ptrdiff_t Shift;
   };
-  /// Keeps pointers to field and parameters (they must outlive the casts) and derives the
-  /// per-render constants. Returns false if the parameters cannot be used.
-  bool Prepare(const ScalarField* field, const CastParameters* parameters);
+  /// Keeps volume (its field and parameters must outlive the casts) and derives the
+  /// per-render constants. Returns false if the volume cannot be cast.
+  bool Prepare(const Volume& volume);
 
   /// One ray: the premultiplied RGBA result. Scratch vectors are reused by the caller.
   /// firstHit (optional) receives the ray parameter of the first contributing composite or
@@ -219,6 +220,7 @@ public:
 
   const CastParameters* GetParameters() const { return this->Params; }
   const ScalarField* GetField() const { return this->Field; }
+  const Matrix4& GetWorldToIndex() const { return this->WorldToIndex; }
   /// Whether samples need gradients: exact shading, or a gradient opacity that is not
   /// constant.
   bool NeedsGradient() const { return this->Constants.GradientNeeded; }
@@ -323,6 +325,7 @@ private:
 
   const ScalarField* Field = nullptr;
   const CastParameters* Params = nullptr;
+  Matrix4 WorldToIndex;
   RenderConstants Constants;
   const Occluders* Shadows = nullptr;
   std::vector<Component> Components;

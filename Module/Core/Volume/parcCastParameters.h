@@ -117,10 +117,8 @@ struct CastParameters
   ShadingModel Shading = ShadingModel::Exact;
   const NormalVolume* Normals = nullptr; ///< must outlive the casts
   Vec3 ShadingViewDirection{ 0.0, 0.0, 1.0 }; ///< unit, towards the eye (world)
-  /// World -> voxel-index coordinates (affine). "World" is whatever frame the caller uses for
-  /// rays, lights and planes alike; the mapper centres it on the camera.
-  Matrix4 WorldToIndex;
-  /// Rays are cut to the part every clipping plane keeps (world coordinates) ...
+  /// Rays are cut to the part every clipping plane keeps (world coordinates, as for
+  /// Volume::WorldToIndex) ...
   std::vector<ClipPlane> ClipPlanes;
   /// ... and to the rendered cropping regions (voxel-index coordinates). A sample outside
   /// them is never taken, whatever the acceleration.
