@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <limits>
 #include <random>
 
 using parc::PiecewiseLinearFunction;
@@ -40,6 +42,54 @@ TEST(PiecewiseLinear, ZeroAtATouchingNodeIsNotNonZero)
   EXPECT_TRUE(f.IsNonZeroOn(2.0, 10.000001));
   EXPECT_EQ(f.FirstNonZero(), 10.0);
   EXPECT_EQ(f.LastNonZero(), std::numeric_limits<double>::infinity());
+}
+
+// Lane by lane, EvaluateLanes gives Evaluate's bits, on random functions of 1 to 20 nodes
+// (steps, nodes between floats) at floats around the nodes, outside them, infinite and NaN,
+// and leaves the lanes it is not asked for alone.
+TEST(PiecewiseLinear, LanesGiveEvaluatesBits)
+{
+  std::mt19937 rng(77);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  constexpr int Lanes = 32;
+  constexpr float Untouched = -123.f;
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int trial = 0; trial < 3000; ++trial)
+  {
+    std::vector<double> x, y;
+    const int n = 1 + static_cast<int>(u(rng) * 20);
+    double pos = -3.0 + u(rng);
+    for (int i = 0; i < n; ++i)
+    {
+      pos += u(rng) < 0.15 ? 0.0 : 0.7 * u(rng) + (u(rng) < 0.3 ? 0.1 : 0.0);
+      x.push_back(pos);
+      y.push_back(u(rng) < 0.3 ? 0.0 : u(rng) - 0.1); // a few negative values
+    }
+    PiecewiseLinearFunction f;
+    f.SetNodes(x, y, u(rng) < 0.5);
+    float s[Lanes], out[Lanes];
+    for (float& v : s)
+    {
+      const double node = x[static_cast<std::size_t>(u(rng) * n) % n];
+      const double pick = u(rng);
+      v = pick < 0.4 ? std::nextafter(static_cast<float>(node),
+                         u(rng) < 0.5 ? inf : -inf) // a neighbour of a node's float
+        : pick < 0.6 ? static_cast<float>(node)
+        : pick < 0.9 ? static_cast<float>(x.front() - 1.0 + (x.back() - x.front() + 2.0) * u(rng))
+        : pick < 0.95 ? (u(rng) < 0.5 ? inf : -inf)
+                      : std::numeric_limits<float>::quiet_NaN();
+    }
+    const unsigned lanes = static_cast<unsigned>(rng());
+    std::fill_n(out, Lanes, Untouched);
+    f.EvaluateLanes(s, lanes, out);
+    for (int j = 0; j < Lanes; ++j)
+    {
+      const float expected = (lanes >> j) & 1u ? f.Evaluate(s[j]) : Untouched;
+      EXPECT_EQ(std::memcmp(&expected, &out[j], sizeof(float)), 0)
+        << "trial " << trial << ", lane " << j << ", s " << s[j] << ": " << out[j]
+        << " instead of " << expected;
+    }
+  }
 }
 
 TEST(PiecewiseLinear, ThresholdsOfABump)

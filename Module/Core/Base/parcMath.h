@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <limits>
 
 /// Marks the small per-sample functions the caster's loops must inline.
 /// Marks rare work kept out of those loops, so that they stay small.
@@ -133,6 +134,35 @@ inline Matrix4 Translated(const Matrix4& m, const Vec3& offset)
 bool Invert(const Matrix4& m, Matrix4& out);
 /// a * b.
 Matrix4 Multiply(const Matrix4& a, const Matrix4& b);
+
+/// The smallest float at least v: a float s is below v exactly when s is below it.
+inline float FloatAtLeast(double v)
+{
+  const float f = static_cast<float>(v);
+  return static_cast<double>(f) < v ? std::nextafter(f, std::numeric_limits<float>::infinity())
+                                    : f;
+}
+/// The largest float not above x.
+inline float FloatAtMost(double x)
+{
+  const float f = static_cast<float>(x);
+  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity())
+                                    : f;
+}
+/// The index of the lowest set bit of x != 0.
+PARC_HOT_INLINE int CountTrailingZeros(unsigned x)
+{
+#if defined(__GNUC__)
+  return __builtin_ctz(x);
+#else
+  int n = 0;
+  for (; !(x & 1u); x >>= 1)
+  {
+    ++n;
+  }
+  return n;
+#endif
+}
 
 } // namespace parc
 

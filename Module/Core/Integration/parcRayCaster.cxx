@@ -42,14 +42,6 @@ constexpr std::size_t MaxThresholdIsoValues = 8;
 /// still cast (SceneCaster::CastRay).
 constexpr double StopMarginSteps = 2.0;
 
-/// The smallest float at least v: a float s is below v exactly when s is below it.
-float FloatAtLeast(double v)
-{
-  const float f = static_cast<float>(v);
-  return static_cast<double>(f) < v ? std::nextafter(f, std::numeric_limits<float>::infinity())
-                                    : f;
-}
-
 /// Whether a volume of this ray function can stop a ray by its own opacity.
 bool CanStopRay(BlendMode blend)
 {
@@ -95,17 +87,6 @@ bool ClipToField(const ScalarField& field, const CastParameters& p, const Vec3& 
   return ClipToBox(o, d, { 0.0, 0.0, 0.0 }, { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 },
            tEnter, tExit) &&
     ClipToPlanes(ray, p.ClipPlanes, tEnter, tExit);
-}
-}
-
-namespace
-{
-/// The largest float not above x.
-float FloatAtMost(double x)
-{
-  const float f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity())
-                                    : f;
 }
 }
 
@@ -353,20 +334,6 @@ float FlipUnlessPositive(float x, float sign)
   return x;
 }
 
-/// The index of the lowest set bit of x != 0.
-int CountTrailingZeros(unsigned x)
-{
-#if defined(__GNUC__)
-  return __builtin_ctz(x);
-#else
-  int n = 0;
-  for (; !(x & 1u); x >>= 1)
-  {
-    ++n;
-  }
-  return n;
-#endif
-}
 
 #if defined(__SSE2__)
 /// mask ? a : b, lane by lane (mask lanes all ones or all zeros).
@@ -824,11 +791,7 @@ struct RayContext
     }
     float* a = this->Opacities;
     std::fill_n(a, LatticeBlock::Size, 0.f);
-    for (unsigned m = lanes; m != 0; m &= m - 1)
-    {
-      const int j = CountTrailingZeros(m);
-      a[j] = this->P.Opacity.Evaluate(this->Value(j));
-    }
+    this->P.Opacity.EvaluateLanes(this->Block.Values, lanes, a);
     if (this->K.GradientOpacityConstant)
     {
       for (int j = 0; j < LatticeBlock::Size; ++j)

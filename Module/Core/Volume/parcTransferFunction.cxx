@@ -20,6 +20,14 @@ void PiecewiseLinearFunction::SetNodes(std::vector<double> x, std::vector<double
   }
   // Buckets over [x0, xn]: s falls in bucket floor((s - x0) * scale), whose start lies at
   // least one bucket width (far more than rounding) after the node it records.
+  this->NodeThresholds.clear();
+  if (n >= 2 && n <= MaxCountedNodes)
+  {
+    for (const double x : this->X)
+    {
+      this->NodeThresholds.push_back(FloatAtLeast(x));
+    }
+  }
   this->X0 = n > 0 ? this->X.front() : 0.0;
   this->XN = n > 0 ? this->X.back() : 0.0;
   const std::size_t buckets = std::min<std::size_t>(std::max<std::size_t>(4 * n, 1024), 4096);
@@ -45,6 +53,7 @@ void PiecewiseLinearFunction::SetConstant(double value)
   this->X.clear();
   this->Y.clear();
   this->Slope.clear();
+  this->NodeThresholds.clear();
   this->Constant = value;
 }
 

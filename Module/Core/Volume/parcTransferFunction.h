@@ -21,6 +21,10 @@
 namespace parc
 {
 
+/// Nodes up to which PiecewiseLinearFunction::EvaluateLanes finds each lane's piece by
+/// counting, four lanes at once, the nodes at or before it.
+constexpr std::size_t MaxCountedNodes = 16;
+
 class PiecewiseLinearFunction
 {
 public:
@@ -44,9 +48,48 @@ public:
       {
         ++i;
       }
-      return static_cast<float>(std::max(this->Y[i] + (s - this->X[i]) * this->Slope[i], 0.0));
+      return this->OnPiece(i, s);
     }
     return this->EvaluateOutside(s);
+  }
+  /// Evaluate(s[j]) into out[j] for each lane j in lanes (bits 1 << j, j < 32), the same
+  /// bits; the other lanes of out are left alone. s holds whole groups of four lanes.
+  PARC_HOT_INLINE void EvaluateLanes(const float* s, unsigned lanes, float* out) const
+  {
+#if defined(__SSE2__)
+    const std::size_t n = this->NodeThresholds.size();
+    if (n > 0)
+    {
+      // Lane by lane, the count c of nodes at or before s: on the piece c - 1 for
+      // 0 < c < n (Evaluate's range), else outside it.
+      alignas(16) std::int32_t counts[4];
+      while (lanes != 0)
+      {
+        const int first = CountTrailingZeros(lanes) & ~3;
+        const __m128 v = _mm_loadu_ps(s + first);
+        __m128i c = _mm_setzero_si128();
+        for (const float x : this->NodeThresholds)
+        {
+          c = _mm_sub_epi32(c, _mm_castps_si128(_mm_cmpge_ps(v, _mm_set1_ps(x))));
+        }
+        _mm_store_si128(reinterpret_cast<__m128i*>(counts), c);
+        unsigned group = (lanes >> first) & 0xFu;
+        lanes &= ~(0xFu << first);
+        for (; group != 0; group &= group - 1)
+        {
+          const int lane = CountTrailingZeros(group), j = first + lane;
+          const auto count = static_cast<std::size_t>(counts[lane]);
+          out[j] = count - 1 < n - 1 ? this->OnPiece(count - 1, s[j]) : this->Evaluate(s[j]);
+        }
+      }
+      return;
+    }
+#endif
+    for (; lanes != 0; lanes &= lanes - 1)
+    {
+      const int j = CountTrailingZeros(lanes);
+      out[j] = this->Evaluate(s[j]);
+    }
   }
   /// True when f is the same value c >= 0 everywhere (then Evaluate returns float(c)).
   bool IsConstant(double& c) const;
@@ -64,12 +107,20 @@ public:
   const std::vector<double>& GetY() const { return this->Y; }
 
 private:
+  /// f(s) on the piece from node i to node i + 1.
+  PARC_HOT_INLINE float OnPiece(std::size_t i, double s) const
+  {
+    return static_cast<float>(std::max(this->Y[i] + (s - this->X[i]) * this->Slope[i], 0.0));
+  }
   /// Evaluate for s outside [X0, XN) or NaN, and for functions without nodes.
   float EvaluateOutside(double s) const;
   double LeftValue() const { return this->Clamp ? this->Y.front() : 0.0; }
   double RightValue() const { return this->Clamp ? this->Y.back() : 0.0; }
 
   std::vector<double> X, Y, Slope;
+  /// FloatAtLeast of each node's x (a float s is at or after a node exactly when it is at
+  /// or after its threshold), for 2 to MaxCountedNodes nodes; else empty.
+  std::vector<float> NodeThresholds;
   /// BucketStart[b]: a node at or before every s with bucket b; the last node is never one.
   std::vector<std::uint32_t> BucketStart;
   double BucketScale = 0.0;
