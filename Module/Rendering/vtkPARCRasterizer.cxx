@@ -5,6 +5,7 @@
 #include "parcFaceFS.h"
 #include "parcFaceVS.h"
 #include "parcPlaneFS.h"
+#include "parcStatistics.h"
 #include "parcVTKConversion.h"
 
 #include "vtkCamera.h"
@@ -19,6 +20,7 @@
 
 #include <algorithm>
 #include <array>
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -305,6 +307,9 @@ public:
   GPUModel Models[2];        ///< depth, colour
   RenderTarget Targets[2];   ///< depth, colour
   std::vector<std::uint32_t> Texels; ///< read-back of one plane attachment
+  /// Seconds spent so far making the context current, compiling the programs, uploading
+  /// models and binding (allocating) render targets.
+  double SetUpTime = 0.0;
 
   bool Prepare(vtkRenderWindow* window, std::string& error);
   /// One pass: makes the context current (building the programs the first time), saves
@@ -314,7 +319,10 @@ public:
   bool Run(vtkRenderWindow* window, const char* pass, std::string& error, Body&& body)
   {
     error.clear();
-    if (!this->Prepare(window, error))
+    const auto start = std::chrono::steady_clock::now();
+    const bool prepared = this->Prepare(window, error);
+    this->SetUpTime += parc::SecondsSince(start);
+    if (!prepared)
     {
       return false;
     }
@@ -340,10 +348,22 @@ public:
     GPUModel& gpu = this->Models[slot];
     if (gpu.Version != version)
     {
+      const auto start = std::chrono::steady_clock::now();
       this->Upload(gpu, model, version);
+      glFinish(); // the copy is done here, not in the draw
+      this->SetUpTime += parc::SecondsSince(start);
       ++uploads;
     }
     return gpu;
+  }
+  /// Targets[slot].Bind, its time counted as set-up.
+  bool BindTarget(
+    int slot, GLenum format, int attachments, int width, int height, std::string& error)
+  {
+    const auto start = std::chrono::steady_clock::now();
+    const bool bound = this->Targets[slot].Bind(format, attachments, width, height, error);
+    this->SetUpTime += parc::SecondsSince(start);
+    return bound;
   }
   /// Draws the model's quads, except those whose outward normal (voxel-index coordinates)
   /// points along skipNormal.
@@ -561,6 +581,11 @@ void vtkPARCRasterizer::ReleasePass(vtkRenderWindow* window, bool colour)
   }
 }
 
+double vtkPARCRasterizer::GetSetUpTime() const
+{
+  return this->Internals->SetUpTime;
+}
+
 std::size_t vtkPARCRasterizer::GetMemorySize() const
 {
   const vtkInternals& in = *this->Internals;
@@ -706,7 +731,7 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
   return in.Run(window, "depth", this->LastError, [&](vtkOpenGLState* state) {
     const GPUModel& gpu = in.Use(0, model, modelVersion, this->UploadCount);
     const int w = view.Camera.Width, h = view.Camera.Height;
-    if (!in.Targets[0].Bind(GL_RG32F, 1, w, h, this->LastError))
+    if (!in.BindTarget(0, GL_RG32F, 1, w, h, this->LastError))
     {
       return false;
     }
@@ -753,7 +778,7 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
     for (int pass = 0; pass < passes; ++pass)
     {
       const int attachments = std::min(MaxAttachments, attachmentsTotal - pass * MaxAttachments);
-      if (!in.Targets[1].Bind(GL_RGBA32UI, attachments, w, h, this->LastError))
+      if (!in.BindTarget(1, GL_RGBA32UI, attachments, w, h, this->LastError))
       {
         return false;
       }

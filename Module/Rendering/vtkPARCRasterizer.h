@@ -119,6 +119,9 @@ public:
   const std::string& GetLastError() const { return this->LastError; }
   /// How many times a model was uploaded to the GPU (statistics).
   std::uint64_t GetUploadCount() const { return this->UploadCount; }
+  /// Seconds the passes spent so far setting up rather than drawing: making the context
+  /// current, compiling the programs, uploading models, allocating render targets.
+  double GetSetUpTime() const;
   /// Bytes of the uploaded models, the render targets and the read-back buffer (on
   /// software GL all of it is main memory).
   std::size_t GetMemorySize() const;

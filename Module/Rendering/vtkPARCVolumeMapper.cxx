@@ -440,6 +440,7 @@ public:
   struct SetUpWork
   {
     std::uint64_t ModelBuilds, Uploads;
+    double Seconds; ///< of the plan's and the rasterizer's set-up so far
   };
   std::vector<SetUpWork> CountSetUpWork() const;
   /// Runs each volume's PARC passes: the volumes with the segment source each casts with.
@@ -1144,8 +1145,9 @@ vtkPARCVolumeMapper::vtkInternals::CountSetUpWork() const
   std::vector<SetUpWork> work;
   for (const auto& entry : this->Rendered)
   {
-    work.push_back(
-      { entry.first->Plan.GetModelBuilds(), entry.first->Rasterizer->GetUploadCount() });
+    const vtkVolumeState& volume = *entry.first;
+    work.push_back({ volume.Plan.GetModelBuilds(), volume.Rasterizer->GetUploadCount(),
+      volume.Plan.GetSetUpTime() + volume.Rasterizer->GetSetUpTime() });
   }
   return work;
 }
@@ -1283,12 +1285,22 @@ void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
       volume.Rasterizer->GetUploadCount() != before[v].Uploads;
     parc::FrameMeasure frame;
     frame.Projection = volume.ProjectionTime;
+    frame.SetUp =
+      volume.Plan.GetSetUpTime() + volume.Rasterizer->GetSetUpTime() - before[v].Seconds;
     frame.Casting = share * this->CastingTime;
     frame.Samples = static_cast<double>(volume.Stats.Samples);
     frame.Contributing = static_cast<double>(volume.Stats.ContributingSamples);
     frame.Timing = volume.Stats.Timing;
-    volume.Plan.Auto.Record(volume.Plan.GetModelVersion(),
-      volume.Plan.GetGrid().GetNumberOfContributing(), frame, completed && !setUp);
+    const std::uint64_t version = volume.Plan.GetModelVersion();
+    const std::size_t contributing = volume.Plan.GetGrid().GetNumberOfContributing();
+    if (completed && setUp)
+    {
+      volume.Plan.Auto.RecordSetUp(version, contributing, frame);
+    }
+    else
+    {
+      volume.Plan.Auto.Record(version, contributing, frame, completed);
+    }
   }
 }
 

@@ -191,3 +191,39 @@ TEST(AutoTrials, WithoutTimedRaysEveryPassIsTriedInTurn)
   EXPECT_EQ(autoTrials.Remaining(), 0);
   EXPECT_EQ(autoTrials.Choose(1, 100, 200, 200), AutoTrials::Depth) << "the fastest";
 }
+
+// The first frame also sets up (classification, models, shaders): without its set-up time
+// it predicts the others, so that None, predicted faster than Depth's pass, is taken next
+// instead of a second, slow Depth frame. A provisional estimate does not settle Auto, the
+// candidate's next frame replaces it, and it never replaces a measured one.
+TEST(AutoTrials, AFrameThatSetsUpPredictsTheNextWithoutItsSetUpTime)
+{
+  const RayCostFit fit = ExactFit(10e-9);
+  const double samples = fit.Samples() * RayCostFit::ColumnStride;
+  FrameMeasure first = Frame(0.3, 0.02, samples, fit);
+  first.SetUp = 0.2; // a 0.1 s pass: None (about 0.03 s) is predicted faster
+  AutoTrials dearPass;
+  ASSERT_EQ(dearPass.Choose(1, 100, 200, 200), AutoTrials::Depth);
+  dearPass.RecordSetUp(1, 100, first);
+  EXPECT_TRUE(dearPass.Estimates[AutoTrials::Depth].Provisional);
+  EXPECT_DOUBLE_EQ(dearPass.Estimates[AutoTrials::Depth].Projection, 0.1);
+  EXPECT_EQ(dearPass.Choose(1, 100, 200, 200), AutoTrials::None);
+
+  first.SetUp = 0.294; // a 6 ms pass: Depth is the least, and is measured warm next
+  AutoTrials cheapPass;
+  cheapPass.Choose(1, 100, 200, 200);
+  cheapPass.RecordSetUp(1, 100, first);
+  EXPECT_EQ(cheapPass.Remaining(), 1) << "Depth's warm frame";
+  ASSERT_EQ(cheapPass.Choose(1, 100, 200, 200), AutoTrials::Depth);
+  EXPECT_FALSE(cheapPass.Settled) << "a provisional estimate ends no trial";
+  cheapPass.Record(1, 100, Frame(0.008, 0.02, samples, fit), true);
+  const AutoTrials::Estimate& depth = cheapPass.Estimates[AutoTrials::Depth];
+  EXPECT_FALSE(depth.Provisional);
+  EXPECT_DOUBLE_EQ(depth.Projection, 0.008) << "replaced, though slower";
+  // An edit's frame sets up again: the measured estimate stays.
+  ASSERT_EQ(cheapPass.Choose(2, 100, 200, 200), AutoTrials::Depth);
+  EXPECT_TRUE(cheapPass.Settled);
+  cheapPass.RecordSetUp(2, 100, Frame(0.5, 0.02, samples, fit));
+  EXPECT_FALSE(depth.Provisional);
+  EXPECT_DOUBLE_EQ(depth.Projection, 0.008);
+}

@@ -29,7 +29,8 @@ int AutoTrials::Choose(std::uint64_t modelVersion, std::size_t contributing, int
   const bool trials = allowTrials && !this->Settled;
   this->Chosen = std::max(this->Best(modelVersion, contributing, trials), 0);
   // The first frame that may try a pass but needs none ends the trials.
-  this->Settled = this->Settled || (trials && this->Estimates[this->Chosen].Measured);
+  const Estimate& chosen = this->Estimates[this->Chosen];
+  this->Settled = this->Settled || (trials && chosen.Measured && !chosen.Provisional);
   return this->Chosen;
 }
 
@@ -154,22 +155,46 @@ void AutoTrials::Record(std::uint64_t modelVersion, std::size_t contributing,
   {
     Estimate& e = this->Estimates[this->Chosen];
     const double rays = static_cast<double>(this->Size[0]) * this->Size[1];
-    if (!e.Measured || e.ModelVersion != modelVersion || e.ViewVersion != this->ViewVersion ||
-      e.Rays != rays || frame.Projection + frame.Casting < e.Projection + e.Casting)
+    if (!e.Measured || e.Provisional || !this->IsCurrent(e, modelVersion) ||
+      frame.Projection + frame.Casting < e.Projection + e.Casting)
     {
-      e = { true, modelVersion, this->ViewVersion, contributing, rays, frame.Projection,
+      e = { true, false, modelVersion, this->ViewVersion, contributing, rays, frame.Projection,
         frame.Casting, frame.Samples, frame.Contributing };
     }
     this->RecordSampleCost(frame);
     const Estimate& depth = this->Estimates[Depth];
     const Estimate& color = this->Estimates[Color];
-    if (depth.Measured && color.Measured && depth.ModelVersion == color.ModelVersion &&
-      depth.Projection > 0.0)
+    if (depth.Measured && color.Measured && !depth.Provisional && !color.Provisional &&
+      depth.ModelVersion == color.ModelVersion && depth.Projection > 0.0)
     {
       this->ColorProjectionRatio = color.Projection / depth.Projection;
     }
   }
   this->Chosen = -1;
+}
+
+void AutoTrials::RecordSetUp(
+  std::uint64_t modelVersion, std::size_t contributing, const FrameMeasure& frame)
+{
+  if (this->Chosen >= 0)
+  {
+    Estimate& e = this->Estimates[this->Chosen];
+    if (!e.Measured || (e.Provisional && !this->IsCurrent(e, modelVersion)))
+    {
+      const double rays = static_cast<double>(this->Size[0]) * this->Size[1];
+      const double projection = std::max(frame.Projection - frame.SetUp, 0.0);
+      e = { true, true, modelVersion, this->ViewVersion, contributing, rays, projection,
+        frame.Casting, frame.Samples, frame.Contributing };
+    }
+    this->RecordSampleCost(frame);
+  }
+  this->Chosen = -1;
+}
+
+bool AutoTrials::IsCurrent(const Estimate& e, std::uint64_t modelVersion) const
+{
+  return e.ModelVersion == modelVersion && e.ViewVersion == this->ViewVersion &&
+    e.Rays == static_cast<double>(this->Size[0]) * this->Size[1];
 }
 
 int AutoTrials::Remaining() const
@@ -179,8 +204,9 @@ int AutoTrials::Remaining() const
     return 0;
   }
   double best = std::numeric_limits<double>::infinity();
-  this->Best(this->LastModelVersion, this->LastContributing, false, &best);
-  int remaining = 0;
+  const int bestMeasured = this->Best(this->LastModelVersion, this->LastContributing, false, &best);
+  // A provisional estimate that is the best is measured next.
+  int remaining = bestMeasured >= 0 && this->Estimates[bestMeasured].Provisional;
   for (int c = 0; c < Count; ++c)
   {
     double t = -std::numeric_limits<double>::infinity();
@@ -212,6 +238,7 @@ bool AccelerationPlan::Classify(const std::vector<const ScalarField*>& fields,
     this->Grid = SupercellGrid();
     return false;
   }
+  const auto start = std::chrono::steady_clock::now();
   if (this->Pyramids.size() != fields.size() || this->PyramidFieldVersion != fieldVersion)
   {
     this->Pyramids.resize(fields.size());
@@ -234,11 +261,11 @@ bool AccelerationPlan::Classify(const std::vector<const ScalarField*>& fields,
   {
     channels.push_back({ &this->Pyramids[c], &rules[c] });
   }
-  const auto start = std::chrono::steady_clock::now();
+  const auto classification = std::chrono::steady_clock::now();
   this->Grid.Classify(channels, interpolation);
-  this->ClassificationTime =
-    std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  this->ClassificationTime = SecondsSince(classification);
   ++this->Classifications;
+  this->SetUpTime += SecondsSince(start);
   return true;
 }
 
@@ -266,6 +293,7 @@ const PolygonModel& AccelerationPlan::Ensure(PassModel& pass, int axis, bool upl
 {
   if (!pass.Current || (!uploaded && pass.Model.Vertices.empty()))
   {
+    const auto start = std::chrono::steady_clock::now();
     if (axis < 0)
     {
       BuildDepthModel(this->Grid, this->MergeFaces, pass.Model);
@@ -277,6 +305,7 @@ const PolygonModel& AccelerationPlan::Ensure(PassModel& pass, int axis, bool upl
     pass.Quads = pass.Model.GetNumberOfQuads();
     pass.Current = true;
     ++this->ModelBuilds;
+    this->SetUpTime += SecondsSince(start);
   }
   return pass.Model;
 }

@@ -27,6 +27,9 @@ namespace parc
 struct FrameMeasure
 {
   double Projection = 0.0; ///< seconds of the passes
+  /// Seconds of Projection spent setting up (classifying, building and uploading models,
+  /// compiling shaders) on a frame that did.
+  double SetUp = 0.0;
   double Casting = 0.0;    ///< seconds of casting (wall)
   double Samples = 0.0;
   double Contributing = 0.0;
@@ -48,6 +51,12 @@ struct FrameMeasure
 /// first frame that may try a candidate but chooses a measured one ends the trials: an
 /// edit, a new image size or a new view brings none. After the view turns or moves
 /// markedly, the next frame of a measured candidate replaces its estimate.
+/// A frame that also set up (the first one, above all) gives its candidate a provisional
+/// estimate: the frame without its set-up time, high by what a first draw costs more than
+/// a warm one (shader variants compiled, buffers grown). It predicts the others like a
+/// measured one, so that a candidate predicted faster is taken next instead of a second
+/// frame of this one (a trial the settled mode may not need); the candidate's next frame
+/// replaces it, and choosing it does not end the trials.
 struct AutoTrials
 {
   enum Candidate
@@ -71,6 +80,7 @@ struct AutoTrials
   struct Estimate
   {
     bool Measured = false;
+    bool Provisional = false; ///< from a frame that also set up
     std::uint64_t ModelVersion = 0; ///< of the measured frame
     std::uint64_t ViewVersion = 0;  ///< of the measured frame
     std::size_t Contributing = 0;   ///< PC supercells of that frame's classification
@@ -100,6 +110,11 @@ struct AutoTrials
   /// set-up work (building or uploading a model) does not count.
   void Record(std::uint64_t modelVersion, std::size_t contributing, const FrameMeasure& frame,
     bool representative);
+  /// The same for a completed frame that also set up (frame.SetUp): a provisional estimate
+  /// when its candidate has none, or only a provisional one of another view, model or
+  /// image size.
+  void RecordSetUp(
+    std::uint64_t modelVersion, std::size_t contributing, const FrameMeasure& frame);
   /// Candidates not measured yet that are predicted to beat the measured ones (every
   /// candidate while none is measured; none once settled): the trials still to come.
   int Remaining() const;
@@ -109,6 +124,8 @@ private:
   double Predict(const Estimate& e, std::uint64_t modelVersion, std::size_t contributing) const;
   double ProjectionOf(
     const Estimate& e, std::uint64_t modelVersion, std::size_t contributing) const;
+  /// Whether e was measured at this model version, view and image size.
+  bool IsCurrent(const Estimate& e, std::uint64_t modelVersion) const;
   /// The ray-image pixels of this frame over those of e's.
   double RaysScale(const Estimate& e) const;
   /// Notes the frame's unaccelerated samples and the cost of a non-contributing sample.
@@ -175,6 +192,8 @@ public:
   std::uint64_t GetModelBuilds() const { return this->ModelBuilds; }
   /// Seconds of the last classification.
   double GetClassificationTime() const { return this->ClassificationTime; }
+  /// Seconds spent so far building pyramids, classifying and building models.
+  double GetSetUpTime() const { return this->SetUpTime; }
 
   /// Bytes held by the pyramid, the supercell flags, the depth model and the colour models.
   std::size_t GetPyramidMemorySize() const;
@@ -206,6 +225,7 @@ private:
   std::uint64_t ModelVersion = 0;
   std::uint64_t PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
   double ClassificationTime = 0.0;
+  double SetUpTime = 0.0;
 };
 
 } // namespace parc

@@ -2,10 +2,17 @@
 #ifndef parcStatistics_h
 #define parcStatistics_h
 
+#include <chrono>
 #include <cstdint>
 
 namespace parc
 {
+
+/// Seconds of a steady clock since start (the times the statistics and Auto measure).
+inline double SecondsSince(std::chrono::steady_clock::time_point start)
+{
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
 
 /// A least-squares fit t = a + b s + c k of the casting time t of a ray against its
 /// lattice samples s and contributing samples k, over a subset of a render's rays. It

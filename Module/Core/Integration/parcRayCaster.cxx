@@ -2208,7 +2208,7 @@ bool RayCaster::CastImageIn(const View& field, const Camera& view, const float* 
       nullptr, &scratch.Differences, &scratch.Shadows);
     s.Timing.Add(static_cast<double>(s.Samples - samples),
       static_cast<double>(s.ContributingSamples - contributing),
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(),
+      SecondsSince(start),
       static_cast<double>(s.UnacceleratedSamples - unaccelerated));
   };
   const bool everyRay = this->CastsEveryRay();
