@@ -106,8 +106,8 @@ struct AutoTrials
   /// prediction only when trials are allowed and not over; Depth when nothing is measured).
   int Choose(std::uint64_t modelVersion, std::size_t contributing, int width, int height,
     bool allowTrials = true);
-  /// The times and counts of the frame Choose chose. A frame that was aborted or also did
-  /// set-up work (building or uploading a model) does not count.
+  /// The times and counts of the frame Choose chose. A frame that was aborted does not
+  /// count (representative false); one that also set up goes to RecordSetUp instead.
   void Record(std::uint64_t modelVersion, std::size_t contributing, const FrameMeasure& frame,
     bool representative);
   /// The same for a completed frame that also set up (frame.SetUp): a provisional estimate
