@@ -350,6 +350,11 @@ public:
   int PassCount = 0;
   double ProjectionTime = 0.0; ///< of the last render
 
+  /// Seconds the plan and the rasterizer spent so far setting up (Auto's RecordSetUp).
+  double SetUpTime() const
+  {
+    return this->Plan.GetSetUpTime() + this->Rasterizer->GetSetUpTime();
+  }
   /// Frees the buffers and GL objects of the passes a settled mode does not use (Auto
   /// keeps them while it still has modes to try).
   void ReleaseUnusedPasses(vtkRenderWindow* window, bool depth, bool color)
@@ -1146,8 +1151,8 @@ vtkPARCVolumeMapper::vtkInternals::CountSetUpWork() const
   for (const auto& entry : this->Rendered)
   {
     const vtkVolumeState& volume = *entry.first;
-    work.push_back({ volume.Plan.GetModelBuilds(), volume.Rasterizer->GetUploadCount(),
-      volume.Plan.GetSetUpTime() + volume.Rasterizer->GetSetUpTime() });
+    work.push_back(
+      { volume.Plan.GetModelBuilds(), volume.Rasterizer->GetUploadCount(), volume.SetUpTime() });
   }
   return work;
 }
@@ -1285,8 +1290,7 @@ void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
       volume.Rasterizer->GetUploadCount() != before[v].Uploads;
     parc::FrameMeasure frame;
     frame.Projection = volume.ProjectionTime;
-    frame.SetUp =
-      volume.Plan.GetSetUpTime() + volume.Rasterizer->GetSetUpTime() - before[v].Seconds;
+    frame.SetUp = volume.SetUpTime() - before[v].Seconds;
     frame.Casting = share * this->CastingTime;
     frame.Samples = static_cast<double>(volume.Stats.Samples);
     frame.Contributing = static_cast<double>(volume.Stats.ContributingSamples);
