@@ -43,6 +43,15 @@ CastParameters CloudParameters()
   return p;
 }
 
+/// CloudParameters, with opacity from every value above 0: the cloud fills the blobs'
+/// surroundings (the scenes where other volumes sit inside it).
+CastParameters DenseCloudParameters()
+{
+  CastParameters p = CloudParameters();
+  p.Opacity.SetNodes({ 0.0, 20.0, 255.0 }, { 0.0, 0.05, 0.2 }, true);
+  return p;
+}
+
 /// An opaque, shaded red isosurface of a distance field: a sphere of radius r.
 CastParameters SurfaceParameters(double r)
 {
@@ -222,9 +231,8 @@ TEST(SceneCaster, SurfaceInsideACloudFromBothSides)
   const parc::ScalarField cloud = Blobs();
   CastParameters surfaceParams = SurfaceParameters(6.0);
   surfaceParams.Shade = false;
-  CastParameters cloudParams = CloudParameters();
+  CastParameters cloudParams = DenseCloudParameters();
   cloudParams.Shade = false;
-  cloudParams.Opacity.SetNodes({ 0.0, 20.0, 255.0 }, { 0.0, 0.05, 0.2 }, true);
   parc::RayCaster surface, cloudCaster;
   ASSERT_TRUE(surface.Prepare({ &sphere, &surfaceParams }));
   ASSERT_TRUE(cloudCaster.Prepare({ &cloud, &cloudParams }));
@@ -342,8 +350,7 @@ TEST(SceneCaster, OpaqueVolumesStopTheOthers)
   const CastParameters opaqueParams = SurfaceParameters(10.0);
   CastParameters translucentParams = SurfaceParameters(10.2);
   translucentParams.Opacity.SetConstant(0.3);
-  CastParameters cloudParams = CloudParameters();
-  cloudParams.Opacity.SetNodes({ 0.0, 20.0, 255.0 }, { 0.0, 0.05, 0.2 }, true);
+  const CastParameters cloudParams = DenseCloudParameters();
   parc::RayCaster opaque, translucent, cloudCaster;
   ASSERT_TRUE(opaque.Prepare({ &sphere, &opaqueParams }));
   ASSERT_TRUE(translucent.Prepare({ &sphere, &translucentParams }));
@@ -379,8 +386,7 @@ TEST(SceneCaster, EventsOfOtherVolumesComeBetweenACloudsSamples)
   nearestParams.Blend = BlendMode::MinimumIntensity;
   nearestParams.Opacity.SetConstant(0.3);
   nearestParams.Color.SetTable(0.0, 30.0, { 0.f, 1.f, 0.f, 0.f, 1.f, 1.f });
-  CastParameters cloudParams = CloudParameters();
-  cloudParams.Opacity.SetNodes({ 0.0, 20.0, 255.0 }, { 0.0, 0.05, 0.2 }, true);
+  const CastParameters cloudParams = DenseCloudParameters();
   parc::RayCaster surface, nearest, cloudCaster;
   ASSERT_TRUE(surface.Prepare({ &sphere, &surfaceParams }));
   ASSERT_TRUE(nearest.Prepare({ &sphere, &nearestParams }));
