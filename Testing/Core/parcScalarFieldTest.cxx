@@ -10,6 +10,7 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <type_traits>
 #include <vector>
 
 TEST(ScalarField, TrilinearReproducesLinearFieldsAndVoxelValues)
@@ -33,19 +34,29 @@ TEST(ScalarField, TrilinearReproducesLinearFieldsAndVoxelValues)
   EXPECT_EQ(field.SampleLinear({ 4, 5, 6 }), field.GetValue(4, 5, 6)) << "the far corner";
 }
 
-// The caster takes a ray's lattice samples in blocks: each must be the same bits as the
+namespace
+{
+// A 9x7x8 field of random values over T's whole range (every `stride`-th of them read),
+// sampled in lattice blocks along random rays: each sample must be the same bits as the
 // sample at its own position, and its location the cell and fractions of that position.
-TEST(ScalarField, LatticeBlocksAreTheSamplesAtTheirPositions)
+// Returns the number of samples outside the box (clamped).
+template <typename T>
+std::size_t CheckLatticeBlocks(int stride, unsigned seed)
 {
   const int n[3] = { 9, 7, 8 };
-  std::vector<std::uint16_t> values(9 * 7 * 8);
-  std::mt19937 rng(5);
+  std::vector<T> values(static_cast<std::size_t>(stride) * 9 * 7 * 8);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (auto& v : values)
   {
-    v = static_cast<std::uint16_t>(rng() % 4000);
+    const double lo = static_cast<double>(std::numeric_limits<T>::lowest());
+    const double hi = static_cast<double>(std::numeric_limits<T>::max());
+    const double x = std::is_integral<T>::value ? std::floor(lo + (hi - lo + 1.0) * unit(rng))
+                                               : 1000.0 * unit(rng) - 500.0;
+    v = static_cast<T>(std::min(x, hi));
   }
   parc::ScalarField field;
-  field.Wrap(values.data(), n);
+  field.Wrap(values.data(), n, stride);
   std::uniform_real_distribution<double> u(-2.0, 10.0);
   std::size_t outside = 0;
   for (int ray = 0; ray < 300; ++ray)
@@ -64,7 +75,8 @@ TEST(ScalarField, LatticeBlocksAreTheSamplesAtTheirPositions)
       {
         const parc::Vec3 p = o + (static_cast<double>(k0 + j) * dt) * d;
         const float expected = field.Sample(p, mode);
-        EXPECT_EQ(0, std::memcmp(&expected, &block.Values[j], sizeof(float))) << ray << " " << j;
+        EXPECT_EQ(0, std::memcmp(&expected, &block.Values[j], sizeof(float)))
+          << ray << " " << j << ": " << expected << " " << block.Values[j];
         if (mode == parc::Interpolation::Linear)
         {
           const parc::SampleLocation where = block.Location(j);
@@ -79,7 +91,23 @@ TEST(ScalarField, LatticeBlocksAreTheSamplesAtTheirPositions)
       }
     }
   }
-  EXPECT_GT(outside, 100u) << "clamped positions are tested too";
+  return outside;
+}
+}
+
+// The caster takes a ray's lattice samples in blocks, loading 8- and 16-bit neighbours
+// along x in pairs when they are next to each other (one component), one by one otherwise.
+TEST(ScalarField, LatticeBlocksAreTheSamplesAtTheirPositions)
+{
+  for (int stride : { 1, 2 })
+  {
+    SCOPED_TRACE(stride);
+    EXPECT_GT(CheckLatticeBlocks<std::uint8_t>(stride, 5), 100u) << "clamped positions too";
+    CheckLatticeBlocks<std::int8_t>(stride, 6);
+    CheckLatticeBlocks<std::uint16_t>(stride, 7);
+    CheckLatticeBlocks<std::int16_t>(stride, 8);
+    CheckLatticeBlocks<float>(stride, 9);
+  }
 }
 
 TEST(ScalarField, NearestRoundsAndOutsideIsClamped)

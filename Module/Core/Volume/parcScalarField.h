@@ -18,6 +18,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <memory>
 #include <type_traits>
@@ -209,6 +210,17 @@ public:
     std::ptrdiff_t corner[8];
     this->CornerOffsets(corner);
     LaneValue c[8][LatticeBlock::Size]; // corner values, lane by lane
+#if defined(__SSE2__)
+    if constexpr (PairedCorners)
+    {
+      if (this->Step[0] == 1)
+      {
+        this->LoadCornerPairs(block.Offset, corner, n, c);
+        InterpolateLanes(c, block.Fractions, n, block.Values);
+        return;
+      }
+    }
+#endif
     for (int j = 0; j < n; ++j)
     {
       const T* v = this->Data + block.Offset[j];
@@ -357,6 +369,45 @@ private:
     }
 #endif
   }
+#if defined(__SSE2__)
+  /// Whether a cell's two x neighbours fit one 32-bit load (8- and 16-bit integers), so
+  /// that SampleLattice may load them together when they are next to each other.
+  static constexpr bool PairedCorners = std::is_integral<T>::value && sizeof(T) <= 2;
+  /// The corner values c[corner][lane] of the cells at offsets[lane], lanes 0 .. n - 1,
+  /// for x neighbours next to each other (Step[0] = 1): each pair of corners (x offsets 0
+  /// and 1) in one load, split apart four lanes at a time. The same values as one load a
+  /// corner.
+  PARC_HOT_INLINE void LoadCornerPairs(const std::ptrdiff_t* offsets,
+    const std::ptrdiff_t corner[8], int n, LaneValue c[8][LatticeBlock::Size]) const
+  {
+    using Pair = std::conditional_t<sizeof(T) == 1, std::uint16_t, std::uint32_t>;
+    for (int j = 0; j < n; ++j)
+    {
+      const T* v = this->Data + offsets[j];
+      for (int m = 0; m < 8; m += 2)
+      {
+        Pair pair;
+        std::memcpy(&pair, v + corner[m], sizeof(pair));
+        c[m][j] = static_cast<LaneValue>(pair); // the even corner's bits low (x86)
+      }
+    }
+    constexpr int bits = 8 * sizeof(T);
+    for (int m = 0; m < 8; m += 2)
+    {
+      for (int j = 0; j < n; j += 4)
+      {
+        const __m128i pair = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c[m] + j));
+        const __m128i low = _mm_slli_epi32(pair, 32 - bits);
+        const __m128i high = _mm_slli_epi32(pair, 32 - 2 * bits);
+        const bool sign = std::is_signed<T>::value;
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(c[m] + j),
+          sign ? _mm_srai_epi32(low, 32 - bits) : _mm_srli_epi32(low, 32 - bits));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(c[m + 1] + j),
+          sign ? _mm_srai_epi32(high, 32 - bits) : _mm_srli_epi32(high, 32 - bits));
+      }
+    }
+  }
+#endif
   /// Interpolate for the lanes: c[corner][lane], f[axis][lane].
   static PARC_HOT_INLINE void InterpolateLanes(const LaneValue c[8][LatticeBlock::Size],
     const float f[3][LatticeBlock::Size], int n, float* values)
