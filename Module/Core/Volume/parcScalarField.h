@@ -207,28 +207,8 @@ public:
       block.Offset[j] = block.Cell[0][j] * this->Step[0] + block.Cell[1][j] * this->Step[1] +
         block.Cell[2][j] * this->Step[2];
     }
-    std::ptrdiff_t corner[8];
-    this->CornerOffsets(corner);
     LaneValue c[8][LatticeBlock::Size]; // corner values, lane by lane
-#if defined(__SSE2__)
-    if constexpr (PairedCorners)
-    {
-      if (this->Step[0] == 1)
-      {
-        this->LoadCornerPairs(block.Offset, corner, n, c);
-        InterpolateLanes(c, block.Fractions, n, block.Values);
-        return;
-      }
-    }
-#endif
-    for (int j = 0; j < n; ++j)
-    {
-      const T* v = this->Data + block.Offset[j];
-      for (int m = 0; m < 8; ++m)
-      {
-        c[m][j] = static_cast<LaneValue>(v[corner[m]]);
-      }
-    }
+    this->LoadLaneCorners(block.Offset, n, c);
     InterpolateLanes(c, block.Fractions, n, block.Values);
   }
   /// Interpolates 8 corner values (x fastest) at fractions f.
@@ -369,9 +349,34 @@ private:
     }
 #endif
   }
+  /// The corner values c[corner][lane] of the cells at offsets[lane], lanes 0 .. n - 1.
+  PARC_HOT_INLINE void LoadLaneCorners(
+    const std::ptrdiff_t* offsets, int n, LaneValue c[8][LatticeBlock::Size]) const
+  {
+    std::ptrdiff_t corner[8];
+    this->CornerOffsets(corner);
+#if defined(__SSE2__)
+    if constexpr (PairedCorners)
+    {
+      if (this->Step[0] == 1)
+      {
+        this->LoadCornerPairs(offsets, corner, n, c);
+        return;
+      }
+    }
+#endif
+    for (int j = 0; j < n; ++j)
+    {
+      const T* v = this->Data + offsets[j];
+      for (int m = 0; m < 8; ++m)
+      {
+        c[m][j] = static_cast<LaneValue>(v[corner[m]]);
+      }
+    }
+  }
 #if defined(__SSE2__)
   /// Whether a cell's two x neighbours fit one 32-bit load (8- and 16-bit integers), so
-  /// that SampleLattice may load them together when they are next to each other.
+  /// that LoadLaneCorners may load them together when they are next to each other.
   static constexpr bool PairedCorners = std::is_integral<T>::value && sizeof(T) <= 2;
   /// The corner values c[corner][lane] of the cells at offsets[lane], lanes 0 .. n - 1,
   /// for x neighbours next to each other (Step[0] = 1): each pair of corners (x offsets 0
@@ -392,6 +397,7 @@ private:
       }
     }
     constexpr int bits = 8 * sizeof(T);
+    constexpr bool sign = std::is_signed<T>::value;
     for (int m = 0; m < 8; m += 2)
     {
       for (int j = 0; j < n; j += 4)
@@ -399,7 +405,6 @@ private:
         const __m128i pair = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c[m] + j));
         const __m128i low = _mm_slli_epi32(pair, 32 - bits);
         const __m128i high = _mm_slli_epi32(pair, 32 - 2 * bits);
-        const bool sign = std::is_signed<T>::value;
         _mm_storeu_si128(reinterpret_cast<__m128i*>(c[m] + j),
           sign ? _mm_srai_epi32(low, 32 - bits) : _mm_srli_epi32(low, 32 - bits));
         _mm_storeu_si128(reinterpret_cast<__m128i*>(c[m + 1] + j),
