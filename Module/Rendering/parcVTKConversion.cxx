@@ -3,14 +3,17 @@
 #include "vtkColorTransferFunction.h"
 #include "vtkContourValues.h"
 #include "vtkDataArray.h"
+#include "vtkDataSetAttributes.h"
 #include "vtkImageData.h"
 #include "vtkMatrix4x4.h"
 #include "vtkPiecewiseFunction.h"
+#include "vtkUnsignedCharArray.h"
 #include "vtkVolumeMapper.h"
 #include "vtkVolumeProperty.h"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <new>
 #include <numeric>
 #include <sstream>
@@ -347,6 +350,47 @@ std::string ConvertLabels(vtkVolumeProperty* property, const double range[2],
     out.push_back(std::move(f));
   }
   return fixes;
+}
+
+void OwnedCellBox(vtkImageData* image, double cellOffset, Vec3& lo, Vec3& hi)
+{
+  constexpr double Infinity = std::numeric_limits<double>::infinity();
+  lo = { -Infinity, -Infinity, -Infinity };
+  hi = { Infinity, Infinity, Infinity };
+  vtkUnsignedCharArray* ghosts = image->GetCellGhostArray();
+  int cells[3];
+  image->GetCellDims(cells);
+  const vtkIdType count = vtkIdType{ cells[0] } * cells[1] * cells[2];
+  if (!ghosts || ghosts->GetNumberOfTuples() != count || !image->HasAnyGhostCells())
+  {
+    return;
+  }
+  const unsigned char* flags = ghosts->GetPointer(0);
+  int first[3] = { cells[0], cells[1], cells[2] }, last[3] = { -1, -1, -1 };
+  vtkIdType id = 0;
+  for (int k = 0; k < cells[2]; ++k)
+  {
+    for (int j = 0; j < cells[1]; ++j)
+    {
+      for (int i = 0; i < cells[0]; ++i, ++id)
+      {
+        if (!(flags[id] & vtkDataSetAttributes::DUPLICATECELL))
+        {
+          const int ijk[3] = { i, j, k };
+          for (int a = 0; a < 3; ++a)
+          {
+            first[a] = std::min(first[a], ijk[a]);
+            last[a] = std::max(last[a], ijk[a]);
+          }
+        }
+      }
+    }
+  }
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = first[a] - cellOffset;
+    hi[a] = last[a] + 1 - cellOffset;
+  }
 }
 
 Matrix4 ToMatrix4(vtkMatrix4x4* m)

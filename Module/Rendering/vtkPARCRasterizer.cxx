@@ -164,9 +164,11 @@ struct RenderTarget
   GLenum Format = 0;
   int Size[2] = { 0, 0 };
 
-  /// Binds the framebuffer with attachments renderbuffers of format, (re)allocating
-  /// storage when anything changed; false with a message when it is incomplete.
-  bool Bind(GLenum format, int attachments, int width, int height, std::string& error);
+  /// Binds the framebuffer (through VTK's state cache) with attachments renderbuffers of
+  /// format, (re)allocating storage when anything changed; false with a message when it is
+  /// incomplete.
+  bool Bind(vtkOpenGLState* state, GLenum format, int attachments, int width, int height,
+    std::string& error);
   /// Bytes of renderbuffer storage.
   std::size_t GetMemorySize() const
   {
@@ -196,13 +198,14 @@ private:
   }
 };
 
-bool RenderTarget::Bind(GLenum format, int attachments, int width, int height, std::string& error)
+bool RenderTarget::Bind(vtkOpenGLState* state, GLenum format, int attachments, int width,
+  int height, std::string& error)
 {
   if (!this->Framebuffer)
   {
     glGenFramebuffers(1, &this->Framebuffer);
   }
-  glBindFramebuffer(GL_FRAMEBUFFER, this->Framebuffer);
+  state->vtkglBindFramebuffer(GL_FRAMEBUFFER, this->Framebuffer);
   if (format != this->Format || width != this->Size[0] || height != this->Size[1] ||
     static_cast<int>(this->Renderbuffers.size()) != attachments)
   {
@@ -361,7 +364,8 @@ public:
     int slot, GLenum format, int attachments, int width, int height, std::string& error)
   {
     const auto start = std::chrono::steady_clock::now();
-    const bool bound = this->Targets[slot].Bind(format, attachments, width, height, error);
+    const bool bound = this->Targets[slot].Bind(
+      this->Context->GetState(), format, attachments, width, height, error);
     this->SetUpTime += parc::SecondsSince(start);
     return bound;
   }

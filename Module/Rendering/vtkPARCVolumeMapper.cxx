@@ -1,7 +1,5 @@
 #include "vtkPARCVolumeMapper.h"
 
-#include "parcLightFrusta.h"
-
 #include "parcAccelerationPlan.h"
 #include "parcBufferSources.h"
 #include "parcLightFrusta.h"
@@ -288,6 +286,8 @@ public:
   parc::ScalarField Field;
   /// 0.5 when Field holds cell scalars (its voxels at the cells' centres), else 0.
   double CellOffset = 0.0;
+  /// The box of Field (voxel-index coordinates) that is not ghost cells.
+  parc::Vec3 OwnedLo, OwnedHi;
   int FieldComponent = 0; ///< the component of FieldArray that Field reads
   /// The number of dependent components (2 or 4: colour from the others), or 0.
   int DependentComponents = 0;
@@ -866,6 +866,7 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
                     << " non-finite scalars were replaced: NaN and -inf by the smallest, +inf "
                        "by the largest finite value.");
   }
+  parc::vtk::OwnedCellBox(image, in.CellOffset, in.OwnedLo, in.OwnedHi);
   in.FieldArray = scalars;
   in.FieldTime = time;
   in.FieldComponent = component;
@@ -985,6 +986,8 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
     this->LastSampleDistance = p.SampleDistance;
   }
   ConvertClippingPlanes(this->ClippingPlanes, frame, p.ClipPlanes);
+  p.OwnedLo = in.OwnedLo;
+  p.OwnedHi = in.OwnedHi;
   p.Crop.Enabled = this->Cropping != 0;
   if (p.Crop.Enabled)
   {

@@ -57,6 +57,13 @@
  *   physical coordinates along its axes (origin and spacing; a direction matrix is not
  *   applied to them). A clipped or cropped ray is a shorter ray: no sample outside is taken,
  *   in every acceleration mode alike.
+ * - Ghost cells (a piece of a distributed volume, as ParaView splits one across MPI ranks):
+ *   when the image's cell ghost array marks cells as DUPLICATECELL, rays are cut to the box
+ *   of the other cells, the piece's own, while interpolation and gradients at its border
+ *   read the ghost layer. The pieces' ray-cast images, composited front to back, are the
+ *   whole volume's up to float rounding and to the colour tables, which span each piece's
+ *   own data range, when the pieces hold one ghost layer for point scalars and two for
+ *   cell scalars (their gradients reach one cell further) and no ray terminates early.
  * - Transfer-function nodes with NaN are left out, opacities and colours are clamped to
  *   [0, 1] (one warning per property change); a scalar array shorter than the image, an
  *   unusable SampleDistance or ImageSampleDistance, and an isosurface without a finite iso

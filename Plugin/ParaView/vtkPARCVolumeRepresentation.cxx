@@ -1,7 +1,13 @@
 #include "vtkPARCVolumeRepresentation.h"
 
+#include "vtkDataObject.h"
+#include "vtkInformation.h"
+#include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
 #include "vtkPARCVolumeMapper.h"
+#include "vtkStreamingDemandDrivenPipeline.h"
+
+#include <algorithm>
 
 vtkStandardNewMacro(vtkPARCVolumeRepresentation);
 
@@ -36,6 +42,57 @@ void vtkPARCVolumeRepresentation::SetSampleDistance(double distance)
 void vtkPARCVolumeRepresentation::SetNumberOfThreads(int threads)
 {
   this->GetPARCMapper()->SetNumberOfThreads(threads);
+}
+
+double vtkPARCVolumeRepresentation::GetLastRenderTime()
+{
+  return this->GetPARCMapper()->GetLastRenderTime();
+}
+
+double vtkPARCVolumeRepresentation::GetLastCastingTime()
+{
+  return this->GetPARCMapper()->GetLastCastingTime();
+}
+
+double vtkPARCVolumeRepresentation::GetLastProjectionTime()
+{
+  return this->GetPARCMapper()->GetLastProjectionTime();
+}
+
+vtkIdType vtkPARCVolumeRepresentation::GetLastSampleCount()
+{
+  return this->GetPARCMapper()->GetLastSampleCount();
+}
+
+vtkIdType vtkPARCVolumeRepresentation::GetLastRayCount()
+{
+  return this->GetPARCMapper()->GetLastRayCount();
+}
+
+const char* vtkPARCVolumeRepresentation::GetLastAccelerationModeAsString()
+{
+  return vtkPARCVolumeMapper::GetAccelerationModeAsString(
+    this->GetPARCMapper()->GetLastAccelerationMode());
+}
+
+int vtkPARCVolumeRepresentation::RequestUpdateExtent(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  if (!this->Superclass::RequestUpdateExtent(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  vtkInformation* array = this->GetInputArrayInformation(0);
+  const bool cells = array && array->Has(vtkDataObject::FIELD_ASSOCIATION()) &&
+    array->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
+  {
+    vtkInformation* in = inputVector[0]->GetInformationObject(i);
+    const int levels = cells ? 2 : 1;
+    const auto key = vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS();
+    in->Set(key, std::max(levels, in->Has(key) ? in->Get(key) : 0));
+  }
+  return 1;
 }
 
 void vtkPARCVolumeRepresentation::PrintSelf(ostream& os, vtkIndent indent)

@@ -38,11 +38,30 @@ public:
   ///@}
 
   /**
-   * The mapper, for its statistics of the last render.
+   * The mapper.
    */
   vtkPARCVolumeMapper* GetPARCMapper();
 
+  ///@{
+  /**
+   * The mapper's statistics of its last render on this process (see vtkPARCVolumeMapper).
+   */
+  double GetLastRenderTime();
+  double GetLastCastingTime();
+  double GetLastProjectionTime();
+  vtkIdType GetLastSampleCount();
+  vtkIdType GetLastRayCount();
+  const char* GetLastAccelerationModeAsString();
+  ///@}
+
 protected:
+  /**
+   * Asks for the ghost cells the mapper needs at a piece's border when the volume is
+   * split across ranks: one layer for point scalars, two for cell scalars (their
+   * gradients at the border reach one cell further).
+   */
+  int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
   vtkPARCVolumeRepresentation();
   ~vtkPARCVolumeRepresentation() override;
 

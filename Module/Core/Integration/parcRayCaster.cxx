@@ -77,16 +77,25 @@ long FirstSampleAfter(double t, std::size_t from, double dt, std::size_t member)
 }
 
 /// The ray-parameter interval of the ray (origin o, direction d in voxel-index
-/// coordinates) inside the field's box, [ray.TMin, ray.TMax] and the clipping planes.
+/// coordinates) inside the field's box, the owned box, [ray.TMin, ray.TMax] and the
+/// clipping planes.
 bool ClipToField(const ScalarField& field, const CastParameters& p, const Vec3& o,
   const Vec3& d, const Ray& ray, double& tEnter, double& tExit)
 {
   const int* dims = field.GetDimensions();
+  Vec3 lo, hi;
+  for (int a = 0; a < 3; ++a)
+  {
+    lo[a] = std::max(0.0, p.OwnedLo[a]);
+    hi[a] = std::min(dims[a] - 1.0, p.OwnedHi[a]);
+    if (!(lo[a] <= hi[a]))
+    {
+      return false; // owns nothing
+    }
+  }
   tEnter = ray.TMin;
   tExit = ray.TMax;
-  return ClipToBox(o, d, { 0.0, 0.0, 0.0 }, { dims[0] - 1.0, dims[1] - 1.0, dims[2] - 1.0 },
-           tEnter, tExit) &&
-    ClipToPlanes(ray, p.ClipPlanes, tEnter, tExit);
+  return ClipToBox(o, d, lo, hi, tEnter, tExit) && ClipToPlanes(ray, p.ClipPlanes, tEnter, tExit);
 }
 }
 

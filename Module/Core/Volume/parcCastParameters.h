@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <limits>
 #include <vector>
 
 namespace parc
@@ -123,6 +124,13 @@ struct CastParameters
   /// ... and to the rendered cropping regions (voxel-index coordinates). A sample outside
   /// them is never taken, whatever the acceleration.
   Cropping Crop;
+  /// ... and to this box of voxel-index coordinates, as well as to the field's own box:
+  /// the cells a renderer owns when the field also holds a layer of ghost cells, the
+  /// neighbouring pieces' cells that gradients and interpolation at its border read.
+  Vec3 OwnedLo{ -std::numeric_limits<double>::infinity(),
+    -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity() };
+  Vec3 OwnedHi{ std::numeric_limits<double>::infinity(),
+    std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
 };
 
 /// Whether every light of p can shade from quantized normals: directional, casting no
