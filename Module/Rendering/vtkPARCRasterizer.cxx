@@ -228,12 +228,12 @@ bool RenderTarget::Bind(vtkOpenGLState* state, GLenum format, int attachments, i
     this->Size[0] = width;
     this->Size[1] = height;
   }
-  std::array<GLenum, MaxAttachments> buffers;
+  std::array<unsigned int, MaxAttachments> buffers;
   for (int a = 0; a < attachments; ++a)
   {
     buffers[a] = GL_COLOR_ATTACHMENT0 + a;
   }
-  glDrawBuffers(attachments, buffers.data());
+  state->vtkglDrawBuffers(static_cast<unsigned int>(attachments), buffers.data());
   const GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE)
   {
@@ -749,7 +749,7 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
     state->vtkglBlendEquation(GL_MIN);
     in.Draw(in.DepthProgram, gpu, indexToWorld, view, parc::Vec3());
     nearFar.resize(2 * static_cast<std::size_t>(w) * h);
-    glReadBuffer(GL_COLOR_ATTACHMENT0);
+    state->vtkglReadBuffer(GL_COLOR_ATTACHMENT0);
     glReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, nearFar.data());
     return true;
   });
@@ -799,7 +799,7 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
       in.Draw(in.PlaneProgram, gpu, indexToWorld, view, skipNormal);
       for (int a = 0; a < attachments; ++a)
       {
-        glReadBuffer(GL_COLOR_ATTACHMENT0 + a);
+        state->vtkglReadBuffer(GL_COLOR_ATTACHMENT0 + a);
         glReadPixels(0, 0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
         const int word0 = 4 * (pass * MaxAttachments + a);
         for (std::size_t p = 0; p < pixels; ++p)

@@ -1,6 +1,7 @@
 #include "vtkPARCVolumeRepresentation.h"
 
 #include "vtkDataObject.h"
+#include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
@@ -91,6 +92,34 @@ int vtkPARCVolumeRepresentation::RequestUpdateExtent(
     const int levels = cells ? 2 : 1;
     const auto key = vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS();
     in->Set(key, std::max(levels, in->Has(key) ? in->Get(key) : 0));
+  }
+  return 1;
+}
+
+int vtkPARCVolumeRepresentation::RequestData(
+  vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
+{
+  vtkSmartPointer<vtkImageData> piece;
+  vtkImageData* input = inputVector[0]->GetNumberOfInformationObjects() == 1
+    ? vtkImageData::GetData(inputVector[0], 0)
+    : nullptr;
+  if (input && input->HasAnyGhostCells())
+  {
+    piece.TakeReference(input->NewInstance()); // a vtkUniformGrid stays one
+    piece->ShallowCopy(input);
+  }
+  if (!this->Superclass::RequestData(request, inputVector, outputVector))
+  {
+    return 0;
+  }
+  if (piece)
+  {
+    if (this->UseSeparateOpacityArray)
+    {
+      this->AppendOpacityComponent(piece);
+    }
+    this->Cache = piece;
+    this->VolumeMapper->SetInputData(piece);
   }
   return 1;
 }

@@ -62,6 +62,13 @@ protected:
    */
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
+  /**
+   * The superclass crops a piece's ghost cells away (ParaView's own volume mappers do not
+   * read them) and keeps the cropped bounds for ordering the ranks' images; the PARC mapper
+   * is given the piece with its ghost cells instead, and casts in the piece's own cells.
+   */
+  int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
+
   vtkPARCVolumeRepresentation();
   ~vtkPARCVolumeRepresentation() override;
 
