@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # Sets up and builds, runs every test (ctest under Xvfb), then the core unit tests and the
 # C++ image and rendering tests again in a build with AddressSanitizer and
-# UndefinedBehaviorSanitizer. Exits non-zero on any failure.
+# UndefinedBehaviorSanitizer, then the ParaView plugin's tests (scripts/paraview.sh; said
+# and skipped only when ParaView cannot be installed beside VTK). Exits non-zero on any
+# failure.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 "$here/scripts/setup.sh"
@@ -24,3 +26,13 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
   xvfb-run -a -s "-screen 0 1280x1024x24" \
   ctest --test-dir "$asan" --output-on-failure -L "image|rendering" "${retry[@]}"
+
+echo "== the ParaView plugin (scripts/paraview.sh)"
+status=0
+"$here/scripts/paraview.sh" || status=$?
+if [ "$status" = 77 ]; then
+  echo "== SKIPPED the ParaView plugin's tests: ParaView cannot be installed beside VTK here" \
+    "(reason above)"
+elif [ "$status" != 0 ]; then
+  exit "$status"
+fi

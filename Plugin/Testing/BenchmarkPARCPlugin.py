@@ -80,8 +80,9 @@ try:
 except (OSError, StopIteration):
     pass
 print("\n### %d rank%s\n" % (ranks, "" if ranks == 1 else "s"))
-print("- machine: %s, %d cores, %s; ParaView %s (software OpenGL: Mesa llvmpipe)"
-      % (model, cores, platform.platform(), servermanager.vtkSMProxyManager.GetParaViewSourceVersion()))
+print("- machine: %s, %d cores, %s; %s"
+      % (model, cores, platform.platform(),
+         servermanager.vtkSMProxyManager.GetParaViewSourceVersion()))
 print("- data: %s (composite, shaded, opacity 0 below 60, 0.6 at 100, 1 at 255)" % DATA_NAME)
 print("- view %dx%d, camera turned %.0f degrees a frame, %d frames a mapper after one untimed,"
       " interleaved; PARC with %d thread%s a rank" % (SIZE, SIZE, STEP_DEGREES, rounds, threads,
