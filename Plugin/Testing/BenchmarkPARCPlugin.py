@@ -12,8 +12,10 @@ import sys
 import time
 
 from paraview.simple import (ColorBy, CreateRenderView, GetColorTransferFunction,
-                             GetOpacityTransferFunction, ImageReader, LoadPlugin, Render, Show)
+                             GetOpacityTransferFunction, LoadPlugin, Render, Show)
 from paraview import servermanager
+
+from parc_pvtesting import read_raw_volume
 
 plugin, data_dir = sys.argv[1:3]
 rounds = int(sys.argv[3]) if len(sys.argv) > 3 else 7
@@ -29,11 +31,7 @@ threads = max(1, cores // ranks)  # each rank's share of the cores
 SIZE = 500
 STEP_DEGREES = 5.0
 
-reader = ImageReader(FileNames=[data])
-reader.DataScalarType = "unsigned char"
-reader.DataExtent = [0, 255, 0, 255, 0, 255]
-reader.ScalarArrayName = "density"
-reader.UpdatePipeline()
+reader = read_raw_volume(data, (256, 256, 256))
 colors = GetColorTransferFunction("density")
 colors.RGBPoints = [0, 0.3, 0.2, 0.1, 90, 0.95, 0.75, 0.55, 255, 1, 1, 1]
 opacity = GetOpacityTransferFunction("density")
