@@ -57,10 +57,10 @@ constexpr double LightKeyTolerance = 1e-9;
 constexpr double MaxSamplesPerDiagonal = 1e7;
 
 /// The renderer's lights that are on, in the render frame (origin at frame). A light casts
-/// shadows (its ShadowAttenuation) only when the renderer uses shadows.
-void ConvertLights(vtkRenderer* ren, const parc::Vec3& frame, std::vector<parc::Light>& lights)
+/// shadows (its ShadowAttenuation) only when shadows is true.
+void ConvertLights(
+  vtkRenderer* ren, const parc::Vec3& frame, bool shadows, std::vector<parc::Light>& lights)
 {
-  const bool shadows = ren->GetUseShadows() != 0;
   lights.clear();
   vtkLightCollection* collection = ren->GetLights();
   vtkCollectionSimpleIterator it;
@@ -537,6 +537,22 @@ const char* vtkPARCVolumeMapper::GetShadingModelAsString(int model)
 }
 
 //------------------------------------------------------------------------------
+const char* vtkPARCVolumeMapper::GetShadowModeAsString(int mode)
+{
+  switch (mode)
+  {
+    case SHADOWS_FROM_RENDERER:
+      return "FromRenderer";
+    case SHADOWS_OFF:
+      return "Off";
+    case SHADOWS_ON:
+      return "On";
+    default:
+      return "Unknown";
+  }
+}
+
+//------------------------------------------------------------------------------
 void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   // The phases: the volumes' fields and ray functions; then for the camera the ray image's
@@ -996,7 +1012,9 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   }
   if (p.Shade)
   {
-    ConvertLights(ren, frame, p.Lights);
+    const bool shadows = this->ShadowMode == SHADOWS_ON ||
+      (this->ShadowMode == SHADOWS_FROM_RENDERER && ren->GetUseShadows());
+    ConvertLights(ren, frame, shadows, p.Lights);
   }
   else
   {
@@ -1921,6 +1939,7 @@ void vtkPARCVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AccelerationMode: " << GetAccelerationModeAsString(this->AccelerationMode)
      << "\n";
   os << indent << "ShadingModel: " << GetShadingModelAsString(this->ShadingModel) << "\n";
+  os << indent << "ShadowMode: " << GetShadowModeAsString(this->ShadowMode) << "\n";
   os << indent << "SupercellSize: " << this->SupercellSize[0] << ", " << this->SupercellSize[1]
      << ", " << this->SupercellSize[2] << "\n";
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";

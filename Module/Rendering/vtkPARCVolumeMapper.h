@@ -73,8 +73,8 @@
  *   with each light's diffuse colour for the diffuse and its specular colour for the
  *   specular term (both times its intensity).
  *
- * Shadows (paper section 5): when the renderer uses shadows (vtkRenderer::UseShadowsOn) and
- * a light has a ShadowAttenuation > 0 (vtkLight's default is 1), every shaded contribution
+ * Shadows (paper section 5): when the renderer uses shadows (vtkRenderer::UseShadowsOn, or
+ * ShadowMode On) and a light has a ShadowAttenuation > 0 (vtkLight's default is 1), every shaded contribution
  * (a composite sample with non-zero opacity, an isosurface crossing) that the light lights
  * is lit only as far as the light gets through the volumes: the light's diffuse and
  * specular terms are scaled by 1 - ShadowAttenuation (1 - T), where T is the
@@ -201,6 +201,30 @@ public:
   static const char* GetShadingModelAsString(int model);
   /** The shading model port 0's last render used (Exact when it was not shaded). */
   int GetLastShadingModel();
+  ///@}
+
+  enum ShadowModes
+  {
+    SHADOWS_FROM_RENDERER = 0,
+    SHADOWS_OFF = 1,
+    SHADOWS_ON = 2
+  };
+
+  ///@{
+  /**
+   * Whether lights with a ShadowAttenuation > 0 cast shadows through the volumes (see
+   * "Shadows" above): as the renderer says (vtkRenderer::UseShadows), the default; never;
+   * or always, whatever the renderer says, for applications whose shadow switch does not
+   * reach the renderer (ParaView's "PARC Volume" representation sets it from its
+   * PARCShadows property). Only the volumes cast these shadows; UseShadows alone also turns
+   * on VTK's shadow maps for opaque geometry.
+   */
+  vtkSetClampMacro(ShadowMode, int, SHADOWS_FROM_RENDERER, SHADOWS_ON);
+  vtkGetMacro(ShadowMode, int);
+  void SetShadowModeToFromRenderer() { this->SetShadowMode(SHADOWS_FROM_RENDERER); }
+  void SetShadowModeToOff() { this->SetShadowMode(SHADOWS_OFF); }
+  void SetShadowModeToOn() { this->SetShadowMode(SHADOWS_ON); }
+  static const char* GetShadowModeAsString(int mode);
   ///@}
 
   ///@{
@@ -577,6 +601,7 @@ protected:
 
   int AccelerationMode = ACCELERATION_AUTO;
   int ShadingModel = SHADING_EXACT;
+  int ShadowMode = SHADOWS_FROM_RENDERER;
   double SupercellSize[3] = { 2.0, 2.0, 2.0 };
   double SampleDistance = 0.0;
   double ImageSampleDistance = 1.0;

@@ -45,6 +45,12 @@ void vtkPARCVolumeRepresentation::SetNumberOfThreads(int threads)
   this->GetPARCMapper()->SetNumberOfThreads(threads);
 }
 
+void vtkPARCVolumeRepresentation::SetShadows(bool shadows)
+{
+  this->GetPARCMapper()->SetShadowMode(
+    shadows ? vtkPARCVolumeMapper::SHADOWS_ON : vtkPARCVolumeMapper::SHADOWS_FROM_RENDERER);
+}
+
 double vtkPARCVolumeRepresentation::GetLastRenderTime()
 {
   return this->GetPARCMapper()->GetLastRenderTime();
@@ -68,6 +74,11 @@ vtkIdType vtkPARCVolumeRepresentation::GetLastSampleCount()
 vtkIdType vtkPARCVolumeRepresentation::GetLastRayCount()
 {
   return this->GetPARCMapper()->GetLastRayCount();
+}
+
+vtkIdType vtkPARCVolumeRepresentation::GetLastShadowRayCount()
+{
+  return this->GetPARCMapper()->GetLastShadowRayCount();
 }
 
 const char* vtkPARCVolumeRepresentation::GetLastAccelerationModeAsString()

@@ -38,6 +38,12 @@ public:
   ///@}
 
   /**
+   * Whether the view's lights cast shadows through the volume (ShadowMode On; off:
+   * FromRenderer, as ParaView's own shadow switch does not reach the renderer).
+   */
+  void SetShadows(bool shadows);
+
+  /**
    * The mapper.
    */
   vtkPARCVolumeMapper* GetPARCMapper();
@@ -51,6 +57,7 @@ public:
   double GetLastProjectionTime();
   vtkIdType GetLastSampleCount();
   vtkIdType GetLastRayCount();
+  vtkIdType GetLastShadowRayCount();
   const char* GetLastAccelerationModeAsString();
   ///@}
 

@@ -90,7 +90,8 @@ def statistics():
     """The PARC statistics of rank 0's last render."""
     display.UpdatePropertyInformation()
     return {name: display.GetPropertyValue("PARCLast" + name)
-            for name in ("SampleCount", "RayCount", "AccelerationMode", "RenderTime")}
+            for name in ("SampleCount", "RayCount", "ShadowRayCount", "AccelerationMode",
+                         "RenderTime")}
 
 
 def compare(a, b):
@@ -155,6 +156,15 @@ shaded_auto, _ = shot("parc-volume-shaded-auto", "PARC Volume", PARCAcceleration
 own_shaded, _ = shot("paraview-volume-shaded", "Volume")
 check(shaded_auto == shaded and shaded != parc_none,
       "shaded PARC Volume gives the same pixels with acceleration None and Auto")
+check(statistics()["ShadowRayCount"] == 0, "no shadow ray without PARCShadows")
+shadowed, _ = shot("parc-volume-shadows", "PARC Volume", PARCShadows=1,
+                   PARCAccelerationMode="None")
+shadow_rays = statistics()["ShadowRayCount"]
+shadowed_auto, _ = shot("parc-volume-shadows-auto", "PARC Volume", PARCAccelerationMode="Auto")
+check(shadow_rays > 0 and shadowed != shaded and shadowed_auto == shadowed,
+      "PARCShadows casts %d shadow rays on rank 0 and gives the same pixels with acceleration "
+      "None and Auto" % shadow_rays)
+display.PARCShadows = 0
 if one_rank_dir:
     def against_one_rank(name, image):
         return compare(read_png(os.path.join(one_rank_dir, name + "-1.png"))[0], image)

@@ -81,7 +81,18 @@ void CheckShadows(vtkRenderWindow* window, vtkRenderer* renderer, vtkPARCVolumeM
   light->SetPosition(-60, 80, 40);
   renderer->SetUseShadows(0);
   expectNone("with the renderer's shadows off");
+  // ShadowMode On casts them without the renderer's switch, and the same image as with it.
+  mapper->SetShadowModeToOn();
+  window->Render();
+  const std::vector<float> forced = parctest::RayImage(mapper);
+  Expect(mapper->GetLastShadowRayCount() > 0, "shadow rays with ShadowMode On");
   renderer->SetUseShadows(1);
+  mapper->SetShadowModeToOff();
+  expectNone("with ShadowMode Off");
+  mapper->SetShadowModeToFromRenderer();
+  window->Render();
+  Expect(parctest::RayImage(mapper) == forced,
+    "ShadowMode On gives the image the renderer's shadows give");
   property->ShadeOff();
   light->SetPosition(60, -80, 40);
   expectNone("without shading");
