@@ -10,7 +10,8 @@
 # (libvtk9-dev, python3-vtk9) stays installed and working.
 #
 # Usage: scripts/paraview.sh [--benchmark] [build-dir]   (default: build-paraview)
-#   Runs the pvbatch test on 1 rank, then on 2 ranks (mpiexec) against the 1-rank image.
+#   Runs the test in pvbatch on 1 rank, on 2 ranks (mpiexec) against the 1-rank images, and
+#   in pvpython connected to a pvserver on 2 ranks.
 #   --benchmark: then times PARC beside ParaView's own volume mapper on 1 and 2 ranks
 #   (out/paraview-benchmark.md).
 # Exits 77, saying why, when ParaView cannot be installed beside the VTK stack (no package,
@@ -77,6 +78,10 @@ for f in $(named bin); do
     if [ -e "$dir/$f" ]; then ln -s "$dir/$f" "$prefix/bin/$f"; break; fi
   done
 done
+# pvpython is a copy: it then loads ParaView's libraries through the prefix (its RUNPATH is
+# $ORIGIN/../lib/...), and its Python finds the prefix's vtkmodules before VTK 9.1's.
+rm -f "$prefix/bin/pvpython"
+cp -L "$build/deb/root/usr/bin/pvpython" "$prefix/bin/pvpython"
 
 echo "== building the plugin in $build/plugin"
 cmake -S "$here/Plugin" -B "$build/plugin" -G Ninja -DCMAKE_BUILD_TYPE=Release \
@@ -93,21 +98,23 @@ pv() { # ranks script arguments...: pvbatch under Xvfb, on that many MPI ranks
   PYTHONPATH="$prefix/lib/python3/dist-packages" xvfb-run -a -s "-screen 0 1280x1024x24" \
     mpiexec --allow-run-as-root --oversubscribe -np "$ranks" pvbatch "$@"
 }
-test_run() { # ranks [one-rank output]: the test, failing on its checks and on any warning or
-  # error ParaView logs (a GL state the mapper left behind VTK's state cache shows there).
-  # Now and then Xvfb refuses a window ("bad X server connection"): then it runs once more.
-  local log="$output/test-$1.log" attempt status
+test="$here/Plugin/Testing/TestPARCPlugin.py"
+checked() { # name command...: runs the test command, failing on its checks and on any
+  # warning or error ParaView logs (a GL state the mapper left behind VTK's state cache shows
+  # there). Now and then Xvfb refuses a window ("bad X server connection"): then it runs
+  # once more.
+  local log="$output/$1.log" attempt status
+  shift
   mkdir -p "$output"
   for attempt in 1 2; do
     status=0
-    pv "$1" "$here/Plugin/Testing/TestPARCPlugin.py" "$plugin" "$here/../shared/data" \
-      "$output" "${@:2}" >"$log" 2>&1 || status=$?
+    "$@" >"$log" 2>&1 || status=$?
     grep -q "bad X server connection" "$log" || break
     echo "(Xvfb refused a window; running again)"
   done
   cat "$log"
   if [ "$status" != 0 ]; then
-    echo "FAILED: the pvbatch test on $1 rank(s) exited with status $status" >&2
+    echo "FAILED: $(basename "$log" .log) exited with status $status" >&2
     exit 1
   fi
   if grep -qE ' (WARN|ERR)\| |X Error' "$log"; then
@@ -115,10 +122,33 @@ test_run() { # ranks [one-rank output]: the test, failing on its checks and on a
     exit 1
   fi
 }
+client_server() { # pvpython connected to 2 pvserver ranks
+  local port=$((20000 + RANDOM % 20000)) server_log="$output/pvserver.log" server
+  PYTHONPATH="$prefix/lib/python3/dist-packages" xvfb-run -a -s "-screen 0 1280x1024x24" \
+    mpiexec --allow-run-as-root --oversubscribe -np 2 pvserver --server-port="$port" \
+    >"$server_log" 2>&1 &
+  server=$!
+  for _ in $(seq 60); do
+    grep -q "Accepting connection" "$server_log" && break
+    sleep 1
+  done
+  local status=0
+  xvfb-run -a -s "-screen 0 1280x1024x24" "$prefix/bin/pvpython" "$test" "$plugin" \
+    "$here/../shared/data" "$output/client-server" --one-rank "$output" \
+    --server "localhost:$port" || status=$?
+  if [ "$status" != 0 ]; then # the server may still wait for a client
+    pkill -f "pvserver --server-port=$port" || true
+  fi
+  wait "$server" || true # the server ends with the connection
+  cat "$server_log"
+  return "$status"
+}
 echo "== pvbatch test, 1 rank"
-test_run 1
+checked pvbatch-1 pv 1 "$test" "$plugin" "$here/../shared/data" "$output"
 echo "== pvbatch test, 2 ranks"
-test_run 2 "$output"
+checked pvbatch-2 pv 2 "$test" "$plugin" "$here/../shared/data" "$output" --one-rank "$output"
+echo "== pvpython test, connected to pvserver on 2 ranks"
+checked pvserver-2 client_server
 
 if [ "$benchmark" = 1 ]; then
   mkdir -p "$here/out"
