@@ -11,7 +11,7 @@
 #
 # Usage: scripts/paraview.sh [--benchmark] [build-dir]   (default: build-paraview)
 #   Runs the test in pvbatch on 1 rank, on 2 ranks (mpiexec) against the 1-rank images, and
-#   in pvpython connected to a pvserver on 2 ranks.
+#   in pvpython connected to a pvserver on 2 ranks, then loads the plugin in the GUI.
 #   --benchmark: then times PARC beside ParaView's own volume mapper on 1 and 2 ranks
 #   (out/paraview-benchmark.md).
 # Exits 77, saying why, when ParaView cannot be installed beside the VTK stack (no package,
@@ -149,6 +149,19 @@ echo "== pvbatch test, 2 ranks"
 checked pvbatch-2 pv 2 "$test" "$plugin" "$here/../shared/data" "$output" --one-rank "$output"
 echo "== pvpython test, connected to pvserver on 2 ranks"
 checked pvserver-2 client_server
+gui() { # the GUI runs a script and exits; the script writes its result to a file
+  local result="$output/gui-result.txt"
+  rm -f "$result"
+  PARC_PLUGIN="$plugin" PARC_DATA_DIR="$here/../shared/data" PARC_RESULT="$result" \
+    PYTHONPATH="$prefix/lib/python3/dist-packages:$here/Plugin/Testing" \
+    xvfb-run -a -s "-screen 0 1280x1024x24" paraview --script="$here/Plugin/Testing/TestPARCPluginGUI.py" --exit
+  [ -e "$result" ] || { echo "FAILED: the GUI did not run the script" >&2; return 1; }
+  cat "$result"
+  echo
+  [ "$(cat "$result")" = ok ]
+}
+echo "== the GUI (paraview --script)"
+checked gui gui
 
 if [ "$benchmark" = 1 ]; then
   mkdir -p "$here/out"
