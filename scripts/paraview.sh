@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The ParaView plugin (Plugin/): installs ParaView 5.11 beside the VTK 9.1 stack, builds
-# the plugin against ParaView's own VTK and runs its pvbatch test.
+# the plugin against ParaView's own VTK and runs its tests (pvbatch, pvpython with pvserver,
+# the GUI).
 #
 # Debian's python3-paraview (pvpython, ParaView's Python modules) conflicts with
 # python3-vtk9, so it is not installed: its files are unpacked into a private prefix
@@ -154,7 +155,8 @@ gui() { # the GUI runs a script and exits; the script writes its result to a fil
   rm -f "$result"
   PARC_PLUGIN="$plugin" PARC_DATA_DIR="$here/../shared/data" PARC_RESULT="$result" \
     PYTHONPATH="$prefix/lib/python3/dist-packages:$here/Plugin/Testing" \
-    xvfb-run -a -s "-screen 0 1280x1024x24" paraview --script="$here/Plugin/Testing/TestPARCPluginGUI.py" --exit
+    xvfb-run -a -s "-screen 0 1280x1024x24" \
+    paraview --script="$here/Plugin/Testing/TestPARCPluginGUI.py" --exit
   [ -e "$result" ] || { echo "FAILED: the GUI did not run the script" >&2; return 1; }
   cat "$result"
   echo

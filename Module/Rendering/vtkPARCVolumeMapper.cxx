@@ -10,6 +10,7 @@
 #include "vtkPARCRasterizer.h"
 
 #include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
 #include "vtkCommand.h"
 #include "vtkDataArray.h"
 #include "vtkFloatArray.h"
@@ -892,6 +893,29 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
 }
 
 //------------------------------------------------------------------------------
+void vtkPARCVolumeMapper::ColorTableRange(
+  vtkVolumeProperty* property, int component, double range[2]) const
+{
+  if (this->ColorRangeType != NATIVE)
+  {
+    return;
+  }
+  double native[2] = { 0.0, 0.0 };
+  if (property->GetColorChannels(component) == 1)
+  {
+    property->GetGrayTransferFunction(component)->GetRange(native);
+  }
+  else
+  {
+    property->GetRGBTransferFunction(component)->GetRange(native);
+  }
+  if (native[0] < native[1] && std::isfinite(native[0]) && std::isfinite(native[1]))
+  {
+    std::copy_n(native, 2, range);
+  }
+}
+
+//------------------------------------------------------------------------------
 bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren, vtkVolume* vol)
 {
   parc::CastParameters& p = in.Parameters;
@@ -914,6 +938,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   {
     in.FieldArray->GetRange(colorRange, 0);
   }
+  this->ColorTableRange(property, 0, colorRange);
   if (!in.Components.empty() &&
     !(p.Blend == parc::BlendMode::Composite || p.Blend == parc::BlendMode::MaximumIntensity ||
       p.Blend == parc::BlendMode::MinimumIntensity))
@@ -1052,7 +1077,9 @@ bool vtkPARCVolumeMapper::PrepareComponents(
     parc::CastParameters& q = component.Parameters;
     q = in.Parameters;
     const double* range = component.Field.GetRange();
-    const std::string own = parc::vtk::ConvertProperty(property, range, q, c);
+    double colorRange[2] = { range[0], range[1] };
+    this->ColorTableRange(property, c, colorRange);
+    const std::string own = parc::vtk::ConvertProperty(property, colorRange, q, c);
     if (!own.empty())
     {
       parc::vtk::AppendSentence(fixes, "Component " + std::to_string(c) + ": " + own);
@@ -1940,6 +1967,8 @@ void vtkPARCVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "ShadingModel: " << GetShadingModelAsString(this->ShadingModel) << "\n";
   os << indent << "ShadowMode: " << GetShadowModeAsString(this->ShadowMode) << "\n";
+  os << indent << "ColorRangeType: " << (this->ColorRangeType == NATIVE ? "NATIVE" : "SCALAR")
+     << "\n";
   os << indent << "SupercellSize: " << this->SupercellSize[0] << ", " << this->SupercellSize[1]
      << ", " << this->SupercellSize[2] << "\n";
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";

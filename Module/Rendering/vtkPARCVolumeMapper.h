@@ -41,7 +41,8 @@
  *   that is not a vtkImageData (a vtkRectilinearGrid, say), with vtkResampleToImage named
  *   as the way out. A 2-D transfer function (vtkVolumeProperty TF_2D) warns once: the 1-D
  *   functions are used.
- * - The colour function is sampled into a 1024-entry table over the data range; opacity
+ * - The colour function is sampled into a 1024-entry table over the data range (or its
+ *   own range: SetColorRangeType); opacity
  *   functions are evaluated exactly from their nodes (segments with a non-default midpoint
  *   or sharpness are subdivided into 32 linear pieces).
  * - Additive and average-intensity blending give grey images, as VTK defines them (see
@@ -61,9 +62,10 @@
  *   when the image's cell ghost array marks cells as DUPLICATECELL, rays are cut to the box
  *   of the other cells, the piece's own, while interpolation and gradients at its border
  *   read the ghost layer. The pieces' ray-cast images, composited front to back, are the
- *   whole volume's up to float rounding and to the colour tables, which span each piece's
- *   own data range, when the pieces hold one ghost layer for point scalars and two for
- *   cell scalars (their gradients reach one cell further) and no ray terminates early.
+ *   whole volume's up to float rounding when the pieces hold one ghost layer for point
+ *   scalars and two for cell scalars (their gradients reach one cell further), no ray
+ *   terminates early, and the colour tables do not follow each piece's own data range
+ *   (ColorRangeType NATIVE).
  * - Transfer-function nodes with NaN are left out, opacities and colours are clamped to
  *   [0, 1] (one warning per property change); a scalar array shorter than the image, an
  *   unusable SampleDistance or ImageSampleDistance, and an isosurface without a finite iso
@@ -74,17 +76,18 @@
  *   specular term (both times its intensity).
  *
  * Shadows (paper section 5): when the renderer uses shadows (vtkRenderer::UseShadowsOn, or
- * ShadowMode On) and a light has a ShadowAttenuation > 0 (vtkLight's default is 1), every shaded contribution
- * (a composite sample with non-zero opacity, an isosurface crossing) that the light lights
- * is lit only as far as the light gets through the volumes: the light's diffuse and
- * specular terms are scaled by 1 - ShadowAttenuation (1 - T), where T is the
- * transmittance towards the light along a shadow ray through all the rendered volumes
- * (composite volumes absorb with their corrected opacity, isosurfaces block with the
- * opacity of their iso value; maximum, minimum, average and additive volumes cast no
+ * ShadowMode On) and a light has a ShadowAttenuation > 0 (vtkLight's default is 1), every
+ * shaded contribution (a composite sample with non-zero opacity, an isosurface crossing)
+ * that the light lights is lit only as far as the light gets through the volumes: the
+ * light's diffuse and specular terms are scaled by 1 - ShadowAttenuation (1 - T), where T
+ * is the transmittance towards the light along a shadow ray through all the rendered
+ * volumes (composite volumes absorb with their corrected opacity, isosurfaces block with
+ * the opacity of their iso value; maximum, minimum, average and additive volumes cast no
  * shadow). Each volume samples a shadow ray on its own lattice from the shaded point
  * (k dt, k >= 1), whatever the acceleration, so the shadowed image is as exact as the
  * unshadowed one. Opaque geometry of the renderer casts no shadow on the volumes. Without
- * both switches no shadow ray is cast (GetLastShadowRayCount is 0).
+ * both switches (shadows on, a shadow-casting light) no shadow ray is cast
+ * (GetLastShadowRayCount is 0).
  *
  * Several volumes: with a vtkPARCMultiVolume prop, the mapper renders one volume per
  * input port (SetInputConnection(port, ...), ports 0 to MaxInputPorts - 1), each with the
@@ -225,6 +228,25 @@ public:
   void SetShadowModeToOff() { this->SetShadowMode(SHADOWS_OFF); }
   void SetShadowModeToOn() { this->SetShadowMode(SHADOWS_ON); }
   static const char* GetShadowModeAsString(int mode);
+  ///@}
+
+  enum TFRangeType
+  {
+    SCALAR = 0,
+    NATIVE = 1
+  };
+
+  ///@{
+  /**
+   * The scalar range the colour function is sampled over (into its 1024-entry table), as
+   * vtkGPUVolumeRayCastMapper::SetColorRangeType has it: SCALAR, the default, the data's
+   * range; NATIVE, the colour function's own range (vtkColorTransferFunction::GetRange, or
+   * the gray function's), values outside it taking its end colours. NATIVE makes pieces of
+   * a distributed volume, whose data ranges differ, use the same table (ParaView's "PARC
+   * Volume" sets it). Opacity functions are evaluated exactly either way.
+   */
+  vtkSetClampMacro(ColorRangeType, int, SCALAR, NATIVE);
+  vtkGetMacro(ColorRangeType, int);
   ///@}
 
   ///@{
@@ -578,6 +600,9 @@ protected:
    * the renderer's lights into the caster's parameters.
    */
   bool PrepareParameters(vtkVolumeState& volume, vtkRenderer* ren, vtkVolume* prop);
+  /// The range the colour table of a component spans (ColorRangeType): range, the data's,
+  /// or the colour function's own when NATIVE asks for it and it has one.
+  void ColorTableRange(vtkVolumeProperty* property, int component, double range[2]) const;
   /// The parameters and casters of the independent components after the first (from the
   /// first one's, prepared), given to the first one's caster; their transfer-function
   /// fixes are added to fixes.
@@ -602,6 +627,7 @@ protected:
   int AccelerationMode = ACCELERATION_AUTO;
   int ShadingModel = SHADING_EXACT;
   int ShadowMode = SHADOWS_FROM_RENDERER;
+  int ColorRangeType = SCALAR;
   double SupercellSize[3] = { 2.0, 2.0, 2.0 };
   double SampleDistance = 0.0;
   double ImageSampleDistance = 1.0;

@@ -15,7 +15,11 @@ vtkStandardNewMacro(vtkPARCVolumeRepresentation);
 vtkPARCVolumeRepresentation::vtkPARCVolumeRepresentation()
 {
   // The superclass connects whatever mapper VolumeMapper holds when it renders.
-  this->VolumeMapper = vtkSmartPointer<vtkPARCVolumeMapper>::New();
+  auto mapper = vtkSmartPointer<vtkPARCVolumeMapper>::New();
+  // ParaView's lookup table spans the whole data set's range: the colour table follows it,
+  // and the ranks, whose pieces' ranges differ, agree.
+  mapper->SetColorRangeType(vtkPARCVolumeMapper::NATIVE);
+  this->VolumeMapper = mapper;
 }
 
 vtkPARCVolumeRepresentation::~vtkPARCVolumeRepresentation() = default;

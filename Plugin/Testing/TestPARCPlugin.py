@@ -207,7 +207,8 @@ model.ScalarOpacityFunction = opacity
 model.UpdatePipeline()
 polygons = servermanager.Fetch(model)
 fields = polygons.GetFieldData()
-check(polygons.GetNumberOfCells() > 0, "the polygon model has %d quads" % polygons.GetNumberOfCells())
+check(polygons.GetNumberOfCells() > 0,
+      "the polygon model has %d quads" % polygons.GetNumberOfCells())
 if ranks == 1:  # Fetch appends the ranks' models; each rank's field data counts its own
     check(fields.GetArray("Polygons").GetValue(0) == polygons.GetNumberOfCells(),
           "its Polygons count is its number of quads")
