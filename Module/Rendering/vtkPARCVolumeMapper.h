@@ -42,9 +42,9 @@
  *   as the way out. A 2-D transfer function (vtkVolumeProperty TF_2D) warns once: the 1-D
  *   functions are used.
  * - The colour function is sampled into a 1024-entry table over the data range (or its
- *   own range: SetColorRangeType); opacity
- *   functions are evaluated exactly from their nodes (segments with a non-default midpoint
- *   or sharpness are subdivided into 32 linear pieces).
+ *   own range: SetColorRangeType); opacity functions are evaluated exactly from their
+ *   nodes (segments with a non-default midpoint or sharpness are subdivided into 32 linear
+ *   pieces).
  * - Additive and average-intensity blending give grey images, as VTK defines them (see
  *   vtkVolumeMapper::SetBlendMode) and its GPU mapper draws them: each sample adds its value,
  *   normalised to the scalars' range, times its opacity (corrected for the sample
