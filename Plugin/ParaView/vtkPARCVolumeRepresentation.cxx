@@ -101,11 +101,11 @@ int vtkPARCVolumeRepresentation::RequestUpdateExtent(
   vtkInformation* array = this->GetInputArrayInformation(0);
   const bool cells = array && array->Has(vtkDataObject::FIELD_ASSOCIATION()) &&
     array->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+  const int levels = cells ? 2 : 1;
+  const auto key = vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS();
   for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
   {
     vtkInformation* in = inputVector[0]->GetInformationObject(i);
-    const int levels = cells ? 2 : 1;
-    const auto key = vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS();
     in->Set(key, std::max(levels, in->Has(key) ? in->Get(key) : 0));
   }
   return 1;
