@@ -50,10 +50,10 @@ SIZE = 300
 # shade differently, so their images are close, not equal.
 MEAN_TOLERANCE = 4.0
 OUTLIER_TOLERANCE = 0.02
-# The same between N ranks and 1 rank: the pieces take the same samples and read their
-# neighbours' ghost points, but ParaView composites the ranks' images in 8 bits, each
-# piece's colour table spans its own scalar range, and early ray termination stops within a
-# piece. ParaView's own mapper must not come closer to its 1-rank image than PARC does.
+# The same between N ranks and 1 rank: the pieces take the same samples, read their
+# neighbours' ghost points and share one colour table, but ParaView composites the ranks'
+# images in 8 bits, and early ray termination stops within a piece. ParaView's own mapper
+# must not come closer to its 1-rank image than PARC does.
 RANKS_MEAN_TOLERANCE = 0.5
 RANKS_OUTLIER_TOLERANCE = 0.001
 
