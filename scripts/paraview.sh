@@ -93,11 +93,15 @@ cmake --build "$build/plugin" -j "$(nproc)"
 plugin="$build/plugin/lib/paraview-5.11/plugins/PARC/PARC.so"
 output="$build/test-output"
 rm -rf "$output"
+pythonpath="$prefix/lib/python3/dist-packages"
+xrun() { # command...: under Xvfb, with ParaView's Python modules first on PYTHONPATH
+  PYTHONPATH="$pythonpath" xvfb-run -a -s "-screen 0 1280x1024x24" "$@"
+}
+mpi=(mpiexec --allow-run-as-root --oversubscribe -np) # then: ranks command...
 pv() { # ranks script arguments...: pvbatch under Xvfb, on that many MPI ranks
   local ranks=$1
   shift
-  PYTHONPATH="$prefix/lib/python3/dist-packages" xvfb-run -a -s "-screen 0 1280x1024x24" \
-    mpiexec --allow-run-as-root --oversubscribe -np "$ranks" pvbatch "$@"
+  xrun "${mpi[@]}" "$ranks" pvbatch "$@"
 }
 test="$here/Plugin/Testing/TestPARCPlugin.py"
 checked() { # name command...: runs the test command, failing on its checks and on any
@@ -125,15 +129,14 @@ checked() { # name command...: runs the test command, failing on its checks and 
 }
 client_server() { # pvpython connected to 2 pvserver ranks
   local port=$((20000 + RANDOM % 20000)) server_log="$output/pvserver.log" server
-  PYTHONPATH="$prefix/lib/python3/dist-packages" xvfb-run -a -s "-screen 0 1280x1024x24" \
-    mpiexec --allow-run-as-root --oversubscribe -np 2 pvserver --server-port="$port" \
-    >"$server_log" 2>&1 &
+  xrun "${mpi[@]}" 2 pvserver --server-port="$port" >"$server_log" 2>&1 &
   server=$!
   for _ in $(seq 60); do
     grep -q "Accepting connection" "$server_log" && break
     sleep 1
   done
   local status=0
+  # Not xrun: pvpython finds the prefix's modules itself, and crashes with them on PYTHONPATH.
   xvfb-run -a -s "-screen 0 1280x1024x24" "$prefix/bin/pvpython" "$test" "$plugin" \
     "$here/../shared/data" "$output/client-server" --one-rank "$output" \
     --server "localhost:$port" || status=$?
@@ -154,9 +157,8 @@ gui() { # the GUI runs a script and exits; the script writes its result to a fil
   local result="$output/gui-result.txt"
   rm -f "$result"
   PARC_PLUGIN="$plugin" PARC_DATA_DIR="$here/../shared/data" PARC_RESULT="$result" \
-    PYTHONPATH="$prefix/lib/python3/dist-packages:$here/Plugin/Testing" \
-    xvfb-run -a -s "-screen 0 1280x1024x24" \
-    paraview --script="$here/Plugin/Testing/TestPARCPluginGUI.py" --exit
+    pythonpath="$pythonpath:$here/Plugin/Testing" \
+    xrun paraview --script="$here/Plugin/Testing/TestPARCPluginGUI.py" --exit
   [ -e "$result" ] || { echo "FAILED: the GUI did not run the script" >&2; return 1; }
   cat "$result"
   echo

@@ -11,11 +11,10 @@ import statistics
 import sys
 import time
 
-from paraview.simple import (ColorBy, CreateRenderView, GetColorTransferFunction,
-                             GetOpacityTransferFunction, LoadPlugin, Render, Show)
+from paraview.simple import CreateRenderView, LoadPlugin, Render
 from paraview import servermanager
 
-from parc_pvtesting import read_raw_volume
+from parc_pvtesting import read_raw_volume, show_volume
 
 plugin, data_dir = sys.argv[1:3]
 rounds = int(sys.argv[3]) if len(sys.argv) > 3 else 7
@@ -32,10 +31,8 @@ SIZE = 500
 STEP_DEGREES = 5.0
 
 reader = read_raw_volume(data, (256, 256, 256))
-colors = GetColorTransferFunction("density")
-colors.RGBPoints = [0, 0.3, 0.2, 0.1, 90, 0.95, 0.75, 0.55, 255, 1, 1, 1]
-opacity = GetOpacityTransferFunction("density")
-opacity.Points = [0, 0, 0.5, 0, 60, 0, 0.5, 0, 100, 0.6, 0.5, 0, 255, 1, 0.5, 0]
+SKIN = [0, 0.3, 0.2, 0.1, 90, 0.95, 0.75, 0.55, 255, 1, 1, 1]
+OPACITY = [0, 0, 0.5, 0, 60, 0, 0.5, 0, 100, 0.6, 0.5, 0, 255, 1, 0.5, 0]
 
 MAPPERS = [("ParaView Volume", "Volume", {}),
            ("PARC Volume, Auto", "PARC Volume", {"PARCAccelerationMode": "Auto"}),
@@ -45,11 +42,7 @@ for name, representation, settings in MAPPERS:
     view = CreateRenderView()
     view.ViewSize = [SIZE, SIZE]
     view.OrientationAxesVisibility = 0
-    display = Show(reader, view)
-    ColorBy(display, ("POINTS", "density"))
-    display.LookupTable = colors
-    display.ScalarOpacityFunction = opacity
-    display.ScalarOpacityUnitDistance = 1.0
+    display = show_volume(reader, view, SKIN, OPACITY)
     display.Shade = 1
     display.SetRepresentationType(representation)
     for key, value in settings.items():

@@ -14,12 +14,10 @@ import argparse
 import os
 import sys
 
-from paraview.simple import (ColorBy, Connect, CreateRenderView, GetColorTransferFunction,
-                             GetOpacityTransferFunction, LoadPlugin, Render,
-                             SaveScreenshot, Show)
+from paraview.simple import Connect, CreateRenderView, LoadPlugin, Render, SaveScreenshot
 from paraview import servermanager
 
-from parc_pvtesting import read_raw_volume
+from parc_pvtesting import GREY, NEGHIP_OPACITY, read_raw_volume, show_volume
 from vtkmodules.vtkIOImage import vtkPNGReader
 
 parser = argparse.ArgumentParser()
@@ -67,15 +65,8 @@ try:
     view.UseColorPaletteForBackground = 0
 except AttributeError:
     pass
-display = Show(reader, view)
-ColorBy(display, ("POINTS", "density"))
-colors = GetColorTransferFunction("density")
-colors.RGBPoints = [0, 0, 0, 0, 255, 1, 1, 1]
-opacity = GetOpacityTransferFunction("density")
-opacity.Points = [0, 0, 0.5, 0, 40, 0, 0.5, 0, 80, 1, 0.5, 0, 255, 1, 0.5, 0]
-display.LookupTable = colors
-display.ScalarOpacityFunction = opacity
-display.ScalarOpacityUnitDistance = 1.0
+display = show_volume(reader, view, GREY, NEGHIP_OPACITY)
+opacity = display.ScalarOpacityFunction
 view.CameraPosition = [150, -90, 120]
 view.CameraFocalPoint = [31.5, 31.5, 31.5]
 view.CameraViewUp = [0, 0, 1]

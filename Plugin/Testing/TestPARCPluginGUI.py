@@ -6,9 +6,8 @@ failed to PARC_RESULT; scripts/paraview.sh reads it.
 """
 import os
 
-from paraview.simple import (ColorBy, GetActiveViewOrCreate, GetOpacityTransferFunction,
-                             LoadPlugin, Render, Show)
-from parc_pvtesting import read_raw_volume
+from paraview.simple import GetActiveViewOrCreate, LoadPlugin, Render
+from parc_pvtesting import GREY, NEGHIP_OPACITY, read_raw_volume, show_volume
 
 result = os.environ["PARC_RESULT"]
 data = os.path.join(os.environ["PARC_DATA_DIR"], "neghip_64x64x64_uint8.raw")
@@ -17,10 +16,7 @@ if os.path.exists(data):
     LoadPlugin(os.environ["PARC_PLUGIN"], ns=globals())
     reader = read_raw_volume(data, (64, 64, 64))
     view = GetActiveViewOrCreate("RenderView")
-    display = Show(reader, view)
-    ColorBy(display, ("POINTS", "density"))
-    GetOpacityTransferFunction("density").Points = [0, 0, 0.5, 0, 40, 0, 0.5, 0, 80, 1, 0.5, 0,
-                                                    255, 1, 0.5, 0]
+    display = show_volume(reader, view, GREY, NEGHIP_OPACITY)
     display.SetRepresentationType("PARC Volume")
     display.PARCAccelerationMode = "Depth Buffer"
     Render(view)

@@ -1,5 +1,10 @@
-"""Helpers shared by the plugin's pvbatch scripts."""
-from paraview.simple import ImageReader
+"""Helpers shared by the plugin's pvbatch, pvpython and GUI scripts."""
+from paraview.simple import (ColorBy, GetColorTransferFunction, GetOpacityTransferFunction,
+                             ImageReader, Show)
+
+# The neghip scene of the tests: grey colours, opaque from 80 up.
+GREY = [0, 0, 0, 0, 255, 1, 1, 1]
+NEGHIP_OPACITY = [0, 0, 0.5, 0, 40, 0, 0.5, 0, 80, 1, 0.5, 0, 255, 1, 0.5, 0]
 
 
 def read_raw_volume(path, dimensions, array_name="density"):
@@ -10,3 +15,19 @@ def read_raw_volume(path, dimensions, array_name="density"):
     reader.ScalarArrayName = array_name
     reader.UpdatePipeline()
     return reader
+
+
+def show_volume(reader, view, rgb_points, opacity_points, array_name="density"):
+    """reader's display in view, coloured by its point array array_name with these
+    transfer functions, one opacity unit per world unit. The lookup table and opacity
+    function are set on the display explicitly: ColorBy alone leaves it without them."""
+    display = Show(reader, view)
+    ColorBy(display, ("POINTS", array_name))
+    colors = GetColorTransferFunction(array_name)
+    colors.RGBPoints = rgb_points
+    opacity = GetOpacityTransferFunction(array_name)
+    opacity.Points = opacity_points
+    display.LookupTable = colors
+    display.ScalarOpacityFunction = opacity
+    display.ScalarOpacityUnitDistance = 1.0
+    return display
