@@ -33,7 +33,7 @@ else
   size=400 rounds=3 finest=0.0625 reference=0.015625 tables="300 600" sweep_size=600 repeat=3
 fi
 
-xrun() { xvfb-run -a -s "-screen 0 1280x1024x24" "$@"; }
+xrun() { "$here/scripts/xvfb.sh" "$@"; }
 parc() { xrun "$render_bin" "$@" --output "$scratch"; }
 plot() { xrun /usr/bin/python3 "$here/scripts/benchmark_report.py" "$@"; }
 # A scene's title: the file's name and its options, without this checkout's path.

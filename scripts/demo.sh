@@ -6,7 +6,7 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 "$here/scripts/setup.sh"
 out="$here/out"
 mkdir -p "$out"
-render() { xvfb-run -a -s "-screen 0 1280x1024x24" "$here/build/bin/parc-render" "$@" --compare-fixed-point; }
+render() { "$here/scripts/xvfb.sh" "$here/build/bin/parc-render" "$@" --compare-fixed-point; }
 
 head=/usr/share/mricron/templates/ch2.nii.gz
 echo "== MRI head $head (181x217x181)"

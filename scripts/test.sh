@@ -8,11 +8,7 @@ set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 "$here/scripts/setup.sh"
 cd "$here/build"
-# Now and then a program's window gets "bad X server connection" from Xvfb and aborts (a
-# few times in a hundred GL programs here): a test runs once more then, and fails when it
-# fails twice.
-retry=(--repeat until-pass:2)
-xvfb-run -a -s "-screen 0 1280x1024x24" ctest --output-on-failure -j 2 "${retry[@]}"
+"$here/scripts/xvfb.sh" ctest --output-on-failure -j 2
 
 asan="$here/build-asan"
 echo "== core and image tests under AddressSanitizer + UndefinedBehaviorSanitizer"
@@ -24,8 +20,8 @@ ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1 \
 # Leak checking stays off for the GL tests: llvmpipe's JIT code leaves allocations that
 # LeakSanitizer cannot attribute (an unknown module); every other check is on.
 ASAN_OPTIONS=detect_leaks=0 UBSAN_OPTIONS=print_stacktrace=1 \
-  xvfb-run -a -s "-screen 0 1280x1024x24" \
-  ctest --test-dir "$asan" --output-on-failure -L "image|rendering" "${retry[@]}"
+  "$here/scripts/xvfb.sh" \
+  ctest --test-dir "$asan" --output-on-failure -L "image|rendering"
 
 echo "== the ParaView plugin (scripts/paraview.sh)"
 status=0
