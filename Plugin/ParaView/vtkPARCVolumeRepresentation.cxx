@@ -5,7 +5,9 @@
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
 #include "vtkObjectFactory.h"
-#include "vtkPARCVolumeMapper.h"
+#include "vtkPARCPVVolumeMapper.h"
+#include "vtkPARCPVVolumeScene.h"
+#include "vtkPVRenderView.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
 
 #include <algorithm>
@@ -15,18 +17,58 @@ vtkStandardNewMacro(vtkPARCVolumeRepresentation);
 vtkPARCVolumeRepresentation::vtkPARCVolumeRepresentation()
 {
   // The superclass connects whatever mapper VolumeMapper holds when it renders.
-  auto mapper = vtkSmartPointer<vtkPARCVolumeMapper>::New();
+  auto mapper = vtkSmartPointer<vtkPARCPVVolumeMapper>::New();
   // ParaView's lookup table spans the whole data set's range: the colour table follows it,
   // and the ranks, whose pieces' ranges differ, agree.
   mapper->SetColorRangeType(vtkPARCVolumeMapper::NATIVE);
   this->VolumeMapper = mapper;
 }
 
-vtkPARCVolumeRepresentation::~vtkPARCVolumeRepresentation() = default;
+vtkPARCVolumeRepresentation::~vtkPARCVolumeRepresentation()
+{
+  if (vtkPARCPVVolumeScene* scene = this->GetScene()) // still in a view's scene
+  {
+    scene->RemoveMember(this);
+  }
+}
 
 vtkPARCVolumeMapper* vtkPARCVolumeRepresentation::GetPARCMapper()
 {
   return vtkPARCVolumeMapper::SafeDownCast(this->VolumeMapper);
+}
+
+vtkPARCPVVolumeScene* vtkPARCVolumeRepresentation::GetScene()
+{
+  return vtkPARCPVVolumeMapper::SafeDownCast(this->VolumeMapper)->GetScene();
+}
+
+vtkPARCVolumeMapper* vtkPARCVolumeRepresentation::GetRenderingMapper()
+{
+  vtkPARCPVVolumeScene* scene = this->GetScene();
+  return scene && scene->GetPortOf(this) >= 0 ? scene->GetMapper() : this->GetPARCMapper();
+}
+
+bool vtkPARCVolumeRepresentation::AddToView(vtkView* view)
+{
+  auto* renderView = vtkPVRenderView::SafeDownCast(view);
+  if (!renderView || !this->Superclass::AddToView(view))
+  {
+    return false;
+  }
+  vtkPARCPVVolumeScene* scene = vtkPARCPVVolumeScene::Of(renderView->GetRenderer());
+  scene->AddMember(this);
+  vtkPARCPVVolumeMapper::SafeDownCast(this->VolumeMapper)->SetScene(scene);
+  return true;
+}
+
+bool vtkPARCVolumeRepresentation::RemoveFromView(vtkView* view)
+{
+  if (vtkPARCPVVolumeScene* scene = this->GetScene())
+  {
+    scene->RemoveMember(this);
+    vtkPARCPVVolumeMapper::SafeDownCast(this->VolumeMapper)->SetScene(nullptr);
+  }
+  return this->Superclass::RemoveFromView(view);
 }
 
 void vtkPARCVolumeRepresentation::SetAccelerationMode(int mode)
@@ -57,38 +99,41 @@ void vtkPARCVolumeRepresentation::SetShadows(bool shadows)
 
 double vtkPARCVolumeRepresentation::GetLastRenderTime()
 {
-  return this->GetPARCMapper()->GetLastRenderTime();
+  return this->GetRenderingMapper()->GetLastRenderTime();
 }
 
 double vtkPARCVolumeRepresentation::GetLastCastingTime()
 {
-  return this->GetPARCMapper()->GetLastCastingTime();
+  return this->GetRenderingMapper()->GetLastCastingTime();
 }
 
 double vtkPARCVolumeRepresentation::GetLastProjectionTime()
 {
-  return this->GetPARCMapper()->GetLastProjectionTime();
+  return this->GetRenderingMapper()->GetLastProjectionTime();
 }
 
 vtkIdType vtkPARCVolumeRepresentation::GetLastSampleCount()
 {
-  return this->GetPARCMapper()->GetLastSampleCount();
+  return this->GetRenderingMapper()->GetLastSampleCount();
 }
 
 vtkIdType vtkPARCVolumeRepresentation::GetLastRayCount()
 {
-  return this->GetPARCMapper()->GetLastRayCount();
+  return this->GetRenderingMapper()->GetLastRayCount();
 }
 
 vtkIdType vtkPARCVolumeRepresentation::GetLastShadowRayCount()
 {
-  return this->GetPARCMapper()->GetLastShadowRayCount();
+  return this->GetRenderingMapper()->GetLastShadowRayCount();
 }
 
 const char* vtkPARCVolumeRepresentation::GetLastAccelerationModeAsString()
 {
-  return vtkPARCVolumeMapper::GetAccelerationModeAsString(
-    this->GetPARCMapper()->GetLastAccelerationMode());
+  vtkPARCPVVolumeScene* scene = this->GetScene();
+  const int port = scene ? scene->GetPortOf(this) : -1;
+  return vtkPARCVolumeMapper::GetAccelerationModeAsString(port >= 0
+      ? scene->GetMapper()->GetLastInputAccelerationMode(port)
+      : this->GetPARCMapper()->GetLastAccelerationMode());
 }
 
 int vtkPARCVolumeRepresentation::RequestUpdateExtent(

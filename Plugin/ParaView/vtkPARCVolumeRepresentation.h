@@ -7,7 +7,8 @@
  * cropping), rendered by vtkPARCVolumeMapper on the CPU, bit-identical in every
  * acceleration mode. The mapper's own settings are forwarded: acceleration mode,
  * supercell size, sample distance and threads. The statistics of the last render are
- * read from the mapper (GetPARCMapper).
+ * read from the mapper (GetPARCMapper). Several "PARC Volume" representations in one
+ * view render together, intermixed (see vtkPARCPVVolumeScene).
  *
  * @sa vtkPARCVolumeMapper vtkPARCPVPolygonModelFilter
  */
@@ -17,6 +18,7 @@
 #include "PARCParaViewModule.h" // For export macro
 #include "vtkImageVolumeRepresentation.h"
 
+class vtkPARCPVVolumeScene;
 class vtkPARCVolumeMapper;
 
 class PARCPARAVIEW_EXPORT vtkPARCVolumeRepresentation : public vtkImageVolumeRepresentation
@@ -48,9 +50,23 @@ public:
    */
   vtkPARCVolumeMapper* GetPARCMapper();
 
+  /**
+   * The view's scene of "PARC Volume" representations (see vtkPARCPVVolumeScene), or null
+   * when the representation is in no render view.
+   */
+  vtkPARCPVVolumeScene* GetScene();
+
+  /**
+   * The mapper that rendered the volume last: the scene's when it rendered the volume
+   * together with others, else GetPARCMapper().
+   */
+  vtkPARCVolumeMapper* GetRenderingMapper();
+
   ///@{
   /**
-   * The mapper's statistics of its last render on this process (see vtkPARCVolumeMapper).
+   * The statistics of the last render on this process (see vtkPARCVolumeMapper), of
+   * GetRenderingMapper(): with several volumes together, of all of them; the acceleration
+   * mode is this volume's.
    */
   double GetLastRenderTime();
   double GetLastCastingTime();
@@ -62,6 +78,12 @@ public:
   ///@}
 
 protected:
+  ///@{
+  /** Joins the view's scene of "PARC Volume" representations, and leaves it. */
+  bool AddToView(vtkView* view) override;
+  bool RemoveFromView(vtkView* view) override;
+  ///@}
+
   /**
    * Asks for the ghost cells the mapper needs at a piece's border when the volume is
    * split across ranks: one layer for point scalars, two for cell scalars (their

@@ -17,7 +17,8 @@ import sys
 from paraview.simple import Connect, CreateRenderView, LoadPlugin, Render, SaveScreenshot
 from paraview import servermanager
 
-from parc_pvtesting import GREY, NEGHIP_OPACITY, read_raw_volume, show_volume
+from parc_pvtesting import (CLOUD_COLORS, CLOUD_OPACITY, GREY, NEGHIP_OPACITY,
+                            read_raw_volume, show_volume)
 from vtkmodules.vtkIOImage import vtkPNGReader
 
 parser = argparse.ArgumentParser()
@@ -97,10 +98,11 @@ def shot(name, representation, **settings):
 STATISTICS = not arguments.server
 
 
-def statistics():
-    """The PARC statistics of rank 0's last render."""
-    display.UpdatePropertyInformation()
-    return {name: display.GetPropertyValue("PARCLast" + name)
+def statistics(shown=None):
+    """The PARC statistics of rank 0's last render of a display (default: the density's)."""
+    shown = shown or display
+    shown.UpdatePropertyInformation()
+    return {name: shown.GetPropertyValue("PARCLast" + name)
             for name in ("SampleCount", "RayCount", "ShadowRayCount", "AccelerationMode",
                          "RenderTime")}
 
@@ -178,9 +180,13 @@ check((shadow_rays > 0 or not STATISTICS) and shadowed != shaded and shadowed_au
       "PARCShadows darkens the image%s, with the same pixels with acceleration None and Auto"
       % (" (rank 0: %d shadow rays)" % shadow_rays if STATISTICS else ""))
 display.PARCShadows = 0
+
+
+def against_one_rank(name, image):
+    return compare(read_png(os.path.join(one_rank_dir, name + "-1.png"))[0], image)
+
+
 if one_rank_dir:
-    def against_one_rank(name, image):
-        return compare(read_png(os.path.join(one_rank_dir, name + "-1.png"))[0], image)
     mean, outliers = against_one_rank("parc-volume-shaded", shaded)
     own_mean, own_outliers = against_one_rank("paraview-volume-shaded", own_shaded)
     check(mean <= RANKS_MEAN_TOLERANCE,
@@ -192,8 +198,64 @@ if one_rank_dir:
     check(mean <= own_mean and outliers <= own_outliers,
           "PARC's %d-rank image is as close to its 1-rank image as ParaView's Volume's" % ranks)
 
+# Several volumes: an opaque isosurface of the density and a faint cloud of a second copy
+# of it (its own array name, so its own transfer functions), both "PARC Volume": the view
+# renders them together, every ray meeting both, so the cloud shows in front of the surface
+# and not behind it. The copy lies on the same grid, so the ranks split both alike.
+display.BlendMode = "Isosurface"
+display.IsosurfaceValues = [60]
+surface_before = shot("parc-scene-surface-before", "PARC Volume", PARCAccelerationMode="None")[0]
+cloud_reader = read_raw_volume(data, (64, 64, 64), "cloud")
+cloud = show_volume(cloud_reader, view, CLOUD_COLORS, CLOUD_OPACITY, "cloud")
+cloud.SetRepresentationType("PARC Volume")
+
+
+def scene_shot(name, surface_visible, cloud_visible, mode):
+    """The view with the surface and the cloud shown or hidden, both in acceleration mode,
+    and rank 0's statistics of the surface's last render and the cloud's."""
+    display.Visibility = surface_visible
+    cloud.Visibility = cloud_visible
+    for shown in (display, cloud):
+        shown.PARCAccelerationMode = mode
+    image = shot(name, "PARC Volume")[0]
+    return image, statistics(), statistics(cloud)
+
+
+together, together_statistics, _ = scene_shot("parc-scene-none", 1, 1, "None")
+together_auto, auto_statistics, _ = scene_shot("parc-scene-auto", 1, 1, "Auto")
+surface_alone, surface_statistics, _ = scene_shot("parc-scene-surface", 1, 0, "None")
+cloud_alone, _, cloud_statistics = scene_shot("parc-scene-cloud", 0, 1, "None")
+cloud.Visibility = 0
+display.Visibility = 1
+check(together_auto == together, "two PARC volumes together: the same pixels with "
+      "acceleration None and Auto")
+check(together != surface_alone and together != cloud_alone,
+      "the image of both differs from each one's alone")
+surface_again = shot("parc-scene-surface-again", "PARC Volume")[0]
+check(surface_alone == surface_before and surface_again == surface_before,
+      "with the cloud hidden, the surface renders alone, as before the cloud was shown")
+if STATISTICS:
+    surface_samples = surface_statistics["SampleCount"]
+    cloud_samples = cloud_statistics["SampleCount"]
+    both = together_statistics["SampleCount"]
+    check(surface_samples <= both < surface_samples + cloud_samples,
+          "rank 0 casts both volumes in one pass (%d samples), stopping behind the surface: "
+          "fewer than the surface's %d and the cloud's %d alone"
+          % (both, surface_samples, cloud_samples))
+    check(auto_statistics["SampleCount"] < both,
+          "Auto takes fewer samples (%d) for the two volumes" % auto_statistics["SampleCount"])
+if one_rank_dir:
+    mean, outliers = against_one_rank("parc-scene-none", together)
+    check(mean <= RANKS_MEAN_TOLERANCE and outliers <= RANKS_OUTLIER_TOLERANCE,
+          "two volumes on %d ranks: mean difference to 1 rank %.3f <= %.1f grey levels, "
+          "%.5f of values more than 16 levels off" % (ranks, mean, RANKS_MEAN_TOLERANCE,
+                                                     outliers))
+display.BlendMode = "Composite"
+
 # The filter, with the same opacity function.
 model = PARCPolygonModel(Input=reader)  # noqa: F821 (defined by LoadPlugin)
+# Named: the property's default is the array coloured last ("cloud"), not one of the input's.
+model.Scalars = ["POINTS", "density"]
 model.ScalarOpacityFunction = opacity
 model.UpdatePipeline()
 polygons = servermanager.Fetch(model)

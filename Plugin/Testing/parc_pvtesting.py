@@ -5,6 +5,9 @@ from paraview.simple import (ColorBy, GetColorTransferFunction, GetOpacityTransf
 # The neghip scene of the tests: grey colours, opaque from 80 up.
 GREY = [0, 0, 0, 0, 255, 1, 1, 1]
 NEGHIP_OPACITY = [0, 0, 0.5, 0, 40, 0, 0.5, 0, 80, 1, 0.5, 0, 255, 1, 0.5, 0]
+# A faint blue cloud of the same volume, for the scenes of two volumes.
+CLOUD_COLORS = [0, 0.2, 0.4, 1, 255, 0.2, 0.4, 1]
+CLOUD_OPACITY = [0, 0, 0.5, 0, 20, 0, 0.5, 0, 40, 0.03, 0.5, 0, 255, 0.03, 0.5, 0]
 
 
 def read_raw_volume(path, dimensions, array_name="density"):
