@@ -177,6 +177,9 @@ bool ConvertBlendMode(int vtkBlendMode, BlendMode& out)
     case vtkVolumeMapper::ISOSURFACE_BLEND:
       out = BlendMode::IsoSurface;
       return true;
+    case vtkVolumeMapper::SLICE_BLEND:
+      out = BlendMode::Slice;
+      return true;
     default:
       return false;
   }
@@ -303,7 +306,8 @@ std::string ConvertProperty(
   }
   p.OpacityUnitDistance = property->GetScalarOpacityUnitDistance(c);
   p.Shade = property->GetShade(c) &&
-    (p.Blend == BlendMode::Composite || p.Blend == BlendMode::IsoSurface);
+    (p.Blend == BlendMode::Composite || p.Blend == BlendMode::IsoSurface ||
+      p.Blend == BlendMode::Slice);
   p.Ambient = property->GetAmbient(c);
   p.Diffuse = property->GetDiffuse(c);
   p.Specular = property->GetSpecular(c);

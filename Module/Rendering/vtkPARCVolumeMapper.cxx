@@ -916,6 +916,28 @@ void vtkPARCVolumeMapper::ColorTableRange(
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+/// The slice plane of property (a vtkPlane, in world coordinates) into p, relative to
+/// frame as the core's world; false when there is none or it is degenerate.
+bool ConvertSlicePlane(
+  vtkVolumeProperty* property, const parc::Vec3& frame, parc::CastParameters& p)
+{
+  auto* plane = vtkPlane::SafeDownCast(property->GetSliceFunction());
+  if (!plane)
+  {
+    return false;
+  }
+  const double* o = plane->GetOrigin();
+  const double* n = plane->GetNormal();
+  p.SliceOrigin = parc::Vec3(o[0], o[1], o[2]) - frame;
+  p.SliceNormal = parc::Vec3(n[0], n[1], n[2]);
+  const double n2 = parc::Dot(p.SliceNormal, p.SliceNormal);
+  return std::isfinite(parc::Dot(p.SliceOrigin, p.SliceOrigin)) && n2 > 0.0 && std::isfinite(n2);
+}
+}
+
+//------------------------------------------------------------------------------
 bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren, vtkVolume* vol)
 {
   parc::CastParameters& p = in.Parameters;
@@ -1027,6 +1049,12 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
     this->LastSampleDistance = p.SampleDistance;
   }
   ConvertClippingPlanes(this->ClippingPlanes, frame, p.ClipPlanes);
+  if (p.Blend == parc::BlendMode::Slice && !ConvertSlicePlane(property, frame, p))
+  {
+    vtkErrorMacro("The slice blend mode needs a vtkPlane with a finite origin and a non-zero "
+                  "normal as the property's SliceFunction; nothing is drawn.");
+    return false;
+  }
   p.OwnedLo = in.OwnedLo;
   p.OwnedHi = in.OwnedHi;
   p.Crop.Enabled = this->Cropping != 0;
@@ -1391,7 +1419,9 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   const int requested = self->AccelerationMode;
   vtkRenderWindow* window = ren->GetRenderWindow();
   in.LastMode = ACCELERATION_NONE;
-  if (requested == ACCELERATION_NONE || !self->PrepareModels(in, vol))
+  // A slice takes one sample a ray and asks for no segments: no pass can pay off.
+  if (requested == ACCELERATION_NONE || in.Parameters.Blend == parc::BlendMode::Slice ||
+    !self->PrepareModels(in, vol))
   {
     in.ReleaseUnusedPasses(window, false, false);
     return in.WholeRays;

@@ -51,8 +51,12 @@
  *   distance); additive shows the sum, average the mean over the samples whose value lies
  *   in AverageIPScalarRange, clamped to [0, 1] and opaque. An additive ray that meets the
  *   volume is opaque even where nothing contributes (black); an average ray without a
- *   sample in the range draws nothing. Slice blending is not supported (nothing is drawn,
- *   with an error).
+ *   sample in the range draws nothing.
+ * - Slice blending draws, for each ray, the one sample where it crosses the plane of the
+ *   property's SliceFunction (a vtkPlane in world coordinates; anything else is an error
+ *   and draws nothing) inside the volume: its colour, shaded when shading is on (without
+ *   shadows), and its scalar opacity, uncorrected. No PARC pass is run for it (one sample
+ *   a ray leaves nothing to skip); masks are not applied.
  * - Clipping planes (world coordinates) keep the side their normal points to; cropping keeps
  *   the regions of CroppingRegionFlags between CroppingRegionPlanes, given in the image's
  *   physical coordinates along its axes (origin and spacing; a direction matrix is not

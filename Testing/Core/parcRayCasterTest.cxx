@@ -657,6 +657,46 @@ TEST(RayCaster, ProgressCanAbortTheImage)
   EXPECT_EQ(image[4 * (64 * 255) + 3], 0.f) << "the last row was never cast";
 }
 
+// Slice: the one sample where the ray crosses the plane, off the lattice, with its
+// uncorrected opacity. On a linear field trilinear interpolation is exact, so the value
+// there is the field's at the crossing.
+TEST(RayCaster, SliceTakesTheValueWhereTheRayCrossesThePlane)
+{
+  const int n[3] = { 8, 8, 8 };
+  const auto linear = [](double x, double y, double z) { return 10.0 * x + 3.0 * y + 2.0 * z; };
+  const parc::ScalarField field = parctest::MakeField(
+    n, [&](int i, int j, int k) { return static_cast<float>(linear(i, j, k)); });
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.0, 1.0 });
+  p.OpacityUnitDistance = 0.25; // would change the opacity if it were corrected
+  p.Blend = BlendMode::Slice;
+  p.SliceOrigin = Vec3(3.3, 0.0, 0.0);
+  p.SliceNormal = Vec3(2.0, 1.0, 0.5); // not of unit length
+  const parc::Ray ray = MakeRay({ -5.0, 2.5, 4.2 }, { 1.0, 0.1, 0.05 });
+  const double t = parc::Dot(p.SliceOrigin - ray.Origin, p.SliceNormal) /
+    parc::Dot(ray.Direction, p.SliceNormal);
+  const Vec3 x = ray.Origin + t * ray.Direction;
+  const double a = linear(x.X, x.Y, x.Z) / 255.0;
+  const auto r = CastOne(field, p, ray);
+  for (int c = 0; c < 4; ++c)
+  {
+    EXPECT_NEAR(r.RGBA[c], a, 1e-6) << "white, premultiplied: " << c;
+  }
+  EXPECT_DOUBLE_EQ(r.FirstHit, t);
+  EXPECT_EQ(r.Stats.Samples, 1u);
+  // No segment is asked for: a source with none gives the same bits.
+  const parc::EmptySource none;
+  const auto unasked = CastOne(field, p, ray, &none);
+  EXPECT_EQ(std::memcmp(unasked.RGBA, r.RGBA, sizeof(r.RGBA)), 0);
+  // A ray along the plane, and one crossing it outside the field, take no sample.
+  const Vec3 along(-1.0, 2.0, 0.0); // at right angles to the normal
+  EXPECT_EQ(CastOne(field, p, MakeRay({ 3.3, 3.0, 3.0 }, along)).Stats.Samples, 0u);
+  EXPECT_EQ(CastOne(field, p, MakeRay({ -5.0, 2.5, 20.0 }, { 1.0, 0.1, 0.05 })).RGBA[3], 0.f);
+  parc::RayCaster caster;
+  p.SliceNormal = Vec3(0.0, 0.0, 0.0);
+  EXPECT_FALSE(caster.Prepare({ &field, &p })) << "a plane needs a normal";
+}
+
 TEST(RayCaster, RejectsUnusableParameters)
 {
   const parc::ScalarField field = Blobs();

@@ -8,6 +8,7 @@
 
 #include <vtkCellData.h>
 #include <vtkDoubleArray.h>
+#include <vtkPlane.h>
 #include <vtkStringArray.h>
 #include <vtkTestErrorObserver.h>
 
@@ -188,8 +189,12 @@ int TestPARCBadInput(int, char*[])
     h.Volume->SetProperty(parctest::MakeProperty(false));
   }
 
-  // Slice blending is not supported: an error, nothing drawn.
+  // Slice blending without a plane, or with a plane of zero normal: an error, nothing drawn.
   h.Mapper->SetBlendMode(vtkVolumeMapper::SLICE_BLEND);
-  ok &= h.ExpectError(parctest::MakeBlobs(16), "not supported", "slice blend mode");
+  ok &= h.ExpectError(parctest::MakeBlobs(16), "needs a vtkPlane", "slice without a plane");
+  vtkNew<vtkPlane> degenerate;
+  degenerate->SetNormal(0.0, 0.0, 0.0);
+  h.Volume->GetProperty()->SetSliceFunction(degenerate);
+  ok &= h.ExpectError(parctest::MakeBlobs(16), "needs a vtkPlane", "slice plane of zero normal");
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

@@ -82,6 +82,7 @@ void ContributionRule::Set(const CastParameters& p, const double range[2])
   {
     case BlendMode::Composite:
     case BlendMode::Additive:
+    case BlendMode::Slice: // the caster takes no segments for slices: where it shows
       NonZeroIntervals(p.Opacity, this->Lo, this->Hi);
       for (const LabelFunctions& label : p.Labels) // where any label's opacity is non-zero
       {

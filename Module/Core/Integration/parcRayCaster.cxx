@@ -200,12 +200,22 @@ bool RayCaster::Prepare(const Volume& volume)
     return false; // a label map, for composite blending
   }
   const BlendMode blend = parameters->Blend;
+  if (blend == BlendMode::Slice)
+  {
+    const Vec3& o = parameters->SliceOrigin;
+    const Vec3& n = parameters->SliceNormal;
+    if (!(std::isfinite(Dot(o, o)) && Dot(n, n) > 0.0 && std::isfinite(Dot(n, n))))
+    {
+      return false; // a plane needs a finite point and a non-zero finite normal
+    }
+  }
   if (const ScalarField* mask = parameters->Mask)
   {
-    // A mask of the field's dimensions, for the ray functions that composite samples.
+    // A mask of the field's dimensions, for the ray functions that composite samples (a
+    // slice does not apply it).
     if (!std::equal(dims, dims + 3, mask->GetDimensions()) ||
       !(blend == BlendMode::Composite || blend == BlendMode::IsoSurface ||
-        blend == BlendMode::Additive))
+        blend == BlendMode::Additive || blend == BlendMode::Slice))
     {
       return false;
     }
@@ -1976,6 +1986,11 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
   {
     *firstHit = std::numeric_limits<double>::infinity();
   }
+  if (this->Params->Blend == BlendMode::Slice)
+  {
+    this->CastSliceIn(field, query, segments, rgba, stats, firstHit, events);
+    return;
+  }
   Vec3 indexOrigin, indexDirection;
   std::size_t sourceSegments = 0;
   double tEnter, tExit;
@@ -2064,12 +2079,80 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
         stop = Run(IsoSurfaceFunction<Context>{ context, this->Constants.SortedIsoValues, {} },
           ranges, rgba);
         break;
+      case BlendMode::Slice: // CastSliceIn
+        break;
     }
   }
   countUnaccelerated();
   if (firstHit)
   {
     *firstHit = context.FirstHit;
+  }
+}
+
+template <class View>
+void RayCaster::CastSliceIn(const View& field, const RayQuery& query,
+  std::vector<Segment>& intervals, float rgba[4], CastStatistics& stats, double* firstHit,
+  std::vector<RayEvent>* events) const
+{
+  const CastParameters& p = *this->Params;
+  const Ray& ray = query.Path;
+  const Vec3 indexOrigin = this->WorldToIndex.TransformPoint(ray.Origin);
+  const Vec3 indexDirection = this->WorldToIndex.TransformVector(ray.Direction);
+  double tEnter, tExit;
+  if (!ClipToField(*this->Field, p, indexOrigin, indexDirection, ray, tEnter, tExit))
+  {
+    return;
+  }
+  ++stats.Rays;
+  const double facing = Dot(ray.Direction, p.SliceNormal);
+  if (facing == 0.0) // along the plane: no crossing (or no single one)
+  {
+    return;
+  }
+  const double t = Dot(p.SliceOrigin - ray.Origin, p.SliceNormal) / facing;
+  if (!(t >= tEnter && t <= tExit))
+  {
+    return;
+  }
+  if (p.Crop.Enabled)
+  {
+    CroppedIntervals(indexOrigin, indexDirection, p.Crop, tEnter, tExit, intervals);
+    if (std::none_of(intervals.begin(), intervals.end(),
+          [t](const Segment& s) { return s.TNear <= t && t <= s.TFar; }))
+    {
+      return;
+    }
+  }
+  RayContext<View> context(
+    field, p, this->Constants, ray, indexOrigin, indexDirection, stats, true);
+  ++stats.Samples;
+  ++stats.UnacceleratedSamples;
+  const float s = field.Sample(context.IndexPosition(t), p.Interp);
+  const float a = p.Opacity.Evaluate(s);
+  if (a == 0.f)
+  {
+    return;
+  }
+  context.CountContribution(t);
+  float rgb[3];
+  context.SampleColor(NotALatticeSample, t, s, rgb);
+  if (p.Shade)
+  {
+    context.ShadeSample(rgb, t, NotALatticeSample, Vec3f(), false);
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    rgba[c] = a * rgb[c];
+  }
+  rgba[3] = a;
+  if (events)
+  {
+    AppendEvent(*events, t, rgb, a, false);
+  }
+  if (firstHit)
+  {
+    *firstHit = t;
   }
 }
 

@@ -26,22 +26,26 @@
 //   (s0 < v) != (s1 < v); the crossing is found by linear interpolation of s0, s1 followed
 //   by two regula-falsi steps on the interpolated field; each crossing is shaded with the
 //   colour and opacity of v and composited front to back.
+// - Slice: the ray's one sample where it crosses the plane (SliceOrigin, SliceNormal)
+//   inside the field, the clipping planes and the cropping, off the lattice: the colour
+//   there (shaded, without shadows) and its uncorrected opacity. No segment is asked for.
 // Several volumes (SceneCaster): each volume's caster turns a ray into RayEvents, what the
 // volume contributes where along the ray, and one compositor merges the events of all
 // volumes front to back by (ray parameter, volume index). A composite or isosurface volume
 // gives one event per contributing sample or surface crossing; a maximum, minimum or
 // average intensity or additive volume gives its whole-ray result as one event, placed at
 // its first sample with the extreme value, its first averaged sample or its first
-// contributing sample. One volume alone gives the same bits as its own caster. The merge
-// ends at the first event behind the stop of the ray: the ray parameter of the last event
-// of a composite or isosurface volume whose own opacity reached its termination opacity
-// there (the smallest such; the merged opacity has reached it by then, up to rounding).
-// The volumes are cast one after another (isosurface, whole-ray, then composite volumes),
-// and each composite or isosurface volume is cast only up to a little beyond the stop the
-// volumes cast before it found: what lies behind a surface costs nothing, and the events
-// the merge takes are the same. The last composite volume cast keeps no events: its
-// samples are composited as it takes them, the others' events merged in between, and the
-// ray stops where the merged opacity reaches the termination opacity.
+// contributing sample; a slice volume its sample, at the plane. One volume alone gives the
+// same bits as its own caster. The merge ends at the first event behind the stop of the
+// ray: the ray parameter of the last event of a composite or isosurface volume whose own
+// opacity reached its termination opacity there (the smallest such; the merged opacity has
+// reached it by then, up to rounding). The volumes are cast one after another (isosurface,
+// whole-ray, then composite volumes), and each composite or isosurface volume is cast only
+// up to a little beyond the stop the volumes cast before it found: what lies behind a
+// surface costs nothing, and the events the merge takes are the same. The last composite
+// volume cast keeps no events: its samples are composited as it takes them, the others'
+// events merged in between, and the ray stops where the merged opacity reaches the
+// termination opacity.
 // Shadows (paper section 5, DESIGN.md section 5): with Occluders set, each shaded
 // contribution at world point x is lit by each light with ShadowAttenuation > 0 only as far
 // as the light gets through: its diffuse and specular terms (when not zero) are scaled by
@@ -315,6 +319,11 @@ private:
     CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events,
     std::vector<CellDifferences>* differences, ShadowScratch* shadows,
     MergedEvents* merge = nullptr) const;
+  /// CastRayIn of the slice ray function (intervals: scratch for the cropping).
+  template <class View>
+  void CastSliceIn(const View& field, const RayQuery& query, std::vector<Segment>& intervals,
+    float rgba[4], CastStatistics& stats, double* firstHit,
+    std::vector<RayEvent>* events) const;
   template <class View>
   float TransmittanceIn(const View& field, const RayQuery& query, const SegmentSource& source,
     ShadowScratch& scratch, CastStatistics& stats) const;

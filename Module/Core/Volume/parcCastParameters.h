@@ -28,7 +28,8 @@ enum class BlendMode
   MinimumIntensity,
   AverageIntensity,
   Additive,
-  IsoSurface
+  IsoSurface,
+  Slice
 };
 
 /// How shaded samples are lit (see CastParameters::Shading).
@@ -79,6 +80,10 @@ struct CastParameters
   double SampleDistance = 1.0;             ///< dt, world units
   double TerminationOpacity = 0.99;
   std::vector<double> IsoValues;
+  /// The plane of the slice ray function (world coordinates; the normal need not be of
+  /// unit length, and is not zero).
+  Vec3 SliceOrigin;
+  Vec3 SliceNormal{ 0.0, 0.0, 1.0 };
   double AverageRange[2] = { -1e300, 1e300 };
   /// Additive and average intensity weigh each sample's value normalised to this range,
   /// (s - IntensityRange[0]) / (IntensityRange[1] - IntensityRange[0]), as VTK's mappers
