@@ -139,7 +139,14 @@ if STATISTICS:
           0 < accelerated["SampleCount"] < unaccelerated["SampleCount"],
           "rank 0's depth-buffer PARC takes fewer samples (%d) than no acceleration (%d)"
           % (accelerated["SampleCount"], unaccelerated["SampleCount"]))
-lit = sum(1 for i in range(0, len(parc_none), components) if max(parc_none[i:i + 3]) > 16)
+
+
+def lit_pixels(image):
+    """The pixels brighter than 16 grey levels in some channel."""
+    return sum(1 for i in range(0, len(image), components) if max(image[i:i + 3]) > 16)
+
+
+lit = lit_pixels(parc_none)
 check(lit > 0.05 * SIZE * SIZE, "PARC Volume draws the volume (%d lit pixels)" % lit)
 
 
@@ -152,8 +159,7 @@ def check_close(own, parc, what):
 
 
 check_close(reference, parc_none, "composite")
-# ParaView 5.11's other blend mode but Slice (which the PARC mapper does not draw) reaches
-# the mapper through the shared properties.
+# ParaView 5.11's other blend modes reach the mapper through the shared properties.
 display.BlendMode = "Isosurface"
 display.IsosurfaceValues = [60]
 own, _ = shot("paraview-volume-isosurface", "Volume")
@@ -162,6 +168,18 @@ parc_iso_auto, _ = shot("parc-volume-isosurface-auto", "PARC Volume", PARCAccele
 check(parc_iso_auto == parc_iso and parc_iso != parc_none,
       "isosurface: the same pixels with acceleration None and Auto")
 check_close(own, parc_iso, "isosurface")
+# Slice: the values on an oblique plane through the volume (ParaView's slice function).
+display.BlendMode = "Slice"
+for plane in (display.SliceFunction, display.PARCSliceFunction):  # Volume's, PARC Volume's
+    plane.Origin = [31.5, 31.5, 35.0]
+    plane.Normal = [0.2, 0.3, 1.0]
+own_slice, _ = shot("paraview-volume-slice", "Volume")
+parc_slice, _ = shot("parc-volume-slice", "PARC Volume", PARCAccelerationMode="None")
+parc_slice_auto, _ = shot("parc-volume-slice-auto", "PARC Volume", PARCAccelerationMode="Auto")
+lit = lit_pixels(parc_slice)
+check(parc_slice_auto == parc_slice and lit > 0.01 * SIZE * SIZE,
+      "slice: %d lit pixels, the same with acceleration None and Auto" % lit)
+check_close(own_slice, parc_slice, "slice")
 display.BlendMode = "Composite"
 # Shaded (the two mappers shade differently, so not compared with each other): gradients at
 # piece borders read the ghost points.
