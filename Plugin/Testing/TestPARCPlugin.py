@@ -92,14 +92,9 @@ def shot(name, representation, **settings):
     return read_png(path)
 
 
-# The statistics come from the representation of the session's first process: pvbatch's
-# rank 0, or pvpython's built-in server; a client connected to pvserver reads its own copy,
-# which does not render (all 0).
-STATISTICS = not arguments.server
-
-
 def statistics(shown=None):
-    """The PARC statistics of rank 0's last render of a display (default: the density's)."""
+    """The PARC statistics of a display's last render (default: the density's), gathered
+    from the rendering ranks: counts summed, times of the slowest rank."""
     shown = shown or display
     shown.UpdatePropertyInformation()
     return {name: shown.GetPropertyValue("PARCLast" + name)
@@ -134,11 +129,20 @@ parc_color, _ = shot("parc-volume-color", "PARC Volume", PARCAccelerationMode="C
 check(parc_auto == parc_none and parc_depth == parc_none and parc_color == parc_none,
       "PARC Volume gives the same pixels with acceleration None, Depth Buffer, Color Buffer "
       "and Auto")
-if STATISTICS:
-    check(accelerated["AccelerationMode"] == "DepthBuffer" and
-          0 < accelerated["SampleCount"] < unaccelerated["SampleCount"],
-          "rank 0's depth-buffer PARC takes fewer samples (%d) than no acceleration (%d)"
-          % (accelerated["SampleCount"], unaccelerated["SampleCount"]))
+check(accelerated["AccelerationMode"] == "DepthBuffer" and
+      0 < accelerated["SampleCount"] < unaccelerated["SampleCount"],
+      "depth-buffer PARC takes fewer samples (%d) than no acceleration (%d)"
+      % (accelerated["SampleCount"], unaccelerated["SampleCount"]))
+# Each lattice sample of a ray lies in one piece, so the ranks take every sample one rank
+# takes, and more: a ray stopped by its opacity in one piece goes on in the pieces behind.
+with open(os.path.join(out_dir, "samples-%d.txt" % ranks), "w") as samples_file:
+    samples_file.write("%d\n" % unaccelerated["SampleCount"])
+if one_rank_dir:
+    with open(os.path.join(one_rank_dir, "samples-1.txt")) as samples_file:
+        one_rank_samples = int(samples_file.read())
+    check(one_rank_samples <= unaccelerated["SampleCount"] < 2 * one_rank_samples,
+          "the %d ranks take %d samples without acceleration, at least 1 rank's %d"
+          % (ranks, unaccelerated["SampleCount"], one_rank_samples))
 
 
 def lit_pixels(image):
@@ -188,15 +192,14 @@ shaded_auto, _ = shot("parc-volume-shaded-auto", "PARC Volume", PARCAcceleration
 own_shaded, _ = shot("paraview-volume-shaded", "Volume")
 check(shaded_auto == shaded and shaded != parc_none,
       "shaded PARC Volume gives the same pixels with acceleration None and Auto")
-if STATISTICS:
-    check(statistics()["ShadowRayCount"] == 0, "no shadow ray without PARCShadows")
+check(statistics()["ShadowRayCount"] == 0, "no shadow ray without PARCShadows")
 shadowed, _ = shot("parc-volume-shadows", "PARC Volume", PARCShadows=1,
                    PARCAccelerationMode="None")
 shadow_rays = statistics()["ShadowRayCount"]
 shadowed_auto, _ = shot("parc-volume-shadows-auto", "PARC Volume", PARCAccelerationMode="Auto")
-check((shadow_rays > 0 or not STATISTICS) and shadowed != shaded and shadowed_auto == shadowed,
-      "PARCShadows darkens the image%s, with the same pixels with acceleration None and Auto"
-      % (" (rank 0: %d shadow rays)" % shadow_rays if STATISTICS else ""))
+check(shadow_rays > 0 and shadowed != shaded and shadowed_auto == shadowed,
+      "PARCShadows darkens the image (%d shadow rays), with the same pixels with acceleration "
+      "None and Auto" % shadow_rays)
 display.PARCShadows = 0
 
 
@@ -230,7 +233,7 @@ cloud.SetRepresentationType("PARC Volume")
 
 def scene_shot(name, surface_visible, cloud_visible, mode):
     """The view with the surface and the cloud shown or hidden, both in acceleration mode,
-    and rank 0's statistics of the surface's last render and the cloud's."""
+    and the statistics of the surface's last render and the cloud's."""
     display.Visibility = surface_visible
     cloud.Visibility = cloud_visible
     for shown in (display, cloud):
@@ -252,16 +255,14 @@ check(together != surface_alone and together != cloud_alone,
 surface_again = shot("parc-scene-surface-again", "PARC Volume")[0]
 check(surface_alone == surface_before and surface_again == surface_before,
       "with the cloud hidden, the surface renders alone, as before the cloud was shown")
-if STATISTICS:
-    surface_samples = surface_statistics["SampleCount"]
-    cloud_samples = cloud_statistics["SampleCount"]
-    both = together_statistics["SampleCount"]
-    check(surface_samples <= both < surface_samples + cloud_samples,
-          "rank 0 casts both volumes in one pass (%d samples), stopping behind the surface: "
-          "fewer than the surface's %d and the cloud's %d alone"
-          % (both, surface_samples, cloud_samples))
-    check(auto_statistics["SampleCount"] < both,
-          "Auto takes fewer samples (%d) for the two volumes" % auto_statistics["SampleCount"])
+surface_samples = surface_statistics["SampleCount"]
+cloud_samples = cloud_statistics["SampleCount"]
+both = together_statistics["SampleCount"]
+check(surface_samples <= both < surface_samples + cloud_samples,
+      "both volumes are cast in one pass (%d samples), stopping behind the surface: fewer "
+      "than the surface's %d and the cloud's %d alone" % (both, surface_samples, cloud_samples))
+check(auto_statistics["SampleCount"] < both,
+      "Auto takes fewer samples (%d) for the two volumes" % auto_statistics["SampleCount"])
 if one_rank_dir:
     mean, outliers = against_one_rank("parc-scene-none", together)
     check(mean <= RANKS_MEAN_TOLERANCE and outliers <= RANKS_OUTLIER_TOLERANCE,
