@@ -93,8 +93,13 @@ void vtkPARCVolumeRepresentation::SetNumberOfThreads(int threads)
 
 void vtkPARCVolumeRepresentation::SetShadows(bool shadows)
 {
-  this->GetPARCMapper()->SetShadowMode(
-    shadows ? vtkPARCVolumeMapper::SHADOWS_ON : vtkPARCVolumeMapper::SHADOWS_FROM_RENDERER);
+  const int mode =
+    shadows ? vtkPARCVolumeMapper::SHADOWS_ON : vtkPARCVolumeMapper::SHADOWS_FROM_RENDERER;
+  if (this->GetPARCMapper()->GetShadowMode() != mode)
+  {
+    this->GetPARCMapper()->SetShadowMode(mode);
+    this->MarkModified(); // the pieces' ghost layers change (RequestUpdateExtent)
+  }
 }
 
 double vtkPARCVolumeRepresentation::GetLastRenderTime()
@@ -146,11 +151,19 @@ int vtkPARCVolumeRepresentation::RequestUpdateExtent(
   vtkInformation* array = this->GetInputArrayInformation(0);
   const bool cells = array && array->Has(vtkDataObject::FIELD_ASSOCIATION()) &&
     array->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_CELLS;
-  const int levels = cells ? 2 : 1;
+  const bool shadows = this->GetPARCMapper()->GetShadowMode() == vtkPARCVolumeMapper::SHADOWS_ON;
   const auto key = vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS();
   for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
   {
     vtkInformation* in = inputVector[0]->GetInformationObject(i);
+    int levels = cells ? 2 : 1;
+    int whole[6];
+    if (shadows && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
+    {
+      // Shadow rays leave the piece: the ghost layers hold the whole volume.
+      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
+      levels = std::max({ levels, whole[1] - whole[0], whole[3] - whole[2], whole[5] - whole[4] });
+    }
     in->Set(key, std::max(levels, in->Has(key) ? in->Get(key) : 0));
   }
   return 1;

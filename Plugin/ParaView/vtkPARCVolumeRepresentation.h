@@ -87,7 +87,8 @@ protected:
   /**
    * Asks for the ghost cells the mapper needs at a piece's border when the volume is
    * split across ranks: one layer for point scalars, two for cell scalars (their
-   * gradients at the border reach one cell further).
+   * gradients at the border reach one cell further); with shadows, the whole volume, as
+   * shadow rays cross the other pieces (every rank then holds the whole volume).
    */
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 

@@ -218,6 +218,11 @@ if one_rank_dir:
           "Volume: %.5f)" % (outliers, RANKS_OUTLIER_TOLERANCE, own_outliers))
     check(mean <= own_mean and outliers <= own_outliers,
           "PARC's %d-rank image is as close to its 1-rank image as ParaView's Volume's" % ranks)
+    # Shadow rays cross the other ranks' pieces, which each rank holds as ghost layers.
+    mean, outliers = against_one_rank("parc-volume-shadows", shadowed)
+    check(mean <= RANKS_MEAN_TOLERANCE and outliers <= RANKS_OUTLIER_TOLERANCE,
+          "shadows on %d ranks: mean difference to 1 rank %.3f <= %.1f grey levels, %.5f of "
+          "values more than 16 levels off" % (ranks, mean, RANKS_MEAN_TOLERANCE, outliers))
 
 # Several volumes: an opaque isosurface of the density and a faint cloud of a second copy
 # of it (its own array name, so its own transfer functions), both "PARC Volume": the view

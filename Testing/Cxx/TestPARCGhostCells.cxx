@@ -5,11 +5,13 @@
 // float ray-cast images, composited front to back, match the whole volume's to float
 // rounding (point and cell scalars, shaded; the colour table over the colour function's own
 // range, ColorRangeType NATIVE, as the pieces' data ranges differ), and each piece's image
-// is bit-identical with and without acceleration.
+// is bit-identical with and without acceleration. With shadows, pieces holding the whole
+// volume in their ghost layers cast the whole volume's shadows.
 #include "parcTestScene.h"
 
 #include <vtkCellData.h>
 #include <vtkImageClip.h>
+#include <vtkLight.h>
 #include <vtkPointDataToCellData.h>
 #include <vtkRendererCollection.h>
 
@@ -25,6 +27,8 @@ constexpr int SplitZ = 24;
 /// composited: the same samples, summed in another order (with ColorRangeType SCALAR, the
 /// colour tables over each piece's data range, it is about 3e-5 here; 3e-7 with NATIVE).
 constexpr double CompositeTolerance = 1e-6;
+/// Ghost layers that give each piece the whole volume.
+constexpr int WholeVolumeLayers = 1000;
 
 /// The part of image between point z indices z0 and z1 (its own extent), plus layers of
 /// ghost cells on each side that has a neighbour.
@@ -162,6 +166,28 @@ int TestPARCGhostCells(int argc, char* argv[])
     ok = CheckSplit(window, renderer, mapper, points, 1, "point scalars") && ok;
     mapper->SetScalarModeToUseCellData();
     ok = CheckSplit(window, renderer, mapper, cells, 2, "cell scalars") && ok;
+  }
+
+  // Shadows: a shadow ray leaves its piece, so a piece whose ghost layers cover the whole
+  // volume (ParaView's representation asks for them with shadows on several ranks) casts
+  // the whole volume's shadows, and the pieces composited are again the whole image.
+  vtkNew<vtkLight> light;
+  light->SetLightTypeToSceneLight();
+  light->SetPositional(false);
+  light->SetFocalPoint(0.0, 0.0, 0.0);
+  light->SetPosition(0.4, 0.3, -1.0); // across the split
+  light->SetShadowAttenuation(1.0);
+  renderer->AutomaticLightCreationOff();
+  renderer->RemoveAllLights();
+  renderer->AddLight(light);
+  mapper->SetShadowModeToOn();
+  mapper->SetScalarModeToUsePointData();
+  ok = CheckSplit(window, renderer, mapper, points, WholeVolumeLayers, "point scalars, shadows") &&
+    ok;
+  if (mapper->GetLastShadowRayCount() == 0)
+  {
+    std::cerr << "shadows: no shadow ray was cast\n";
+    ok = false;
   }
   return ok ? EXIT_SUCCESS : EXIT_FAILURE;
 }

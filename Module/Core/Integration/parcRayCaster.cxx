@@ -77,17 +77,17 @@ long FirstSampleAfter(double t, std::size_t from, double dt, std::size_t member)
 }
 
 /// The ray-parameter interval of the ray (origin o, direction d in voxel-index
-/// coordinates) inside the field's box, the owned box, [ray.TMin, ray.TMax] and the
-/// clipping planes.
+/// coordinates) inside the field's box, the owned box (unless owned is false: shadow
+/// rays), [ray.TMin, ray.TMax] and the clipping planes.
 bool ClipToField(const ScalarField& field, const CastParameters& p, const Vec3& o,
-  const Vec3& d, const Ray& ray, double& tEnter, double& tExit)
+  const Vec3& d, const Ray& ray, double& tEnter, double& tExit, bool owned = true)
 {
   const int* dims = field.GetDimensions();
   Vec3 lo, hi;
   for (int a = 0; a < 3; ++a)
   {
-    lo[a] = std::max(0.0, p.OwnedLo[a]);
-    hi[a] = std::min(dims[a] - 1.0, p.OwnedHi[a]);
+    lo[a] = owned ? std::max(0.0, p.OwnedLo[a]) : 0.0;
+    hi[a] = owned ? std::min(dims[a] - 1.0, p.OwnedHi[a]) : dims[a] - 1.0;
     if (!(lo[a] <= hi[a]))
     {
       return false; // owns nothing
@@ -1873,13 +1873,15 @@ std::uint64_t RayCaster::UnacceleratedSamples(const Ray& ray) const
 
 bool RayCaster::RangesOf(const RayQuery& query, const SegmentSource& source,
   std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, Vec3& indexOrigin,
-  Vec3& indexDirection, std::size_t& sourceSegments, double& tEnter, double& tExit) const
+  Vec3& indexDirection, std::size_t& sourceSegments, double& tEnter, double& tExit,
+  bool owned) const
 {
   const Ray& ray = query.Path;
   const Matrix4& w2i = this->WorldToIndex;
   indexOrigin = w2i.TransformPoint(ray.Origin);
   indexDirection = w2i.TransformVector(ray.Direction);
-  if (!ClipToField(*this->Field, *this->Params, indexOrigin, indexDirection, ray, tEnter, tExit))
+  if (!ClipToField(
+        *this->Field, *this->Params, indexOrigin, indexDirection, ray, tEnter, tExit, owned))
   {
     return false;
   }
@@ -1920,7 +1922,7 @@ float RayCaster::TransmittanceIn(const View& field, const RayQuery& query,
   std::size_t sourceSegments = 0;
   double tEnter, tExit;
   if (!this->RangesOf(shadow, source, scratch.Segments, scratch.Ranges, indexOrigin,
-        indexDirection, sourceSegments, tEnter, tExit) ||
+        indexDirection, sourceSegments, tEnter, tExit, false) ||
     scratch.Ranges.empty())
   {
     return 1.f;

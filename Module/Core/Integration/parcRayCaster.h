@@ -57,7 +57,8 @@
 // 1 - opacity(v) at each crossing of an iso value v; maximum, minimum, average and
 // additive volumes cast no shadow. A shadow ray stops once T < 1 - the volume's
 // termination opacity. The lattice depends only on x and the light, so every segment
-// source of the shadow rays gives the same T.
+// source of the shadow rays gives the same T. Shadow rays cross a piece's ghost cells
+// (CastParameters::OwnedLo/OwnedHi cut primary rays only).
 // Independent components (SetComponents; vtkVolumeProperty::IndependentComponentsOn): the
 // caster of component 0 casts for all. Each component c has its own field (the same
 // memory, shifted by c values), transfer functions, shading and ComponentWeight w_c, and
@@ -307,10 +308,12 @@ private:
   /// The lattice ranges of query.Path to cast: its part inside the field, the clipping
   /// planes and the cropping where source gives segments (sourceSegments of them); tEnter
   /// and tExit are where the ray enters and leaves the field inside the planes. False when
-  /// the ray misses the field (source is not asked).
+  /// the ray misses the field (source is not asked). owned: within CastParameters'
+  /// owned box too (primary rays; shadow rays cross the ghost cells as well).
   bool RangesOf(const RayQuery& query, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, Vec3& indexOrigin,
-    Vec3& indexDirection, std::size_t& sourceSegments, double& tEnter, double& tExit) const;
+    Vec3& indexDirection, std::size_t& sourceSegments, double& tEnter, double& tExit,
+    bool owned = true) const;
   /// differences (optional): a thread's cache of cell differences for gradients, a power
   /// of two of them, shared by the rays of one image. merge (optional): CastRayMerged's.
   template <class View>

@@ -130,8 +130,9 @@ struct CastParameters
   /// them is never taken, whatever the acceleration.
   Cropping Crop;
   /// ... and to this box of voxel-index coordinates, as well as to the field's own box:
-  /// the cells a renderer owns when the field also holds a layer of ghost cells, the
-  /// neighbouring pieces' cells that gradients and interpolation at its border read.
+  /// the cells a renderer owns when the field also holds layers of ghost cells, the
+  /// neighbouring pieces' cells that gradients and interpolation at its border read, and
+  /// that shadow rays cross (they are not cut to this box).
   Vec3 OwnedLo{ -std::numeric_limits<double>::infinity(),
     -std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity() };
   Vec3 OwnedHi{ std::numeric_limits<double>::infinity(),
