@@ -77,10 +77,12 @@ TEST(SceneCaster, OneVolumeIsItsOwnImage)
   const parc::ScalarField field = Blobs();
   for (BlendMode mode : { BlendMode::Composite, BlendMode::IsoSurface,
          BlendMode::MaximumIntensity, BlendMode::MinimumIntensity, BlendMode::AverageIntensity,
-         BlendMode::Additive })
+         BlendMode::Additive, BlendMode::Slice })
   {
     CastParameters p = CloudParameters();
     p.Blend = mode;
+    p.SliceOrigin = Vec3(16.0, 16.0, 16.0);
+    p.SliceNormal = Vec3(0.3, 0.2, 1.0);
     p.IsoValues = { 80.0, 150.0 };
     p.AverageRange[0] = 30.0;
     p.AverageRange[1] = 220.0;
@@ -190,36 +192,43 @@ TEST(SceneCaster, DisjointVolumesMergeInDepthOrder)
   back = front;
   back.Opacity.SetConstant(0.3);
   back.Color.SetTable(0.0, 255.0, { 0.f, 0.f, 1.f, 0.f, 0.f, 1.f });
+  back.SliceOrigin = Vec3(0.0, 0.0, 25.0);
+  back.SliceNormal = Vec3(0.0, 0.1, 1.0);
   parc::RayCaster frontCaster, backCaster;
-  ASSERT_TRUE(frontCaster.Prepare({ &slab, &front, Shifted({ 0, 0, 0 }) }));  // z in [0, 10]
-  ASSERT_TRUE(backCaster.Prepare({ &slab, &back, Shifted({ 0, 0, 20 }) })); // z in [20, 30]
+  ASSERT_TRUE(frontCaster.Prepare({ &slab, &front, Shifted({ 0, 0, 0 }) })); // z in [0, 10]
   const parc::WholeRaySource whole;
-  for (const double zEye : { -10.0, 40.0 })
+  // The back volume composited, and as a slice (its one event at the plane).
+  for (const BlendMode backBlend : { BlendMode::Composite, BlendMode::Slice })
   {
-    const parc::Ray ray = MakeRay({ 2.5, 2.5, zEye }, { 0, 0, zEye < 0 ? 1.0 : -1.0 });
-    std::vector<parc::Segment> segments;
-    std::vector<parc::LatticeRange> ranges;
-    parc::SceneScratch scratch;
-    parc::CastStatistics stats, sceneStats[2];
-    float a[4], b[4], merged[4], swapped[4];
-    frontCaster.CastRay(parc::RayQuery::Anywhere(ray), whole, segments, ranges, a, stats);
-    backCaster.CastRay(parc::RayQuery::Anywhere(ray), whole, segments, ranges, b, stats);
-    if (zEye > 0)
+    back.Blend = backBlend;
+    ASSERT_TRUE(backCaster.Prepare({ &slab, &back, Shifted({ 0, 0, 20 }) })); // z in [20, 30]
+    for (const double zEye : { -10.0, 40.0 })
     {
-      std::swap(a, b); // the eye is on the back volume's side
+      const parc::Ray ray = MakeRay({ 2.5, 2.5, zEye }, { 0, 0, zEye < 0 ? 1.0 : -1.0 });
+      std::vector<parc::Segment> segments;
+      std::vector<parc::LatticeRange> ranges;
+      parc::SceneScratch scratch;
+      parc::CastStatistics stats, sceneStats[2];
+      float a[4], b[4], merged[4], swapped[4];
+      frontCaster.CastRay(parc::RayQuery::Anywhere(ray), whole, segments, ranges, a, stats);
+      backCaster.CastRay(parc::RayQuery::Anywhere(ray), whole, segments, ranges, b, stats);
+      if (zEye > 0)
+      {
+        std::swap(a, b); // the eye is on the back volume's side
+      }
+      parc::SceneCaster scene;
+      ASSERT_TRUE(scene.SetMembers({ { &frontCaster, &whole }, { &backCaster, &whole } }, 0.99));
+      scene.CastRay(parc::RayQuery::Anywhere(ray), segments, ranges, scratch, merged, sceneStats);
+      ASSERT_TRUE(scene.SetMembers({ { &backCaster, &whole }, { &frontCaster, &whole } }, 0.99));
+      scene.CastRay(parc::RayQuery::Anywhere(ray), segments, ranges, scratch, swapped, sceneStats);
+      EXPECT_EQ(0, std::memcmp(merged, swapped, sizeof(merged)));
+      for (int c = 0; c < 4; ++c)
+      {
+        EXPECT_NEAR(merged[c], a[c] + (1.f - a[3]) * b[c], 1e-6) << "eye " << zEye << " c " << c;
+      }
+      EXPECT_GT(a[3], 0.2f);
+      EXPECT_GT(b[3], 0.2f);
     }
-    parc::SceneCaster scene;
-    ASSERT_TRUE(scene.SetMembers({ { &frontCaster, &whole }, { &backCaster, &whole } }, 0.99));
-    scene.CastRay(parc::RayQuery::Anywhere(ray), segments, ranges, scratch, merged, sceneStats);
-    ASSERT_TRUE(scene.SetMembers({ { &backCaster, &whole }, { &frontCaster, &whole } }, 0.99));
-    scene.CastRay(parc::RayQuery::Anywhere(ray), segments, ranges, scratch, swapped, sceneStats);
-    EXPECT_EQ(0, std::memcmp(merged, swapped, sizeof(merged)));
-    for (int c = 0; c < 4; ++c)
-    {
-      EXPECT_NEAR(merged[c], a[c] + (1.f - a[3]) * b[c], 1e-6) << "eye " << zEye << " c " << c;
-    }
-    EXPECT_GT(a[3], 0.2f);
-    EXPECT_GT(b[3], 0.2f);
   }
 }
 
