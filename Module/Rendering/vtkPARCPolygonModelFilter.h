@@ -63,7 +63,9 @@ public:
   ///@{
   /**
    * The ray function, as a vtkVolumeMapper blend mode (COMPOSITE_BLEND, ...,
-   * ISOSURFACE_BLEND; slice blend is not supported). Default: composite.
+   * SLICE_BLEND; a slice's cells are classified as a composite volume's, by where the
+   * opacity is not zero, though the mapper draws slices without a pass). Default:
+   * composite.
    */
   vtkSetMacro(BlendMode, int);
   vtkGetMacro(BlendMode, int);
