@@ -932,8 +932,7 @@ bool ConvertSlicePlane(
   const double* n = plane->GetNormal();
   p.SliceOrigin = parc::Vec3(o[0], o[1], o[2]) - frame;
   p.SliceNormal = parc::Vec3(n[0], n[1], n[2]);
-  const double n2 = parc::Dot(p.SliceNormal, p.SliceNormal);
-  return std::isfinite(parc::Dot(p.SliceOrigin, p.SliceOrigin)) && n2 > 0.0 && std::isfinite(n2);
+  return parc::HasUsableSlicePlane(p);
 }
 }
 

@@ -37,9 +37,14 @@ vtkPARCVolumeMapper* vtkPARCVolumeRepresentation::GetPARCMapper()
   return vtkPARCVolumeMapper::SafeDownCast(this->VolumeMapper);
 }
 
+vtkPARCPVVolumeMapper* vtkPARCVolumeRepresentation::GetSceneMemberMapper()
+{
+  return vtkPARCPVVolumeMapper::SafeDownCast(this->VolumeMapper);
+}
+
 vtkPARCPVVolumeScene* vtkPARCVolumeRepresentation::GetScene()
 {
-  return vtkPARCPVVolumeMapper::SafeDownCast(this->VolumeMapper)->GetScene();
+  return this->GetSceneMemberMapper()->GetScene();
 }
 
 vtkPARCVolumeMapper* vtkPARCVolumeRepresentation::GetRenderingMapper()
@@ -57,7 +62,7 @@ bool vtkPARCVolumeRepresentation::AddToView(vtkView* view)
   }
   vtkPARCPVVolumeScene* scene = vtkPARCPVVolumeScene::Of(renderView->GetRenderer());
   scene->AddMember(this);
-  vtkPARCPVVolumeMapper::SafeDownCast(this->VolumeMapper)->SetScene(scene);
+  this->GetSceneMemberMapper()->SetScene(scene);
   return true;
 }
 
@@ -66,7 +71,7 @@ bool vtkPARCVolumeRepresentation::RemoveFromView(vtkView* view)
   if (vtkPARCPVVolumeScene* scene = this->GetScene())
   {
     scene->RemoveMember(this);
-    vtkPARCPVVolumeMapper::SafeDownCast(this->VolumeMapper)->SetScene(nullptr);
+    this->GetSceneMemberMapper()->SetScene(nullptr);
   }
   return this->Superclass::RemoveFromView(view);
 }

@@ -18,6 +18,7 @@
 #include "PARCParaViewModule.h" // For export macro
 #include "vtkImageVolumeRepresentation.h"
 
+class vtkPARCPVVolumeMapper;
 class vtkPARCPVVolumeScene;
 class vtkPARCVolumeMapper;
 
@@ -103,6 +104,9 @@ protected:
   ~vtkPARCVolumeRepresentation() override;
 
 private:
+  /** The mapper, as the member of the view's scene it is. */
+  vtkPARCPVVolumeMapper* GetSceneMemberMapper();
+
   vtkPARCVolumeRepresentation(const vtkPARCVolumeRepresentation&) = delete;
   void operator=(const vtkPARCVolumeRepresentation&) = delete;
 };

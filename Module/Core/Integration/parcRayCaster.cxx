@@ -200,14 +200,9 @@ bool RayCaster::Prepare(const Volume& volume)
     return false; // a label map, for composite blending
   }
   const BlendMode blend = parameters->Blend;
-  if (blend == BlendMode::Slice)
+  if (blend == BlendMode::Slice && !HasUsableSlicePlane(*parameters))
   {
-    const Vec3& o = parameters->SliceOrigin;
-    const Vec3& n = parameters->SliceNormal;
-    if (!(std::isfinite(Dot(o, o)) && Dot(n, n) > 0.0 && std::isfinite(Dot(n, n))))
-    {
-      return false; // a plane needs a finite point and a non-zero finite normal
-    }
+    return false;
   }
   if (const ScalarField* mask = parameters->Mask)
   {

@@ -147,6 +147,13 @@ inline bool LightsAllowQuantizedNormals(const CastParameters& p)
     [](const Light& light) { return !light.Positional && !(light.ShadowAttenuation > 0.0); });
 }
 
+/// Whether p's slice plane is one: a finite point and a non-zero finite normal.
+inline bool HasUsableSlicePlane(const CastParameters& p)
+{
+  const double n2 = Dot(p.SliceNormal, p.SliceNormal);
+  return std::isfinite(Dot(p.SliceOrigin, p.SliceOrigin)) && n2 > 0.0 && std::isfinite(n2);
+}
+
 /// The iso values the isosurface ray function uses, for the caster and the classification
 /// alike: sorted, the smallest MaxIsoValues.
 inline std::vector<double> UsedIsoValues(const CastParameters& p)
