@@ -344,6 +344,7 @@ int AccelerationMode(const std::string& name)
                   { "depth", vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER },
                   { "color", vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER },
                   { "both", vtkPARCVolumeMapper::ACCELERATION_BOTH },
+                  { "walk", vtkPARCVolumeMapper::ACCELERATION_SUPERCELL_WALK },
                   { "auto", vtkPARCVolumeMapper::ACCELERATION_AUTO } },
     name, "acceleration mode");
 }
@@ -392,7 +393,8 @@ void CompareAccelerationModes(vtkRenderWindow* window, vtkPARCVolumeMapper* mapp
 {
   const int modes[] = { vtkPARCVolumeMapper::ACCELERATION_NONE,
     vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER, vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER,
-    vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_AUTO };
+    vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_SUPERCELL_WALK,
+    vtkPARCVolumeMapper::ACCELERATION_AUTO };
   std::vector<Measurement> rows;
   for (int mode : modes)
   {
@@ -840,7 +842,8 @@ void ThreadScaling(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, int rou
   const int all = vtkSMPTools::GetEstimatedNumberOfThreads();
   const int modes[] = { vtkPARCVolumeMapper::ACCELERATION_NONE,
     vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER, vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER,
-    vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_AUTO };
+    vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_SUPERCELL_WALK,
+    vtkPARCVolumeMapper::ACCELERATION_AUTO };
   std::printf("| mode | 1 thread, median (s) | %d threads, median (s) | speedup | casting, 1 "
               "thread (s) | casting, %d threads (s) | casting speedup | passes, 1 thread (s) | "
               "passes, %d threads (s) |\n|---|---|---|---|---|---|---|---|---|\n",

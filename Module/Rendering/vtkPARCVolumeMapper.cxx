@@ -518,6 +518,8 @@ const char* vtkPARCVolumeMapper::GetAccelerationModeAsString(int mode)
       return "Auto";
     case ACCELERATION_BOTH:
       return "DepthAndColorBuffer";
+    case ACCELERATION_SUPERCELL_WALK:
+      return "SupercellWalk";
     default:
       return "Unknown";
   }
@@ -1444,6 +1446,12 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   {
     in.ReleaseUnusedPasses(window, false, false);
     return in.WholeRays;
+  }
+  if (mode == ACCELERATION_SUPERCELL_WALK)
+  {
+    in.LastMode = mode;
+    in.ReleaseUnusedPasses(window, false, false);
+    return in.Plan.GetWalk(in.CoreVolume.WorldToIndex);
   }
   const parc::Matrix4& indexToWorld = in.IndexToFrame;
   const bool depth = mode == ACCELERATION_DEPTH_BUFFER || mode == ACCELERATION_BOTH;

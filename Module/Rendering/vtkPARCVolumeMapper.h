@@ -144,7 +144,8 @@ public:
     ACCELERATION_DEPTH_BUFFER = 1,
     ACCELERATION_COLOR_BUFFER = 2,
     ACCELERATION_AUTO = 3,
-    ACCELERATION_BOTH = 4
+    ACCELERATION_BOTH = 4,
+    ACCELERATION_SUPERCELL_WALK = 5
   };
 
   ///@{
@@ -172,13 +173,17 @@ public:
    * once and casts unaccelerated.
    * Default: Auto.
    */
-  vtkSetClampMacro(AccelerationMode, int, ACCELERATION_NONE, ACCELERATION_BOTH);
+  vtkSetClampMacro(AccelerationMode, int, ACCELERATION_NONE, ACCELERATION_SUPERCELL_WALK);
   vtkGetMacro(AccelerationMode, int);
   void SetAccelerationModeToNone() { this->SetAccelerationMode(ACCELERATION_NONE); }
   void SetAccelerationModeToDepthBuffer() { this->SetAccelerationMode(ACCELERATION_DEPTH_BUFFER); }
   void SetAccelerationModeToColorBuffer() { this->SetAccelerationMode(ACCELERATION_COLOR_BUFFER); }
   void SetAccelerationModeToAuto() { this->SetAccelerationMode(ACCELERATION_AUTO); }
   void SetAccelerationModeToBoth() { this->SetAccelerationMode(ACCELERATION_BOTH); }
+  void SetAccelerationModeToSupercellWalk()
+  {
+    this->SetAccelerationMode(ACCELERATION_SUPERCELL_WALK);
+  }
   static const char* GetAccelerationModeAsString(int mode);
   ///@}
 

@@ -1,6 +1,7 @@
 // Classification, supercells, polygon models and the segment oracle, against brute force.
 #include "parcPolygonModel.h"
 #include "parcSegmentOracle.h"
+#include "parcSupercellWalk.h"
 #include "parcTestUtilities.h"
 
 #include <gtest/gtest.h>
@@ -671,6 +672,132 @@ TEST(SegmentOracle, CastingWithTheOracleIsBitIdentical)
     }
   }
   EXPECT_LT(oracleSamples, wholeSamples) << "the oracle skips empty samples";
+}
+
+namespace
+{
+/// The walk's segment of ray holds every oracle interval (closed boxes, the tolerance
+/// included) and ends where they end: the first and last parameters where the ray
+/// touches a PC supercell.
+void CheckWalk(const SupercellGrid& grid, const parc::SupercellWalk& walk, const parc::Ray& ray)
+{
+  const parc::SegmentOracle oracle(grid, parc::Matrix4());
+  std::vector<parc::Segment> expected, walked;
+  oracle.Intervals(ray, ray.TMin, ray.TMax, expected);
+  walk.Segments(parc::RayQuery::Anywhere(ray), walked);
+  const auto where = [&ray]() {
+    return ::testing::Message() << "ray from (" << ray.Origin.X << ", " << ray.Origin.Y << ", "
+                                << ray.Origin.Z << ") along (" << ray.Direction.X << ", "
+                                << ray.Direction.Y << ", " << ray.Direction.Z << ")";
+  };
+  if (expected.empty())
+  {
+    ASSERT_TRUE(walked.empty()) << where();
+    return;
+  }
+  ASSERT_EQ(walked.size(), 1u) << where();
+  // The walk's tolerance (voxel index, relative to the largest coordinate, as large as the
+  // oracle's or larger) along the axis the ray crosses most slowly, in ray parameter.
+  double slowest = 1.0, largest = 0.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    slowest = ray.Direction[a] != 0.0 ? std::min(slowest, std::abs(ray.Direction[a])) : slowest;
+    largest = std::max({ largest, 1.0 * grid.GetCellDimensions()[a], std::abs(ray.Origin[a]) });
+  }
+  const double Tolerance = 2e-9 * largest / slowest;
+  EXPECT_LE(walked[0].TNear, expected.front().TNear + 1e-12) << where();
+  EXPECT_GE(walked[0].TFar, expected.back().TFar - 1e-12) << where();
+  EXPECT_NEAR(walked[0].TNear, expected.front().TNear, Tolerance) << where();
+  EXPECT_NEAR(walked[0].TFar, expected.back().TFar, Tolerance) << where();
+}
+}
+
+// The walk against the oracle on random grids of every supercell size: random rays, rays
+// that start inside, and rays along the axes and diagonals through supercell corners,
+// edges and faces (closed boxes: every PC supercell a ray touches counts).
+TEST(SupercellWalk, MatchesTheOracle)
+{
+  std::mt19937 rng(21);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int dims[3] = { 23, 19, 27 };
+  for (const auto& size : SupercellSizes)
+  {
+    for (int trial = 0; trial < 3; ++trial)
+    {
+      Scene s(rng, dims, AllBlendModes[trial], size, parc::Interpolation::Linear, true);
+      parc::SupercellWalk walk;
+      walk.Set(&s.Grid, parc::Matrix4());
+      for (int r = 0; r < 60; ++r)
+      {
+        const Vec3 target(11 + 11 * u(rng), 9 + 9 * u(rng), 13 + 13 * u(rng));
+        const Vec3 dir(u(rng), u(rng), u(rng));
+        parc::Ray ray = parctest::MakeRay(target - (r % 3 == 0 ? 3.0 : 50.0) * parc::Normalized(dir), dir);
+        ray.TMax = 100.0;
+        ASSERT_NO_FATAL_FAILURE(CheckWalk(s.Grid, walk, ray));
+      }
+      // Through supercell corners: along the axes, the face and the space diagonals.
+      for (int r = 0; r < 60; ++r)
+      {
+        const int* counts = s.Grid.GetCounts();
+        Vec3 corner;
+        for (int a = 0; a < 3; ++a)
+        {
+          corner[a] = s.Grid.Boundary(a, static_cast<int>(rng() % (counts[a] + 1)));
+        }
+        Vec3 dir;
+        for (int a = 0; a < 3; ++a)
+        {
+          dir[a] = static_cast<double>(static_cast<int>(rng() % 3) - 1);
+        }
+        if (dir.X == 0 && dir.Y == 0 && dir.Z == 0)
+        {
+          dir.Z = 1;
+        }
+        parc::Ray ray = parctest::MakeRay(corner - 60.0 * parc::Normalized(dir), dir);
+        ray.TMax = 200.0;
+        ASSERT_NO_FATAL_FAILURE(CheckWalk(s.Grid, walk, ray));
+      }
+    }
+  }
+}
+
+// Casting with the walk's segments gives the bits of casting whole rays, for every ray
+// function, interpolation and supercell size, with fewer samples.
+TEST(SupercellWalk, CastingWithTheWalkIsBitIdentical)
+{
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int dims[3] = { 14, 12, 16 };
+  std::uint64_t wholeSamples = 0, walkSamples = 0;
+  for (const auto& size : SupercellSizes)
+  {
+    for (BlendMode blend : AllBlendModes)
+    {
+      for (auto interp : { parc::Interpolation::Linear, parc::Interpolation::Nearest })
+      {
+        Scene s(rng, dims, blend, size, interp);
+        s.Params.Shade = (rng() % 2) == 0;
+        s.Params.Lights.push_back(parc::Light());
+        s.Params.Lights.back().Position = { 0, 0, 1 };
+        parc::SupercellWalk walk;
+        walk.Set(&s.Grid, parc::Matrix4()); // voxel-index rays
+        for (int r = 0; r < 40; ++r)
+        {
+          const Vec3 target(6.5 + 6 * u(rng), 5.5 + 5 * u(rng), 7.5 + 7 * u(rng));
+          const Vec3 dir(u(rng), u(rng), u(rng));
+          const parc::Ray ray = parctest::MakeRay(target - 30.0 * parc::Normalized(dir), dir);
+          const auto whole = parctest::CastOne(s.Field, s.Params, ray);
+          const auto fast = parctest::CastOne(s.Field, s.Params, ray, &walk);
+          ASSERT_EQ(std::memcmp(whole.RGBA, fast.RGBA, sizeof(whole.RGBA)), 0)
+            << "blend " << static_cast<int>(blend) << " size " << size[0];
+          ASSERT_LE(fast.Stats.Samples, whole.Stats.Samples);
+          wholeSamples += whole.Stats.Samples;
+          walkSamples += fast.Stats.Samples;
+        }
+      }
+    }
+  }
+  EXPECT_LT(walkSamples, wholeSamples) << "the walk skips empty samples";
 }
 
 // The sign of the rays along a colour model's axis: only when every ray runs the same way

@@ -286,7 +286,22 @@ void AccelerationPlan::NewModelVersion()
   {
     pass.Current = false;
   }
+  this->WalkCurrent = false;
   ++this->ModelVersion;
+}
+
+const SupercellWalk& AccelerationPlan::GetWalk(const Matrix4& worldToIndex)
+{
+  if (!this->WalkCurrent || !this->Walk.IsSet())
+  {
+    const auto start = std::chrono::steady_clock::now();
+    this->Walk.Set(&this->Grid, worldToIndex);
+    this->WalkCurrent = true;
+    ++this->ModelBuilds;
+    this->SetUpTime += SecondsSince(start);
+  }
+  this->Walk.SetWorldToIndex(worldToIndex);
+  return this->Walk;
 }
 
 const PolygonModel& AccelerationPlan::Ensure(PassModel& pass, int axis, bool uploaded)

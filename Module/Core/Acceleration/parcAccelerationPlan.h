@@ -16,6 +16,7 @@
 #include "parcPolygonModel.h"
 #include "parcStatistics.h"
 #include "parcSupercellGrid.h"
+#include "parcSupercellWalk.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -182,6 +183,11 @@ public:
   /// Quads of the pass's model (known also when its vertices were released).
   std::size_t GetDepthQuads() const { return this->Depth.Quads; }
   std::size_t GetColorQuads(int axis) const { return this->Color[axis].Quads; }
+  /// The walk of the current classification (SupercellWalk), its flags derived once per
+  /// classification, for rays mapped by worldToIndex.
+  const SupercellWalk& GetWalk(const Matrix4& worldToIndex);
+  /// Frees the walk's flags (a mode that does not walk).
+  void ReleaseWalk() { this->Walk.Clear(); }
   /// Frees a model's vertices once the caller's GPU holds them.
   void ReleaseDepthVertices() { Release(this->Depth); }
   void ReleaseColorVertices(int axis) { Release(this->Color[axis]); }
@@ -199,6 +205,7 @@ public:
   std::size_t GetPyramidMemorySize() const;
   std::size_t GetDepthModelMemorySize() const { return this->Depth.Model.GetMemorySize(); }
   std::size_t GetColorModelsMemorySize() const;
+  std::size_t GetWalkMemorySize() const { return this->Walk.GetMemorySize(); }
 
   AutoTrials Auto; ///< Auto's measurements for this volume
 
@@ -222,6 +229,8 @@ private:
   SupercellGrid Grid;
   PassModel Depth;
   PassModel Color[3]; ///< per major axis
+  SupercellWalk Walk;
+  bool WalkCurrent = false; ///< the walk's flags are of the current classification
   std::uint64_t ModelVersion = 0;
   std::uint64_t PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
   double ClassificationTime = 0.0;
