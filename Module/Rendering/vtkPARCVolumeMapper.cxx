@@ -1280,14 +1280,21 @@ void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, 
       continue;
     }
     parc::Occluders::Member member{ &volume.Caster, {} };
+    // The walk answers any ray: shadow rays need no pass from the lights.
+    const bool walk = self->AccelerationMode == ACCELERATION_SUPERCELL_WALK;
     for (std::size_t i = 0; shadows && self->AccelerationMode != ACCELERATION_NONE &&
          volume.Plan.GetGrid().GetNumberOfSupercells() > 0 && i < lights->size();
          ++i)
     {
-      member.LightSources.push_back(castsShadows((*lights)[i])
-          ? volume.LightSource(ren->GetRenderWindow(), *lights, i, frame,
-              self->AccelerationMode == ACCELERATION_COLOR_BUFFER, this->LightPasses)
-          : nullptr);
+      if (!castsShadows((*lights)[i]))
+      {
+        member.LightSources.push_back(nullptr);
+        continue;
+      }
+      member.LightSources.push_back(walk ? &volume.Plan.GetWalk(volume.CoreVolume.WorldToIndex)
+                                         : volume.LightSource(ren->GetRenderWindow(), *lights, i,
+                                             frame, self->AccelerationMode == ACCELERATION_COLOR_BUFFER,
+                                             this->LightPasses));
     }
     occluders.push_back(std::move(member));
   }

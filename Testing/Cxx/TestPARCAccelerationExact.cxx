@@ -33,7 +33,7 @@ int TestPARCAccelerationExact(int argc, char* argv[])
   (void)argv;
   const int modes[] = { vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER,
     vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER, vtkPARCVolumeMapper::ACCELERATION_BOTH,
-    vtkPARCVolumeMapper::ACCELERATION_AUTO };
+    vtkPARCVolumeMapper::ACCELERATION_SUPERCELL_WALK, vtkPARCVolumeMapper::ACCELERATION_AUTO };
   const int blends[] = { vtkVolumeMapper::COMPOSITE_BLEND, vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND,
     vtkVolumeMapper::MINIMUM_INTENSITY_BLEND, vtkVolumeMapper::AVERAGE_INTENSITY_BLEND,
     vtkVolumeMapper::ADDITIVE_BLEND, vtkVolumeMapper::ISOSURFACE_BLEND };

@@ -254,7 +254,7 @@ bool RunCase(std::uint64_t seed, vtkRenderWindow* window, Coverage& coverage)
   std::vector<float> reference;
   const int modes[] = { vtkPARCVolumeMapper::ACCELERATION_NONE,
     vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER, vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER,
-    vtkPARCVolumeMapper::ACCELERATION_BOTH };
+    vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_SUPERCELL_WALK };
   bool ok = true;
   for (int mode : modes)
   {

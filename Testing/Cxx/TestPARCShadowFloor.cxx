@@ -117,7 +117,7 @@ int TestPARCShadowFloor(int argc, char* argv[])
   }
   for (int mode : { vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER,
          vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER, vtkPARCVolumeMapper::ACCELERATION_BOTH,
-         vtkPARCVolumeMapper::ACCELERATION_AUTO })
+         vtkPARCVolumeMapper::ACCELERATION_SUPERCELL_WALK, vtkPARCVolumeMapper::ACCELERATION_AUTO })
   {
     mapper->SetAccelerationMode(mode);
     window->Render();

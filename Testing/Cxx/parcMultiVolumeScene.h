@@ -147,7 +147,7 @@ inline int RunMultiVolumeTest(const MultiVolumeScene& scene, int argc, char* arg
   window->SetSize(96, 80);
   const int modes[] = { vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER,
     vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER, vtkPARCVolumeMapper::ACCELERATION_BOTH,
-    vtkPARCVolumeMapper::ACCELERATION_AUTO };
+    vtkPARCVolumeMapper::ACCELERATION_SUPERCELL_WALK, vtkPARCVolumeMapper::ACCELERATION_AUTO };
   struct Placement
   {
     const char* Name;

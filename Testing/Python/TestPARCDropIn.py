@@ -53,7 +53,8 @@ class TestPARCDropIn(unittest.TestCase):
         for mode in (vtkPARCVolumeMapper.ACCELERATION_NONE,
                      vtkPARCVolumeMapper.ACCELERATION_DEPTH_BUFFER,
                      vtkPARCVolumeMapper.ACCELERATION_COLOR_BUFFER,
-                     vtkPARCVolumeMapper.ACCELERATION_BOTH):
+                     vtkPARCVolumeMapper.ACCELERATION_BOTH,
+                     vtkPARCVolumeMapper.ACCELERATION_SUPERCELL_WALK):
             mapper.SetAccelerationMode(mode)
             window.Render()
             images.append(ray_image(mapper).reshape(120, 120, 4))

@@ -44,6 +44,7 @@ class TestPARCShadingModel(unittest.TestCase):
         for mode in (vtkPARCVolumeMapper.ACCELERATION_DEPTH_BUFFER,
                      vtkPARCVolumeMapper.ACCELERATION_COLOR_BUFFER,
                      vtkPARCVolumeMapper.ACCELERATION_BOTH,
+                     vtkPARCVolumeMapper.ACCELERATION_SUPERCELL_WALK,
                      vtkPARCVolumeMapper.ACCELERATION_AUTO):
             image = self.render(mapper, window, mode)
             self.assertTrue(np.array_equal(image, quantized),
