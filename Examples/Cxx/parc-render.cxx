@@ -64,7 +64,8 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
   --camera-position X,Y,Z [--focal-point X,Y,Z]   explicit camera
   --parallel            parallel projection (default perspective)
   --sample-distance D   world units (default: half the smallest spacing)
-  --acceleration MODE   none, depth, color, both, auto (default)
+  --acceleration MODE   none, depth, color, both, walk (the supercells walked on the CPU,
+                        no GL pass), auto (default)
   --supercell M,N,P     supercell size in cells (default 2,2,2)
   --compare-acceleration  also render with every acceleration mode, side by side: a table
                         of samples, cells, polygons, times, speedup and exactness

@@ -356,9 +356,9 @@ public:
   {
     return this->Plan.GetSetUpTime() + this->Rasterizer->GetSetUpTime();
   }
-  /// Frees the buffers and GL objects of the passes a settled mode does not use (Auto
-  /// keeps them while it still has modes to try).
-  void ReleaseUnusedPasses(vtkRenderWindow* window, bool depth, bool color)
+  /// Frees the buffers and GL objects of the passes, and the walk's flags, that a settled
+  /// mode does not use (Auto keeps them while it still has modes to try).
+  void ReleaseUnusedPasses(vtkRenderWindow* window, bool depth, bool color, bool walk = false)
   {
     if (this->Plan.Auto.Remaining() > 0 && this->Plan.Auto.Chosen >= 0)
     {
@@ -373,6 +373,10 @@ public:
     {
       this->PlaneSource.ReleaseBuffer();
       this->Rasterizer->ReleasePass(window, true);
+    }
+    if (!walk)
+    {
+      this->Plan.ReleaseWalk();
     }
   }
 
@@ -1457,7 +1461,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   if (mode == ACCELERATION_SUPERCELL_WALK)
   {
     in.LastMode = mode;
-    in.ReleaseUnusedPasses(window, false, false);
+    in.ReleaseUnusedPasses(window, false, false, true);
     return in.Plan.GetWalk(in.CoreVolume.WorldToIndex);
   }
   const parc::Matrix4& indexToWorld = in.IndexToFrame;
@@ -1951,6 +1955,7 @@ vtkPARCVolumeMapper::vtkVolumeState::Memory() const
     { "supercell flags", this->Plan.GetGrid().GetMemorySize() },
     { "depth model", this->Plan.GetDepthModelMemorySize() },
     { "colour models", this->Plan.GetColorModelsMemorySize() },
+    { "supercell walk", this->Plan.GetWalkMemorySize() },
     { "depth buffer", this->DepthSource.GetMemorySize() },
     { "bit-plane buffer", this->PlaneSource.GetMemorySize() },
     { "OpenGL models and targets", this->Rasterizer->GetMemorySize() } };
