@@ -1295,10 +1295,10 @@ void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, 
         member.LightSources.push_back(nullptr);
         continue;
       }
-      member.LightSources.push_back(walk ? &volume.Plan.GetWalk(volume.CoreVolume.WorldToIndex)
-                                         : volume.LightSource(ren->GetRenderWindow(), *lights, i,
-                                             frame, self->AccelerationMode == ACCELERATION_COLOR_BUFFER,
-                                             this->LightPasses));
+      const bool planes = self->AccelerationMode == ACCELERATION_COLOR_BUFFER;
+      member.LightSources.push_back(walk
+          ? &volume.Plan.GetWalk(volume.CoreVolume.WorldToIndex)
+          : volume.LightSource(ren->GetRenderWindow(), *lights, i, frame, planes, this->LightPasses));
     }
     occluders.push_back(std::move(member));
   }

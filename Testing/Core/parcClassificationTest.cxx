@@ -11,6 +11,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <memory>
 #include <random>
 #include <tuple>
 
@@ -634,15 +635,18 @@ TEST(SegmentOracle, RaysOnFacesEdgesAndCorners)
   }
 }
 
-// The end-to-end proof that skipping is exact: casting with the oracle's segments gives
-// bit-identical results to casting whole rays, for every ray function, interpolation and
-// supercell size, with fewer samples.
-TEST(SegmentOracle, CastingWithTheOracleIsBitIdentical)
+namespace
 {
-  std::mt19937 rng(18);
+/// The end-to-end proof that skipping is exact: casting with the segments of the source
+/// made by source(scene) gives the bits of casting whole rays, for every ray function,
+/// interpolation and supercell size, with fewer samples.
+template <class MakeSource>
+void CheckCastingIsBitIdentical(unsigned seed, MakeSource&& source)
+{
+  std::mt19937 rng(seed);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   const int dims[3] = { 14, 12, 16 };
-  std::uint64_t wholeSamples = 0, oracleSamples = 0;
+  std::uint64_t wholeSamples = 0, fastSamples = 0;
   for (const auto& size : SupercellSizes)
   {
     for (BlendMode blend : AllBlendModes)
@@ -653,25 +657,33 @@ TEST(SegmentOracle, CastingWithTheOracleIsBitIdentical)
         s.Params.Shade = (rng() % 2) == 0;
         s.Params.Lights.push_back(parc::Light());
         s.Params.Lights.back().Position = { 0, 0, 1 };
-        const parc::SegmentOracle oracle(s.Grid, parc::Matrix4()); // voxel-index rays
+        const auto segments = source(s); // for voxel-index rays
         for (int r = 0; r < 40; ++r)
         {
           const Vec3 target(6.5 + 6 * u(rng), 5.5 + 5 * u(rng), 7.5 + 7 * u(rng));
           const Vec3 dir(u(rng), u(rng), u(rng));
           const parc::Ray ray = parctest::MakeRay(target - 30.0 * parc::Normalized(dir), dir);
           const auto whole = parctest::CastOne(s.Field, s.Params, ray);
-          const auto fast = parctest::CastOne(s.Field, s.Params, ray, &oracle);
+          const auto fast = parctest::CastOne(s.Field, s.Params, ray, segments.get());
           ASSERT_EQ(std::memcmp(whole.RGBA, fast.RGBA, sizeof(whole.RGBA)), 0)
             << "blend " << static_cast<int>(blend) << " size " << size[0] << " rgba "
             << whole.RGBA[3] << " vs " << fast.RGBA[3];
           ASSERT_LE(fast.Stats.Samples, whole.Stats.Samples);
           wholeSamples += whole.Stats.Samples;
-          oracleSamples += fast.Stats.Samples;
+          fastSamples += fast.Stats.Samples;
         }
       }
     }
   }
-  EXPECT_LT(oracleSamples, wholeSamples) << "the oracle skips empty samples";
+  EXPECT_LT(fastSamples, wholeSamples) << "empty samples are skipped";
+}
+}
+
+TEST(SegmentOracle, CastingWithTheOracleIsBitIdentical)
+{
+  CheckCastingIsBitIdentical(18, [](const Scene& s) {
+    return std::make_unique<parc::SegmentOracle>(s.Grid, parc::Matrix4());
+  });
 }
 
 namespace
@@ -731,7 +743,8 @@ TEST(SupercellWalk, MatchesTheOracle)
       {
         const Vec3 target(11 + 11 * u(rng), 9 + 9 * u(rng), 13 + 13 * u(rng));
         const Vec3 dir(u(rng), u(rng), u(rng));
-        parc::Ray ray = parctest::MakeRay(target - (r % 3 == 0 ? 3.0 : 50.0) * parc::Normalized(dir), dir);
+        const double back = r % 3 == 0 ? 3.0 : 50.0; // a third start inside the volume
+        parc::Ray ray = parctest::MakeRay(target - back * parc::Normalized(dir), dir);
         ray.TMax = 100.0;
         ASSERT_NO_FATAL_FAILURE(CheckWalk(s.Grid, walk, ray));
       }
@@ -761,43 +774,13 @@ TEST(SupercellWalk, MatchesTheOracle)
   }
 }
 
-// Casting with the walk's segments gives the bits of casting whole rays, for every ray
-// function, interpolation and supercell size, with fewer samples.
 TEST(SupercellWalk, CastingWithTheWalkIsBitIdentical)
 {
-  std::mt19937 rng(22);
-  std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const int dims[3] = { 14, 12, 16 };
-  std::uint64_t wholeSamples = 0, walkSamples = 0;
-  for (const auto& size : SupercellSizes)
-  {
-    for (BlendMode blend : AllBlendModes)
-    {
-      for (auto interp : { parc::Interpolation::Linear, parc::Interpolation::Nearest })
-      {
-        Scene s(rng, dims, blend, size, interp);
-        s.Params.Shade = (rng() % 2) == 0;
-        s.Params.Lights.push_back(parc::Light());
-        s.Params.Lights.back().Position = { 0, 0, 1 };
-        parc::SupercellWalk walk;
-        walk.Set(&s.Grid, parc::Matrix4()); // voxel-index rays
-        for (int r = 0; r < 40; ++r)
-        {
-          const Vec3 target(6.5 + 6 * u(rng), 5.5 + 5 * u(rng), 7.5 + 7 * u(rng));
-          const Vec3 dir(u(rng), u(rng), u(rng));
-          const parc::Ray ray = parctest::MakeRay(target - 30.0 * parc::Normalized(dir), dir);
-          const auto whole = parctest::CastOne(s.Field, s.Params, ray);
-          const auto fast = parctest::CastOne(s.Field, s.Params, ray, &walk);
-          ASSERT_EQ(std::memcmp(whole.RGBA, fast.RGBA, sizeof(whole.RGBA)), 0)
-            << "blend " << static_cast<int>(blend) << " size " << size[0];
-          ASSERT_LE(fast.Stats.Samples, whole.Stats.Samples);
-          wholeSamples += whole.Stats.Samples;
-          walkSamples += fast.Stats.Samples;
-        }
-      }
-    }
-  }
-  EXPECT_LT(walkSamples, wholeSamples) << "the walk skips empty samples";
+  CheckCastingIsBitIdentical(22, [](const Scene& s) {
+    auto walk = std::make_unique<parc::SupercellWalk>();
+    walk->Set(&s.Grid, parc::Matrix4());
+    return walk;
+  });
 }
 
 // The sign of the rays along a colour model's axis: only when every ray runs the same way

@@ -1,14 +1,16 @@
 // PARC for VTK: the supercell classification walked along each ray on the CPU, a segment
-// source without a GL pass (what the passes project, found by a 3-D DDA instead).
+// source without a GL pass (what the depth pass projects, found by a 3-D DDA instead).
 //
-// Each ray is walked through blocks of BlockSize^3 supercells first: a block with no PC
-// supercell and none next to one is crossed in one step, a block of PC supercells only is
-// one segment, and the supercells of any other block are walked one by one. A PC supercell
-// gives the ray's interval inside it. The sampler and the walk round differently, so a
-// ray that passes within a tolerance of a PC supercell's closed box from a supercell that
-// is not PC (only possible next to one, which the near flags mark) gets the interval of
-// that approach as well: the walk gives every interval the segment oracle gives (tested).
-// A ray needs no pixel, so shadow rays use the same source.
+// Each ray gets one segment, from where it may first meet a PC supercell to where it may
+// last, found by walking from its front and from its back. The walk goes through blocks of
+// BlockSize^3 supercells: an empty block (no PC supercell in it or next to it) is crossed
+// together with the empty blocks within its reach in one step; in a block of PC supercells
+// only the ray meets one where it enters; the supercells of any other block are walked one
+// by one. The sampler and the walk round differently, so a ray that passes within a
+// tolerance of a PC supercell's closed box from a supercell that is not PC (possible only
+// next to one, which the near flags mark) counts as meeting it there: the segment holds
+// every interval the segment oracle gives (tested). A ray needs no pixel, so shadow rays
+// use the same source.
 #ifndef parcSupercellWalk_h
 #define parcSupercellWalk_h
 
