@@ -37,40 +37,100 @@ struct SupercellWalk::Line
       this->Eps };
   }
 
+  /// What a visit of WalkBoxes returns besides a reach: stop the walk, or go on to the next
+  /// box.
+  static constexpr int Stop = -1;
+  static constexpr int NextBox = 0;
+
   /// Visits, in ray order, the boxes of a grid whose faces along axis a lie at face(a, i)
   /// and whose box i holds [i size[a], (i + 1) size[a]] up to rounding, within the index
-  /// range [lo, hi) per axis, over [t0, t1]: visit(index, tIn, tOut) for each (a 3-D DDA)
-  /// until it returns false.
+  /// range [lo, hi) per axis, over [t0, t1] (a 3-D DDA): visit(index, tIn, tOut) for each,
+  /// until it returns Stop. A visit that returns a reach r > 0 has the walk leave the cube
+  /// of boxes within r of this one (along every axis) in one step, where the ray first
+  /// does, without visiting them.
   template <class Face, class Visit>
   void WalkBoxes(double t0, double t1, const int lo[3], const int hi[3], const double size[3],
     Face&& face, Visit&& visit) const
   {
-    const Vec3 start = this->O + t0 * this->D;
     int index[3], step[3];
     double next[3];
+    const auto nextFace = [&](int a) {
+      return step[a] == 0 ? Infinity
+                          : (face(a, index[a] + (step[a] > 0)) - this->O[a]) * this->Inverse[a];
+    };
+    const auto boxAt = [&](double x, int a) {
+      const double i = std::floor(x / size[a]);
+      return i < lo[a] ? lo[a] : (i >= hi[a] ? hi[a] - 1 : static_cast<int>(i));
+    };
+    const Vec3 start = this->O + t0 * this->D;
     for (int a = 0; a < 3; ++a)
     {
-      const double x = std::floor(start[a] / size[a]);
-      index[a] = x < lo[a] ? lo[a] : (x >= hi[a] ? hi[a] - 1 : static_cast<int>(x));
+      index[a] = boxAt(start[a], a);
       step[a] = this->D[a] > 0.0 ? 1 : (this->D[a] < 0.0 ? -1 : 0);
-      next[a] = step[a] == 0 ? Infinity
-                             : (face(a, index[a] + (step[a] > 0)) - this->O[a]) * this->Inverse[a];
+      next[a] = nextFace(a);
     }
     double t = t0;
     for (;;)
     {
       const int a = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
-      if (!visit(index, t, std::max(t, std::min(next[a], t1))) || !(next[a] < t1))
+      const int reach = visit(index, t, std::max(t, std::min(next[a], t1)));
+      if (reach == Stop)
       {
         return;
       }
-      index[a] += step[a];
-      if (index[a] < lo[a] || index[a] >= hi[a])
+      if (reach == NextBox)
+      {
+        if (!(next[a] < t1))
+        {
+          return;
+        }
+        index[a] += step[a];
+        if (index[a] < lo[a] || index[a] >= hi[a])
+        {
+          return;
+        }
+        t = std::max(t, next[a]);
+        next[a] = nextFace(a);
+        continue;
+      }
+      // Leave the cube of boxes within reach of this one where the ray first does.
+      int m = 0;
+      double leave = Infinity;
+      for (int c = 0; c < 3; ++c)
+      {
+        if (step[c] != 0)
+        {
+          const double tc =
+            (face(c, index[c] + step[c] * reach + (step[c] > 0)) - this->O[c]) * this->Inverse[c];
+          if (tc < leave)
+          {
+            leave = tc;
+            m = c;
+          }
+        }
+      }
+      if (!(leave < t1))
       {
         return;
       }
-      t = std::max(t, next[a]);
-      next[a] = (face(a, index[a] + (step[a] > 0)) - this->O[a]) * this->Inverse[a];
+      t = std::max(t, leave);
+      const Vec3 p = this->O + t * this->D;
+      for (int c = 0; c < 3; ++c)
+      {
+        if (c != m)
+        {
+          index[c] = std::min(index[c] + reach, std::max(index[c] - reach, boxAt(p[c], c)));
+        }
+      }
+      index[m] += step[m] * (reach + 1);
+      if (index[m] < lo[m] || index[m] >= hi[m])
+      {
+        return;
+      }
+      for (int c = 0; c < 3; ++c)
+      {
+        next[c] = nextFace(c);
+      }
     }
   }
 };
@@ -181,8 +241,8 @@ void SupercellWalk::BuildBlocks()
 
 void SupercellWalk::BuildReach()
 {
-  // Reach r: every block within r - 1 blocks of this one (in each axis; outside the grid
-  // counts) is empty if this one is, or not empty if it is not. Grown one block a round.
+  // Reach r of an empty block: every block within r - 1 blocks of this one (in each axis;
+  // outside the grid counts) is empty too. Grown one block a round; 1 for the others.
   const int* counts = this->BlockCounts;
   const auto empty = [this](std::size_t b) { return this->Blocks[b] == Empty; };
   this->Reach.assign(this->Blocks.size(), 1);
@@ -198,7 +258,7 @@ void SupercellWalk::BuildReach()
         {
           const int block[3] = { i, j, k };
           const std::size_t b = this->BlockIndex(block);
-          bool grows = this->Reach[b] == round;
+          bool grows = empty(b) && this->Reach[b] == round;
           for (int n = 0; grows && n < 27; ++n)
           {
             const int other[3] = { i + n % 3 - 1, j + (n / 3) % 3 - 1, k + n / 9 - 1 };
@@ -206,7 +266,7 @@ void SupercellWalk::BuildReach()
               other[1] < counts[1] && other[2] < counts[2])
             {
               const std::size_t c = this->BlockIndex(other);
-              grows = this->Reach[c] >= round && empty(c) == empty(b);
+              grows = this->Reach[c] >= round && empty(c);
             }
           }
           grown[b] = static_cast<std::uint8_t>(this->Reach[b] + (grows ? 1 : 0));
@@ -258,104 +318,29 @@ bool SupercellWalk::FirstHit(
 {
   // Walked backwards, the line's parameters are negated (Line::Reversed).
   const Line line = last ? forward.Reversed() : forward;
-  const double s0 = last ? -t1 : t0, s1 = last ? -t0 : t1;
   const SupercellGrid& grid = *this->Grid;
   const double* size = grid.GetSize();
   const double blockSize[3] = { BlockSize * size[0], BlockSize * size[1], BlockSize * size[2] };
-  const int* counts = this->BlockCounts;
-  auto face = [&grid](int a, int i) { return grid.Boundary(a, i * BlockSize); };
-  // The blocks in ray order, as Line::WalkBoxes walks them, but across an empty block's
-  // reach in one step.
-  int index[3], step[3];
-  double next[3];
-  const auto nextFace = [&](int a) {
-    return step[a] == 0 ? Infinity
-                        : (face(a, index[a] + (step[a] > 0)) - line.O[a]) * line.Inverse[a];
-  };
-  const Vec3 first = line.O + s0 * line.D;
-  for (int a = 0; a < 3; ++a)
-  {
-    index[a] = std::min(
-      counts[a] - 1, std::max(0, static_cast<int>(std::floor(first[a] / blockSize[a]))));
-    step[a] = line.D[a] > 0.0 ? 1 : (line.D[a] < 0.0 ? -1 : 0);
-    next[a] = nextFace(a);
-  }
-  double s = s0;
-  for (;;)
-  {
-    const std::size_t b = this->BlockIndex(index);
-    const int a = next[0] < next[1] ? (next[0] < next[2] ? 0 : 2) : (next[1] < next[2] ? 1 : 2);
-    const std::uint8_t state = this->Blocks[b];
-    if (state != Empty)
-    {
-      if (state == Full)
+  const int lo[3] = { 0, 0, 0 };
+  bool found = false;
+  line.WalkBoxes(last ? -t1 : t0, last ? -t0 : t1, lo, this->BlockCounts, blockSize,
+    [&grid](int a, int i) { return grid.Boundary(a, i * BlockSize); },
+    [&](const int block[3], double s, double sOut) {
+      const std::size_t b = this->BlockIndex(block);
+      switch (this->Blocks[b])
       {
-        hit = last ? -s : s;
-        return true;
+        case Empty:
+          return this->Reach[b] - 1; // the empty blocks around it
+        case Full:
+          hit = last ? -s : s;
+          found = true;
+          return Line::Stop;
+        default:
+          found = this->EndInBlock(forward, last, block, last ? -sOut : s, last ? -s : sOut, hit);
+          return found ? Line::Stop : Line::NextBox;
       }
-      if (this->EndInBlock(forward, last, index, last ? -std::max(s, std::min(next[a], s1)) : s,
-            last ? -s : std::max(s, std::min(next[a], s1)), hit))
-      {
-        return true;
-      }
-    }
-    const int reach = state == Empty ? this->Reach[b] - 1 : 0; // empty blocks around it
-    if (reach == 0)
-    {
-      if (!(next[a] < s1))
-      {
-        return false;
-      }
-      index[a] += step[a];
-      if (index[a] < 0 || index[a] >= counts[a])
-      {
-        return false;
-      }
-      s = std::max(s, next[a]);
-      next[a] = nextFace(a);
-      continue;
-    }
-    // Leave the cube of blocks within reach of this one where the ray first does.
-    int m = 0;
-    double leave = Infinity;
-    for (int c = 0; c < 3; ++c)
-    {
-      if (step[c] != 0)
-      {
-        const double sc =
-          (face(c, index[c] + step[c] * reach + (step[c] > 0)) - line.O[c]) * line.Inverse[c];
-        if (sc < leave)
-        {
-          leave = sc;
-          m = c;
-        }
-      }
-    }
-    if (!(leave < s1))
-    {
-      return false;
-    }
-    s = std::max(s, leave);
-    const Vec3 p = line.O + s * line.D;
-    for (int c = 0; c < 3; ++c)
-    {
-      if (c != m)
-      {
-        const int at = static_cast<int>(std::floor(p[c] / blockSize[c]));
-        index[c] =
-          std::min({ counts[c] - 1, index[c] + reach, std::max({ 0, index[c] - reach, at }) });
-      }
-    }
-    index[m] += step[m] * (reach + 1);
-    if (index[m] < 0 || index[m] >= counts[m])
-    {
-      return false;
-    }
-    for (int c = 0; c < 3; ++c)
-    {
-      next[c] = nextFace(c);
-    }
-  }
+    });
+  return found;
 }
 
 bool SupercellWalk::EndInBlock(const Line& forward, bool last, const int block[3], double tIn,
@@ -382,7 +367,7 @@ bool SupercellWalk::EndInBlock(const Line& forward, bool last, const int block[3
         t = last ? -a0 : a0;
         found = true;
       }
-      return !found;
+      return found ? Line::Stop : Line::NextBox;
     });
   return found;
 }

@@ -89,8 +89,8 @@ private:
   std::vector<std::uint64_t> Near;
   int BlockCounts[3] = { 0, 0, 0 };
   std::vector<std::uint8_t> Blocks; ///< BlockState per block, x fastest
-  /// Per block, its reach r: the blocks within r - 1 of it along every axis are of its
-  /// class (empty or not), so that a ray crosses them in one step.
+  /// Per block, its reach r: an empty block's neighbours within r - 1 of it along every
+  /// axis are empty, so that a ray crosses them in one step (1 for the other blocks).
   std::vector<std::uint8_t> Reach;
 };
 
