@@ -320,7 +320,7 @@ std::uint64_t ExpectMergeOfWholeEvents(const std::vector<const parc::RayCaster*>
       }
       parc::EventCompositor reference;
       std::vector<std::size_t> next(n, 0);
-      while (reference.Alpha < Termination)
+      while (reference.Below(Termination))
       {
         std::size_t best = n;
         for (std::size_t v = 0; v < n; ++v)

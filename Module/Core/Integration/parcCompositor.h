@@ -20,25 +20,35 @@ struct RayEvent
   bool Premultiplied;
 };
 
-/// Front-to-back "over" of events, in the order they are added.
+/// Front-to-back "over" of events, in the order they are added. Besides the opacity it
+/// keeps the transparency left behind the events: a sample's weight is that transparency
+/// times its opacity, and the chain from sample to sample is one multiplication (the
+/// transparency) and one addition (the opacity), independent of each other. Nothing is
+/// left behind an opaque sample: the opacity is then exactly 1.
 struct EventCompositor
 {
   float Rgb[3] = { 0.f, 0.f, 0.f };
   float Alpha = 0.f;
+  float Transparency = 1.f;
 
+  /// Whether the opacity accumulated so far is below termination (the ray goes on).
+  bool Below(double termination) const { return this->Alpha < termination; }
   /// Adds a sample of colour rgb and opacity a behind what was added before.
   void AddSample(const float rgb[3], float a)
   {
-    const float w = Weight(this->Alpha, a);
+    const float w = this->Transparency * a;
     for (int c = 0; c < 3; ++c)
     {
       this->Rgb[c] += w * rgb[c];
     }
-    this->Alpha += w;
+    this->Transparency *= 1.f - a;
+    this->Alpha = Accumulate(this->Alpha, w, this->Transparency);
   }
-  /// The weight of a sample of opacity a behind accumulated opacity alpha: its colour's
-  /// share of the result, and what it adds to alpha.
-  static float Weight(float alpha, float a) { return (1.f - alpha) * a; }
+  /// The opacity alpha with weight w added, transparency left behind it.
+  static float Accumulate(float alpha, float w, float transparency)
+  {
+    return transparency > 0.f ? alpha + w : 1.f;
+  }
   /// Adds e behind what was added before.
   void Add(const RayEvent& e)
   {
@@ -52,12 +62,13 @@ struct EventCompositor
   /// Adds premultiplied colour rgb and opacity a behind what was added before.
   void AddPremultiplied(const float rgb[3], float a)
   {
-    const float transparency = 1.f - this->Alpha;
     for (int c = 0; c < 3; ++c)
     {
-      this->Rgb[c] += transparency * rgb[c];
+      this->Rgb[c] += this->Transparency * rgb[c];
     }
-    this->Alpha += transparency * a;
+    const float w = this->Transparency * a;
+    this->Transparency *= 1.f - a;
+    this->Alpha = Accumulate(this->Alpha, w, this->Transparency);
   }
   void Finish(float rgba[4]) const
   {

@@ -521,7 +521,7 @@ struct RayContext
       AppendEvent(*this->Events, t, rgb, a, false);
     }
     out.AddSample(rgb, a);
-    return out.Alpha < this->P.TerminationOpacity;
+    return out.Below(this->P.TerminationOpacity);
   }
   /// Over for a premultiplied colour rgb.
   bool OverPremultiplied(EventCompositor& out, double t, const float rgb[3], float a)
@@ -531,7 +531,7 @@ struct RayContext
       AppendEvent(*this->Events, t, rgb, a, true);
     }
     out.AddPremultiplied(rgb, a);
-    return out.Alpha < this->P.TerminationOpacity;
+    return out.Below(this->P.TerminationOpacity);
   }
 
   Vec3 IndexPosition(double t) const { return this->IndexOrigin + t * this->IndexDirection; }
@@ -692,14 +692,17 @@ struct RayContext
     LaneBatch& b = this->Batch;
     b.Count = 0;
     bool stops = false;
-    float alpha = out.Alpha;
+    // EventCompositor::AddSample's arithmetic, lane by lane.
+    EventCompositor left = out;
     for (unsigned m = lanes; m != 0; m &= m - 1)
     {
       const int j = CountTrailingZeros(m);
-      b.Weight[b.Count] = EventCompositor::Weight(alpha, this->Opacities[j]);
-      alpha += b.Weight[b.Count];
+      const float a = this->Opacities[j];
+      b.Weight[b.Count] = left.Transparency * a;
+      left.Transparency *= 1.f - a;
+      left.Alpha = EventCompositor::Accumulate(left.Alpha, b.Weight[b.Count], left.Transparency);
       b.Lane[b.Count++] = j;
-      if (!(alpha < this->P.TerminationOpacity))
+      if (!left.Below(this->P.TerminationOpacity))
       {
         stops = true;
         visited = j + 1;
@@ -723,7 +726,8 @@ struct RayContext
         out.Rgb[c] += b.Weight[i] * b.Rgb[c][i];
       }
     }
-    out.Alpha = alpha;
+    out.Alpha = left.Alpha;
+    out.Transparency = left.Transparency;
     if (this->Events)
     {
       for (int i = 0; i < b.Count; ++i)
@@ -1850,11 +1854,12 @@ void RayCaster::CastRay(const RayQuery& query, const SegmentSource& source,
 
 void RayCaster::CastRayMerged(const RayQuery& query, const SegmentSource& source,
   std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, MergedEvents& merge,
-  float rgba[4], CastStatistics& stats, ShadowScratch* shadows) const
+  EventCompositor& out, CastStatistics& stats, ShadowScratch* shadows) const
 {
+  float rgba[4];
   this->Field->Dispatch([&](const auto& field) {
     this->CastRayIn(field, query, source, segments, ranges, rgba, stats, nullptr, nullptr,
-      nullptr, shadows, &merge);
+      nullptr, shadows, &merge, &out);
   });
 }
 
@@ -1972,9 +1977,14 @@ template <class View>
 void RayCaster::CastRayIn(const View& field, const RayQuery& query, const SegmentSource& source,
   std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
   CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events,
-  std::vector<CellDifferences>* differences, ShadowScratch* shadows, MergedEvents* merge) const
+  std::vector<CellDifferences>* differences, ShadowScratch* shadows, MergedEvents* merge,
+  EventCompositor* merged) const
 {
   rgba[0] = rgba[1] = rgba[2] = rgba[3] = 0.f;
+  if (merged)
+  {
+    *merged = EventCompositor();
+  }
   if (events)
   {
     events->clear();
@@ -2058,8 +2068,15 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
     switch (this->Params->Blend)
     {
       case BlendMode::Composite:
-        stop = Run(CompositeFunction<Context>{ context, {}, merge }, ranges, rgba);
+      {
+        CompositeFunction<Context> composite{ context, {}, merge };
+        stop = Run(composite, ranges, rgba);
+        if (merged)
+        {
+          *merged = composite.Out;
+        }
         break;
+      }
       case BlendMode::MaximumIntensity:
         stop = Run(ExtremeFunction<Context, 1>{ context }, ranges, rgba);
         break;
@@ -2425,16 +2442,15 @@ void SceneCaster::CastRay(const RayQuery& query, std::vector<Segment>& segments,
   }
   MergedEvents& merged = scratch.Merged;
   this->MergeEvents(events, stop, merged);
-  std::fill_n(rgba, 4, 0.f);
+  EventCompositor compositor;
   if (this->Streamed < this->Members.size() && !this->Skips(this->Streamed, query))
   {
     const Member& m = this->Members[this->Streamed];
     clampFor(*m.Caster->GetParameters());
     m.Caster->CastRayMerged(
-      clamped, *m.Source, segments, ranges, merged, rgba, stats[this->Streamed], shadows);
+      clamped, *m.Source, segments, ranges, merged, compositor, stats[this->Streamed], shadows);
   }
   // The events after the streamed volume's samples, or all of them.
-  EventCompositor compositor{ { rgba[0], rgba[1], rgba[2] }, rgba[3] };
   merged.AddBefore(std::numeric_limits<long>::max(), compositor, this->TerminationOpacity);
   compositor.Finish(rgba);
 }

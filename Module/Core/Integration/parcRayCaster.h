@@ -131,13 +131,13 @@ struct MergedEvents
     for (; this->Next < this->Entries.size() && this->Entries[this->Next].FirstAfter <= k;
          ++this->Next)
     {
-      if (!(out.Alpha < termination))
+      if (!out.Below(termination))
       {
         return false;
       }
       out.Add(this->Entries[this->Next].Event);
     }
-    return out.Alpha < termination;
+    return out.Below(termination);
   }
   /// The lattice index before which the next event is composited (End when none is left).
   long NextPosition() const
@@ -177,11 +177,12 @@ public:
 
   /// A composite ray (no components) like CastRay, with merge's events composited in
   /// between its samples (from merge.Next on) and its samples from merge.End on left out:
-  /// rgba receives what was composited until the ray stopped or its samples ended; the
-  /// events after that are left from merge.Next on. No events are kept.
+  /// out receives what was composited until the ray stopped or its samples ended (to
+  /// composite the rest into); the events after that are left from merge.Next on. No
+  /// events are kept.
   void CastRayMerged(const RayQuery& query, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, MergedEvents& merge,
-    float rgba[4], CastStatistics& stats, ShadowScratch* shadows = nullptr) const;
+    EventCompositor& out, CastStatistics& stats, ShadowScratch* shadows = nullptr) const;
 
   /// The components 1, 2, ... of a field of independent components, this caster being
   /// component 0 (see the file comment); empty (the default) for one component. Each must
@@ -315,13 +316,14 @@ private:
     Vec3& indexDirection, std::size_t& sourceSegments, double& tEnter, double& tExit,
     bool owned = true) const;
   /// differences (optional): a thread's cache of cell differences for gradients, a power
-  /// of two of them, shared by the rays of one image. merge (optional): CastRayMerged's.
+  /// of two of them, shared by the rays of one image. merge and merged (optional, together):
+  /// CastRayMerged's.
   template <class View>
   void CastRayIn(const View& field, const RayQuery& query, const SegmentSource& source,
     std::vector<Segment>& segments, std::vector<LatticeRange>& ranges, float rgba[4],
     CastStatistics& stats, double* firstHit, std::vector<RayEvent>* events,
     std::vector<CellDifferences>* differences, ShadowScratch* shadows,
-    MergedEvents* merge = nullptr) const;
+    MergedEvents* merge = nullptr, EventCompositor* merged = nullptr) const;
   /// CastRayIn of the slice ray function (intervals: scratch for the cropping).
   template <class View>
   void CastSliceIn(const View& field, const RayQuery& query, std::vector<Segment>& intervals,
