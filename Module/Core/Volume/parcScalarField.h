@@ -180,8 +180,14 @@ public:
   /// LatticeBlock::Lanes hold the samples after them. Each is the same arithmetic as
   /// Sample(o + (k dt) d) and its location that of Locate. No branch depends on the data,
   /// and each step works on several lanes at once.
-  PARC_HOT_INLINE void SampleLattice(const Vec3& o, const Vec3& d, double dt, long k0,
-    int count, Interpolation mode, LatticeBlock& block) const
+  /// cells (optional, linear interpolation of a field whose x neighbours are next to each
+  /// other): a bit per cell, bit c % 8 of byte c / 8 for the cell whose first voxel is value
+  /// c. Only the groups of LatticeBlock::Lanes lanes where some lane's cell has its bit set
+  /// are sampled (the values of the others are 0). Returns the lanes sampled whose cell
+  /// has its bit set, as bits 1 << j (all n lanes without cells).
+  PARC_HOT_INLINE unsigned SampleLattice(const Vec3& o, const Vec3& d, double dt, long k0,
+    int count, Interpolation mode, LatticeBlock& block,
+    const std::uint8_t* cells = nullptr) const
   {
     const int n = LatticeBlock::Lanes * ((count + LatticeBlock::Lanes - 1) / LatticeBlock::Lanes);
     double t[LatticeBlock::Size];
@@ -189,13 +195,14 @@ public:
     {
       t[j] = (static_cast<double>(k0) + j) * dt; // k0 + j exactly, as a double
     }
+    const unsigned all = (1u << n) - 1u;
     if (mode == Interpolation::Nearest)
     {
       for (int j = 0; j < n; ++j)
       {
         block.Values[j] = this->SampleNearest(o + t[j] * d);
       }
-      return;
+      return all;
     }
     for (int a = 0; a < 3; ++a)
     {
@@ -207,9 +214,28 @@ public:
       block.Offset[j] = block.Cell[0][j] * this->Step[0] + block.Cell[1][j] * this->Step[1] +
         block.Cell[2][j] * this->Step[2];
     }
-    LaneValue c[8][LatticeBlock::Size]; // corner values, lane by lane
-    this->LoadLaneCorners(block.Offset, n, c);
-    InterpolateLanes(c, block.Fractions, n, block.Values);
+    unsigned lanes = all;
+    if (cells)
+    {
+      lanes = 0;
+      for (int j = 0; j < n; ++j)
+      {
+        const std::ptrdiff_t c = block.Offset[j];
+        lanes |= static_cast<unsigned>((cells[c >> 3] >> (c & 7)) & 1) << j;
+      }
+    }
+    for (int j = 0; j < n; j += LatticeBlock::Lanes)
+    {
+      if (((lanes >> j) & GroupBits) != 0)
+      {
+        this->SampleGroup(block, j);
+      }
+      else
+      {
+        std::fill_n(block.Values + j, LatticeBlock::Lanes, 0.f);
+      }
+    }
+    return lanes;
   }
   /// Interpolates 8 corner values (x fastest) at fractions f.
   static PARC_HOT_INLINE float Interpolate(const float c[8], const float f[3])
@@ -349,110 +375,89 @@ private:
     }
 #endif
   }
-  /// The corner values c[corner][lane] of the cells at offsets[lane], lanes 0 .. n - 1.
-  PARC_HOT_INLINE void LoadLaneCorners(
-    const std::ptrdiff_t* offsets, int n, LaneValue c[8][LatticeBlock::Size]) const
+  /// The lanes of a LatticeBlock::Lanes group.
+  static constexpr unsigned GroupBits = (1u << LatticeBlock::Lanes) - 1u;
+  /// Interpolates the located lanes of block's group from lane first into its values.
+  PARC_HOT_INLINE void SampleGroup(LatticeBlock& block, int first) const
   {
     std::ptrdiff_t corner[8];
     this->CornerOffsets(corner);
+    const std::ptrdiff_t* offsets = block.Offset + first;
 #if defined(__SSE2__)
-    if constexpr (PairedCorners)
-    {
-      if (this->Step[0] == 1)
-      {
-        this->LoadCornerPairs(offsets, corner, n, c);
-        return;
-      }
-    }
-#endif
-    for (int j = 0; j < n; ++j)
-    {
-      const T* v = this->Data + offsets[j];
-      for (int m = 0; m < 8; ++m)
-      {
-        c[m][j] = static_cast<LaneValue>(v[corner[m]]);
-      }
-    }
-  }
-#if defined(__SSE2__)
-  /// Whether a cell's two x neighbours fit one 32-bit load (8- and 16-bit integers), so
-  /// that LoadLaneCorners may load them together when they are next to each other.
-  static constexpr bool PairedCorners = std::is_integral<T>::value && sizeof(T) <= 2;
-  /// The corner values c[corner][lane] of the cells at offsets[lane], lanes 0 .. n - 1,
-  /// for x neighbours next to each other (Step[0] = 1): each pair of corners (x offsets 0
-  /// and 1) in one load, split apart four lanes at a time. The same values as one load a
-  /// corner.
-  PARC_HOT_INLINE void LoadCornerPairs(const std::ptrdiff_t* offsets,
-    const std::ptrdiff_t corner[8], int n, LaneValue c[8][LatticeBlock::Size]) const
-  {
-    using Pair = std::conditional_t<sizeof(T) == 1, std::uint16_t, std::uint32_t>;
-    for (int j = 0; j < n; ++j)
-    {
-      const T* v = this->Data + offsets[j];
-      for (int m = 0; m < 8; m += 2)
-      {
-        Pair pair;
-        std::memcpy(&pair, v + corner[m], sizeof(pair));
-        c[m][j] = static_cast<LaneValue>(pair); // the even corner's bits low (x86)
-      }
-    }
-    constexpr int bits = 8 * sizeof(T);
-    constexpr bool sign = std::is_signed<T>::value;
-    for (int m = 0; m < 8; m += 2)
-    {
-      for (int j = 0; j < n; j += 4)
-      {
-        const __m128i pair = _mm_loadu_si128(reinterpret_cast<const __m128i*>(c[m] + j));
-        const __m128i low = _mm_slli_epi32(pair, 32 - bits);
-        const __m128i high = _mm_slli_epi32(pair, 32 - 2 * bits);
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(c[m] + j),
-          sign ? _mm_srai_epi32(low, 32 - bits) : _mm_srli_epi32(low, 32 - bits));
-        _mm_storeu_si128(reinterpret_cast<__m128i*>(c[m + 1] + j),
-          sign ? _mm_srai_epi32(high, 32 - bits) : _mm_srli_epi32(high, 32 - bits));
-      }
-    }
-  }
-#endif
-  /// Interpolate for the lanes: c[corner][lane], f[axis][lane].
-  static PARC_HOT_INLINE void InterpolateLanes(const LaneValue c[8][LatticeBlock::Size],
-    const float f[3][LatticeBlock::Size], int n, float* values)
-  {
-#if defined(__SSE2__)
+    static_assert(LatticeBlock::Lanes == 4, "four lanes to an SSE register");
+    __m128 c[8];
+    this->LoadGroupCorners(offsets, corner, c);
     auto lerp = [](__m128 a, __m128 b, __m128 t) {
       return _mm_add_ps(a, _mm_mul_ps(t, _mm_sub_ps(b, a)));
     };
-    for (int j = 0; j < n; j += 4)
-    {
-      const __m128 fx = _mm_loadu_ps(f[0] + j), fy = _mm_loadu_ps(f[1] + j);
-      const __m128 fz = _mm_loadu_ps(f[2] + j);
-      const __m128 c00 = lerp(LoadLanes(c[0] + j), LoadLanes(c[1] + j), fx);
-      const __m128 c10 = lerp(LoadLanes(c[2] + j), LoadLanes(c[3] + j), fx);
-      const __m128 c01 = lerp(LoadLanes(c[4] + j), LoadLanes(c[5] + j), fx);
-      const __m128 c11 = lerp(LoadLanes(c[6] + j), LoadLanes(c[7] + j), fx);
-      _mm_storeu_ps(values + j, lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz));
-    }
+    const __m128 fx = _mm_loadu_ps(block.Fractions[0] + first);
+    const __m128 fy = _mm_loadu_ps(block.Fractions[1] + first);
+    const __m128 fz = _mm_loadu_ps(block.Fractions[2] + first);
+    const __m128 c00 = lerp(c[0], c[1], fx);
+    const __m128 c10 = lerp(c[2], c[3], fx);
+    const __m128 c01 = lerp(c[4], c[5], fx);
+    const __m128 c11 = lerp(c[6], c[7], fx);
+    _mm_storeu_ps(block.Values + first, lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz));
 #else
-    for (int j = 0; j < n; ++j)
+    for (int l = 0; l < LatticeBlock::Lanes; ++l)
     {
       float v[8];
       for (int m = 0; m < 8; ++m)
       {
-        v[m] = static_cast<float>(c[m][j]);
+        v[m] = static_cast<float>(static_cast<LaneValue>(this->Data[offsets[l] + corner[m]]));
       }
-      const float c00 = Lerp(v[0], v[1], f[0][j]);
-      const float c10 = Lerp(v[2], v[3], f[0][j]);
-      const float c01 = Lerp(v[4], v[5], f[0][j]);
-      const float c11 = Lerp(v[6], v[7], f[0][j]);
-      values[j] = Lerp(Lerp(c00, c10, f[1][j]), Lerp(c01, c11, f[1][j]), f[2][j]);
+      const int j = first + l;
+      const float f[3] = { block.Fractions[0][j], block.Fractions[1][j], block.Fractions[2][j] };
+      block.Values[j] = Interpolate(v, f);
     }
 #endif
   }
 #if defined(__SSE2__)
-  /// 4 lanes' values as floats.
-  static PARC_HOT_INLINE __m128 LoadLanes(const float* v) { return _mm_loadu_ps(v); }
-  static PARC_HOT_INLINE __m128 LoadLanes(const std::int32_t* v)
+  /// Whether a cell's two x neighbours fit one 32-bit load (8- and 16-bit integers), so
+  /// that LoadGroupCorners may load them together when they are next to each other.
+  static constexpr bool PairedCorners = std::is_integral<T>::value && sizeof(T) <= 2;
+  /// The corner values c[corner] of the cells at offsets[0 .. 3], lane by lane, as floats;
+  /// held in registers (no store and load again). With x neighbours next to each other
+  /// (Step[0] = 1) each pair of corners (x offsets 0 and 1) is loaded at once and split
+  /// apart four lanes at a time: the same values as one load a corner.
+  PARC_HOT_INLINE void LoadGroupCorners(
+    const std::ptrdiff_t* offsets, const std::ptrdiff_t corner[8], __m128 c[8]) const
   {
-    return _mm_cvtepi32_ps(_mm_loadu_si128(reinterpret_cast<const __m128i*>(v)));
+    if constexpr (PairedCorners)
+    {
+      if (this->Step[0] == 1)
+      {
+        using Pair = std::conditional_t<sizeof(T) == 1, std::uint16_t, std::uint32_t>;
+        constexpr int bits = 8 * sizeof(T);
+        constexpr bool sign = std::is_signed<T>::value;
+        for (int m = 0; m < 8; m += 2)
+        {
+          Pair p[4];
+          for (int l = 0; l < 4; ++l)
+          {
+            std::memcpy(p + l, this->Data + offsets[l] + corner[m], sizeof(Pair));
+          }
+          // The even corner's bits low (x86).
+          const __m128i pair = _mm_setr_epi32(static_cast<std::int32_t>(p[0]),
+            static_cast<std::int32_t>(p[1]), static_cast<std::int32_t>(p[2]),
+            static_cast<std::int32_t>(p[3]));
+          const __m128i low = _mm_slli_epi32(pair, 32 - bits);
+          const __m128i high = _mm_slli_epi32(pair, 32 - 2 * bits);
+          c[m] = _mm_cvtepi32_ps(
+            sign ? _mm_srai_epi32(low, 32 - bits) : _mm_srli_epi32(low, 32 - bits));
+          c[m + 1] = _mm_cvtepi32_ps(
+            sign ? _mm_srai_epi32(high, 32 - bits) : _mm_srli_epi32(high, 32 - bits));
+        }
+        return;
+      }
+    }
+    for (int m = 0; m < 8; ++m)
+    {
+      auto value = [&](int l) {
+        return static_cast<float>(static_cast<LaneValue>(this->Data[offsets[l] + corner[m]]));
+      };
+      c[m] = _mm_setr_ps(value(0), value(1), value(2), value(3));
+    }
   }
 #endif
   PARC_HOT_INLINE void Locate(const Vec3& p, int cell[3], float f[3]) const
