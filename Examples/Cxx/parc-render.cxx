@@ -1168,6 +1168,7 @@ int main(int argc, char* argv[])
               << image->GetSpacing()[1] << ", " << image->GetSpacing()[2] << "]"
               << ",\n  \"samples\": " << samples
               << ",\n  \"contributing_samples\": " << mapper->GetLastContributingSampleCount()
+              << ",\n  \"empty_cell_samples\": " << mapper->GetLastEmptyCellSampleCount()
               << ",\n  \"rays\": " << mapper->GetLastRayCount()
               << ",\n  \"casting_time\": " << casting
               << ",\n  \"projection_time\": " << mapper->GetLastProjectionTime()

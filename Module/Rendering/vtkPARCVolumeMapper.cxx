@@ -329,6 +329,9 @@ public:
   // PARC: the classification and models, remade only when their inputs change.
   parc::AccelerationPlan Plan;
   ClassificationKey Classified;
+  ClassificationKey CellsClassified; ///< the key of the plan's contributing cells
+  /// What the classification of this volume depends on, now.
+  ClassificationKey Key(vtkPARCVolumeMapper* self, vtkVolume* vol) const;
   vtkNew<vtkPARCRasterizer> Rasterizer;
   parc::DepthBufferSource DepthSource;
   parc::PlaneBufferSource PlaneSource;
@@ -1248,6 +1251,7 @@ std::vector<parc::SceneCaster::Member> vtkPARCVolumeMapper::vtkInternals::RunPas
     vtkVolumeState& volume = *entry.first;
     volume.Plan.Auto.Chosen = -1;
     const double start = vtkTimerLog::GetUniversalTime();
+    self->PrepareCells(volume, entry.second);
     const parc::SegmentSource& source = volume.RunPasses(self, ren, entry.second, view);
     volume.ProjectionTime = vtkTimerLog::GetUniversalTime() - start;
     this->ProjectionTime += volume.ProjectionTime;
@@ -1601,13 +1605,39 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
 }
 
 //------------------------------------------------------------------------------
-bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
+void vtkPARCVolumeMapper::PrepareCells(vtkVolumeState& in, vtkVolume* vol)
 {
+  const parc::CastParameters& p = in.Parameters;
+  if (p.Blend != parc::BlendMode::Composite || !in.Components.empty() ||
+    p.Interp != parc::Interpolation::Linear || in.Field.GetStride() != 1)
+  {
+    // The caster would not use them (RayCaster::SetContributingCells).
+    in.Caster.SetContributingCells(nullptr);
+    in.Plan.ReleaseCells();
+    in.CellsClassified = ClassificationKey();
+    return;
+  }
+  const ClassificationKey key = in.Key(this, vol);
+  if (!(key == in.CellsClassified))
+  {
+    in.CellsClassified = key;
+    parc::ContributionRule rule;
+    rule.Set(p, in.Field.GetRange());
+    in.Plan.ClassifyCells(in.Field, in.FieldVersion, rule);
+  }
+  in.Caster.SetContributingCells(&in.Plan.GetContributingCells());
+}
+
+//------------------------------------------------------------------------------
+ClassificationKey vtkPARCVolumeMapper::vtkVolumeState::Key(
+  vtkPARCVolumeMapper* self, vtkVolume* vol) const
+{
+  const vtkVolumeState& in = *this;
   ClassificationKey key;
   key.FieldVersion = in.FieldVersion;
   key.Property = vol->GetProperty();
   key.PropertyTime = vol->GetProperty()->GetMTime();
-  key.Blend = this->GetInputBlendMode(in.Port);
+  key.Blend = self->GetInputBlendMode(in.Port);
   key.Labels = in.Parameters.Labels.size();
   for (const parc::LabelFunctions& label : in.Parameters.Labels)
   {
@@ -1616,8 +1646,15 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
       key.LabelsTime = std::max(key.LabelsTime, opacity->GetMTime());
     }
   }
-  std::copy_n(this->AverageIPScalarRange, 2, key.Average);
-  std::copy_n(this->SupercellSize, 3, key.Size);
+  std::copy_n(self->AverageIPScalarRange, 2, key.Average);
+  std::copy_n(self->SupercellSize, 3, key.Size);
+  return key;
+}
+
+//------------------------------------------------------------------------------
+bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
+{
+  const ClassificationKey key = in.Key(this, vol);
   if (key == in.Classified)
   {
     return in.Plan.GetGrid().GetNumberOfSupercells() > 0; // empty after a failed one
@@ -1737,6 +1774,10 @@ vtkIdType vtkPARCVolumeMapper::GetLastContributingSampleCount()
 {
   return static_cast<vtkIdType>(this->Internals->Stats.ContributingSamples);
 }
+vtkIdType vtkPARCVolumeMapper::GetLastEmptyCellSampleCount()
+{
+  return static_cast<vtkIdType>(this->Internals->Stats.EmptyCellSamples);
+}
 vtkIdType vtkPARCVolumeMapper::GetLastRayCount()
 {
   return static_cast<vtkIdType>(this->Internals->Stats.Rays);
@@ -1841,6 +1882,12 @@ vtkIdType vtkPARCVolumeMapper::GetPyramidBuildCount()
 {
   return this->Internals->Sum<vtkIdType>(
     [](const vtkVolumeState& v) { return static_cast<vtkIdType>(v.Plan.GetPyramidBuilds()); });
+}
+vtkIdType vtkPARCVolumeMapper::GetCellClassificationCount()
+{
+  return this->Internals->Sum<vtkIdType>([](const vtkVolumeState& v) {
+    return static_cast<vtkIdType>(v.Plan.GetCellClassifications());
+  });
 }
 vtkIdType vtkPARCVolumeMapper::GetClassificationCount()
 {
@@ -1956,6 +2003,7 @@ vtkPARCVolumeMapper::vtkVolumeState::Memory() const
     { "depth model", this->Plan.GetDepthModelMemorySize() },
     { "colour models", this->Plan.GetColorModelsMemorySize() },
     { "supercell walk", this->Plan.GetWalkMemorySize() },
+    { "contributing cells", this->Plan.GetCellsMemorySize() },
     { "depth buffer", this->DepthSource.GetMemorySize() },
     { "bit-plane buffer", this->PlaneSource.GetMemorySize() },
     { "OpenGL models and targets", this->Rasterizer->GetMemorySize() } };

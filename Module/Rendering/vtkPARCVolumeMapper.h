@@ -499,11 +499,14 @@ public:
   ///@{
   /**
    * Statistics of the last render. Samples are scalar samples on the lattice; contributing
-   * samples had non-zero opacity (or were isosurface crossings). Times are in seconds:
-   * casting (rays only), projection (PARC passes) and the whole Render call.
+   * samples had non-zero opacity (or were isosurface crossings); empty-cell samples lay
+   * in cells that cannot contribute, left out by composite rays without interpolation.
+   * Times are in seconds: casting (rays only), projection (PARC passes) and the whole
+   * Render call.
    */
   vtkIdType GetLastSampleCount();
   vtkIdType GetLastContributingSampleCount();
+  vtkIdType GetLastEmptyCellSampleCount();
   vtkIdType GetLastRayCount();
   vtkIdType GetLastGradientCount();
   double GetLastCastingTime();
@@ -551,10 +554,12 @@ public:
   /**
    * How often the work that only changes with the data, the transfer functions or the
    * supercell size was done since the mapper was made: cell-range pyramids built,
-   * classifications, polygon models built and uploaded to the GPU.
+   * classifications of the supercells and of the cells (for the caster, in every
+   * acceleration mode), polygon models built and uploaded to the GPU.
    */
   vtkIdType GetPyramidBuildCount();
   vtkIdType GetClassificationCount();
+  vtkIdType GetCellClassificationCount();
   vtkIdType GetModelBuildCount();
   vtkIdType GetModelUploadCount();
   void PrintStatistics(ostream& os);
@@ -631,6 +636,12 @@ protected:
   void CastImage(vtkRenderer* ren);
   /** Classifies and builds the volume's polygon models when their inputs changed. */
   bool PrepareModels(vtkVolumeState& volume, vtkVolume* prop);
+  /**
+   * Classifies the volume's cells for its caster when their inputs changed (composite
+   * volumes of one component, linear interpolation), in every acceleration mode: the
+   * caster leaves out the samples of cells that cannot contribute.
+   */
+  void PrepareCells(vtkVolumeState& volume, vtkVolume* prop);
 
   /**
    * The image sample distance of this render: ImageSampleDistance, or with

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -804,4 +805,130 @@ TEST(PolygonModel, RayAxisSign)
   EXPECT_EQ(parc::RayAxisSign(model, { { 0, 5, 5 } }, mixed), 0);
   model.MajorAxis = -1; // a depth model
   EXPECT_EQ(parc::RayAxisSign(model, { { 0, 5, 5 } }, forward), 0);
+}
+
+// Every PC cell (brute force, from the cell ranges) has its bit, at the voxel index of the
+// cell's first voxel; the voxels of the last planes begin no cell; the cells of nodes of
+// 2x2x2 cells without a PC one rarely have theirs (only where the pyramid's coded range of
+// the node is wider than its cells' ranges). Odd dimensions leave partial nodes and rows
+// that do not fill whole bytes.
+TEST(ContributingCells, EveryPossiblyContributingCellHasItsBit)
+{
+  std::mt19937 rng(31);
+  const int dims[3] = { 13, 10, 17 };
+  int mixed = 0;
+  std::size_t spurious = 0, outside = 0;
+  for (int trial = 0; trial < 24; ++trial)
+  {
+    for (BlendMode blend : AllBlendModes)
+    {
+      const parc::ScalarField field = RandomVolume(rng, dims);
+      const CastParameters p = RandomParameters(rng, blend);
+      RangePyramid pyramid;
+      pyramid.Build(field);
+      ContributionRule rule;
+      rule.Set(p, field.GetRange());
+      std::vector<std::uint8_t> bits;
+      ASSERT_TRUE(pyramid.ClassifyCells(rule, bits));
+      ASSERT_EQ(bits.size(), (static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] + 7) / 8);
+      const std::vector<char> expected = CellFlags(pyramid, rule);
+      const int c[3] = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
+      auto pc = [&](int i, int j, int k) {
+        return i < c[0] && j < c[1] && k < c[2] && expected[i + c[0] * (j + c[1] * k)] != 0;
+      };
+      std::size_t set = 0;
+      for (int k = 0; k < dims[2]; ++k)
+        for (int j = 0; j < dims[1]; ++j)
+          for (int i = 0; i < dims[0]; ++i)
+          {
+            const std::size_t v = i + static_cast<std::size_t>(dims[0]) * (j + dims[1] * k);
+            const bool bit = (bits[v / 8] >> (v % 8)) & 1;
+            const bool begins = i < c[0] && j < c[1] && k < c[2];
+            bool nodePC = false;
+            for (int n = 0; n < 8; ++n)
+            {
+              nodePC |= pc((i & ~1) + (n & 1), (j & ~1) + ((n >> 1) & 1), (k & ~1) + (n >> 2));
+            }
+            ASSERT_TRUE(begins || !bit) << i << " " << j << " " << k;
+            ASSERT_TRUE(!pc(i, j, k) || bit) << i << " " << j << " " << k;
+            outside += begins && !nodePC;
+            spurious += bit && !nodePC;
+            set += bit;
+          }
+      mixed += set > 0 && set < expected.size();
+    }
+  }
+  EXPECT_GT(mixed, 20) << "scenes with some cells PC and some not";
+  EXPECT_LT(spurious, outside / 5) << "cells of nodes without a PC cell";
+  RangePyramid flat; // one slice: no cells
+  flat.Build(parctest::MakeField(std::array<int, 3>{ 4, 4, 1 }.data(),
+    [](int, int, int) { return 1.f; }));
+  std::vector<std::uint8_t> bits{ 1 };
+  ContributionRule rule;
+  rule.Set(RandomParameters(rng, BlendMode::Composite), flat.GetField()->GetRange());
+  EXPECT_FALSE(flat.ClassifyCells(rule, bits));
+  EXPECT_TRUE(bits.empty());
+}
+
+// Composite rays leave out the samples of cells that cannot contribute and give the same
+// bits and counts as rays that interpolate every sample; other ray functions, and nearest
+// interpolation, do not use the bits.
+TEST(ContributingCells, CastingLeavesOutEmptyCellsExactly)
+{
+  std::mt19937 rng(37);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const int dims[3] = { 15, 12, 17 };
+  std::uint64_t left = 0;
+  for (int trial = 0; trial < 30; ++trial)
+  {
+    for (BlendMode blend : AllBlendModes)
+    {
+      for (auto interp : { parc::Interpolation::Linear, parc::Interpolation::Nearest })
+      {
+        const parc::ScalarField field = RandomVolume(rng, dims);
+        CastParameters p = RandomParameters(rng, blend);
+        p.Interp = interp;
+        p.Shade = trial % 2 == 0;
+        p.TerminationOpacity = trial % 3 == 0 ? 0.95 : 1.0;
+        p.Lights.push_back(parc::Light());
+        p.Lights.back().Position = { 0, 0, 1 };
+        RangePyramid pyramid;
+        pyramid.Build(field);
+        ContributionRule rule;
+        rule.Set(p, field.GetRange());
+        std::vector<std::uint8_t> bits;
+        ASSERT_TRUE(pyramid.ClassifyCells(rule, bits));
+        parc::RayCaster plain, skipping;
+        ASSERT_TRUE(plain.Prepare({ &field, &p }));
+        ASSERT_TRUE(skipping.Prepare({ &field, &p }));
+        skipping.SetContributingCells(&bits);
+        const parc::WholeRaySource whole;
+        std::vector<parc::Segment> segments;
+        std::vector<parc::LatticeRange> ranges;
+        for (int r = 0; r < 30; ++r)
+        {
+          const Vec3 target(7 + 7 * u(rng), 5.5 + 5 * u(rng), 8 + 8 * u(rng));
+          const Vec3 dir(u(rng), u(rng), u(rng));
+          const parc::Ray ray = parctest::MakeRay(target - 30.0 * parc::Normalized(dir), dir);
+          float a[4], b[4];
+          parc::CastStatistics sa, sb;
+          const auto query = parc::RayQuery::Anywhere(ray);
+          plain.CastRay(query, whole, segments, ranges, a, sa);
+          skipping.CastRay(query, whole, segments, ranges, b, sb);
+          ASSERT_EQ(std::memcmp(a, b, sizeof(a)), 0) << "blend " << static_cast<int>(blend);
+          ASSERT_EQ(sa.Samples, sb.Samples);
+          ASSERT_EQ(sa.ContributingSamples, sb.ContributingSamples);
+          ASSERT_EQ(sa.GradientEvaluations, sb.GradientEvaluations);
+          const bool uses = blend == BlendMode::Composite && interp == parc::Interpolation::Linear;
+          if (!uses)
+          {
+            ASSERT_EQ(sb.EmptyCellSamples, 0u);
+          }
+          ASSERT_LE(sb.EmptyCellSamples + sb.ContributingSamples, sb.Samples);
+          left += sb.EmptyCellSamples;
+        }
+      }
+    }
+  }
+  EXPECT_GT(left, 1000u) << "composite rays leave samples out";
 }

@@ -68,6 +68,39 @@ class TestPARCPipeline(unittest.TestCase):
             mapper.GetLastAccelerationMode()), "None" if all_pc else "DepthBuffer")
         self.assertGreater(mapper.GetLastSupercellCount(), 0)
 
+    def test_empty_cells_left_out(self):
+        """Composite rays leave out the samples of cells that cannot contribute, in every
+        acceleration mode; the cells are classified again only when the ray function
+        changes, and not at all for a ray function that does not use them."""
+        mapper, window = make_scene()
+        volume = window.GetRenderers().GetFirstRenderer().GetVolumes().GetItemAsObject(0)
+        volume.GetProperty().SetInterpolationTypeToNearest()
+        mapper.SetAccelerationModeToNone()
+        window.Render()
+        self.assertEqual(mapper.GetCellClassificationCount(), 0, "nearest samples: no cells")
+        volume.GetProperty().SetInterpolationTypeToLinear()
+        window.Render()
+        self.assertEqual(mapper.GetCellClassificationCount(), 1)
+        self.assertEqual(mapper.GetClassificationCount(), 0, "no supercells without passes")
+        empty = mapper.GetLastEmptyCellSampleCount()
+        self.assertGreater(empty, 0)
+        self.assertLessEqual(empty + mapper.GetLastContributingSampleCount(),
+                             mapper.GetLastSampleCount())
+        window.GetRenderers().GetFirstRenderer().GetActiveCamera().Azimuth(30)
+        window.Render()
+        self.assertEqual(mapper.GetCellClassificationCount(), 1, "a new view keeps the cells")
+        mapper.SetAccelerationModeToDepthBuffer()
+        window.Render()
+        self.assertEqual(mapper.GetCellClassificationCount(), 1, "so does a new mode")
+        self.assertGreater(mapper.GetLastEmptyCellSampleCount(), 0)
+        volume.GetProperty().GetScalarOpacity().AddPoint(120, 0.0)
+        window.Render()
+        self.assertEqual(mapper.GetCellClassificationCount(), 2, "an edit classifies again")
+        mapper.SetBlendModeToMaximumIntensity()
+        window.Render()
+        self.assertEqual(mapper.GetCellClassificationCount(), 2)
+        self.assertEqual(mapper.GetLastEmptyCellSampleCount(), 0)
+
     def test_light_specular_colour(self):
         # A green specular colour keeps the red and blue of a light without highlights and
         # the green of a white one, bit for bit.

@@ -239,16 +239,7 @@ bool AccelerationPlan::Classify(const std::vector<const ScalarField*>& fields,
     return false;
   }
   const auto start = std::chrono::steady_clock::now();
-  if (this->Pyramids.size() != fields.size() || this->PyramidFieldVersion != fieldVersion)
-  {
-    this->Pyramids.resize(fields.size());
-    for (std::size_t c = 0; c < fields.size(); ++c)
-    {
-      this->Pyramids[c].Build(*fields[c]);
-    }
-    this->PyramidFieldVersion = fieldVersion;
-    ++this->PyramidBuilds;
-  }
+  this->EnsurePyramids(fields, fieldVersion);
   this->NewModelVersion();
   const int* cells = this->Pyramids[0].GetCellDimensions();
   if (!SupercellGrid::FitSize(cells, size, fitted) || !this->Grid.Configure(cells, fitted))
@@ -267,6 +258,32 @@ bool AccelerationPlan::Classify(const std::vector<const ScalarField*>& fields,
   ++this->Classifications;
   this->SetUpTime += SecondsSince(start);
   return true;
+}
+
+bool AccelerationPlan::ClassifyCells(
+  const ScalarField& field, std::uint64_t fieldVersion, const ContributionRule& rule)
+{
+  const auto start = std::chrono::steady_clock::now();
+  this->EnsurePyramids({ &field }, fieldVersion);
+  const bool classified = this->Pyramids[0].ClassifyCells(rule, this->Cells);
+  ++this->CellClassifications;
+  this->SetUpTime += SecondsSince(start);
+  return classified;
+}
+
+void AccelerationPlan::EnsurePyramids(
+  const std::vector<const ScalarField*>& fields, std::uint64_t fieldVersion)
+{
+  if (this->Pyramids.size() != fields.size() || this->PyramidFieldVersion != fieldVersion)
+  {
+    this->Pyramids.resize(fields.size());
+    for (std::size_t c = 0; c < fields.size(); ++c)
+    {
+      this->Pyramids[c].Build(*fields[c]);
+    }
+    this->PyramidFieldVersion = fieldVersion;
+    ++this->PyramidBuilds;
+  }
 }
 
 std::size_t AccelerationPlan::GetPyramidMemorySize() const

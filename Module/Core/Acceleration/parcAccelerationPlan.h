@@ -166,6 +166,15 @@ public:
     const std::vector<ContributionRule>& rules, Interpolation interpolation,
     const double size[3], double fitted[3]);
 
+  /// Makes the pyramid again if fieldVersion changed, then classifies each cell of field
+  /// under rule (RangePyramid::ClassifyCells), for the caster to leave out the samples of
+  /// the cells that cannot contribute. False, the bits empty, for a field without cells.
+  bool ClassifyCells(
+    const ScalarField& field, std::uint64_t fieldVersion, const ContributionRule& rule);
+  /// The bits of the last ClassifyCells (empty after ReleaseCells).
+  const std::vector<std::uint8_t>& GetContributingCells() const { return this->Cells; }
+  void ReleaseCells() { this->Cells = std::vector<std::uint8_t>(); }
+
   const SupercellGrid& GetGrid() const { return this->Grid; }
   /// Counts the classifications: the version of the models.
   std::uint64_t GetModelVersion() const { return this->ModelVersion; }
@@ -196,6 +205,7 @@ public:
   std::uint64_t GetPyramidBuilds() const { return this->PyramidBuilds; }
   std::uint64_t GetClassifications() const { return this->Classifications; }
   std::uint64_t GetModelBuilds() const { return this->ModelBuilds; }
+  std::uint64_t GetCellClassifications() const { return this->CellClassifications; }
   /// Seconds of the last classification.
   double GetClassificationTime() const { return this->ClassificationTime; }
   /// Seconds spent so far building pyramids, classifying and building models.
@@ -206,6 +216,7 @@ public:
   std::size_t GetDepthModelMemorySize() const { return this->Depth.Model.GetMemorySize(); }
   std::size_t GetColorModelsMemorySize() const;
   std::size_t GetWalkMemorySize() const { return this->Walk.GetMemorySize(); }
+  std::size_t GetCellsMemorySize() const { return this->Cells.capacity(); }
 
   AutoTrials Auto; ///< Auto's measurements for this volume
 
@@ -216,6 +227,8 @@ private:
     std::size_t Quads = 0;
     bool Current = false; ///< built for the current classification
   };
+  /// Builds the pyramids of fields unless they are of fieldVersion already.
+  void EnsurePyramids(const std::vector<const ScalarField*>& fields, std::uint64_t fieldVersion);
   /// Marks every model stale under a new version (a new classification or face merging).
   void NewModelVersion();
   /// Builds pass's model (axis -1: the depth model) unless it is current and either has its
@@ -227,12 +240,14 @@ private:
   std::vector<RangePyramid> Pyramids; ///< one per field
   std::uint64_t PyramidFieldVersion = 0;
   SupercellGrid Grid;
+  std::vector<std::uint8_t> Cells; ///< ClassifyCells' bits
   PassModel Depth;
   PassModel Color[3]; ///< per major axis
   SupercellWalk Walk;
   bool WalkCurrent = false; ///< the walk's flags are of the current classification
   std::uint64_t ModelVersion = 0;
   std::uint64_t PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
+  std::uint64_t CellClassifications = 0;
   double ClassificationTime = 0.0;
   double SetUpTime = 0.0;
 };

@@ -362,8 +362,8 @@ bool RangePyramid::AnyContributing(const int c0[3], const int c1[3],
   return false;
 }
 
-void RangePyramid::ClassifyLevel(
-  int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const
+void RangePyramid::Settle(int level, const ContributionRule& rule,
+  std::vector<std::uint8_t>& flags, bool exact) const
 {
   const Level& target = this->Levels[level - 1];
   flags.assign(static_cast<std::size_t>(target.Dims[0]) * target.Dims[1] * target.Dims[2], 0);
@@ -379,15 +379,79 @@ void RangePyramid::ClassifyLevel(
       {
         for (node[0] = 0; node[0] < start.Dims[0]; ++node[0])
         {
-          this->Descend(top, node, level, rule, flags);
+          this->Descend(top, node, level, rule, flags, exact);
         }
       }
     }
   });
 }
 
+bool RangePyramid::ClassifyCells(
+  const ContributionRule& rule, std::vector<std::uint8_t>& bits) const
+{
+  bits.clear();
+  if (this->Levels.empty())
+  {
+    return false;
+  }
+  // The nodes of level 1 (2x2x2 cells), from the pyramid's ranges.
+  std::vector<std::uint8_t> nodes;
+  this->Settle(1, rule, nodes, false);
+  const Level& first = this->Levels[0];
+  const int* dims = this->Field->GetDimensions();
+  const std::size_t nx = dims[0], ny = dims[1];
+  bits.assign((nx * ny * static_cast<std::size_t>(dims[2]) + 7) / 8, 0);
+  // A row of nodes gives the bits of its cells along x, the same for the (up to) 4 rows of
+  // voxels it covers: made once, then shifted into place. Node planes k and k + 1 may
+  // share the byte where their voxels meet: the even planes, then the odd ones.
+  const std::size_t rowBytes = (nx + 7) / 8 + 1;
+  for (int parity = 0; parity < 2; ++parity)
+  {
+    const vtkIdType planes = (first.Dims[2] - parity + 1) / 2;
+    vtkSMPTools::For(0, planes, [&](vtkIdType p0, vtkIdType p1) {
+      std::vector<std::uint8_t> row(rowBytes);
+      for (vtkIdType p = p0; p < p1; ++p)
+      {
+        const int kn = static_cast<int>(2 * p + parity);
+        for (int jn = 0; jn < first.Dims[1]; ++jn)
+        {
+          const std::uint8_t* node = &nodes[static_cast<std::size_t>(first.Dims[0]) *
+            (jn + static_cast<std::size_t>(first.Dims[1]) * kn)];
+          std::fill(row.begin(), row.end(), 0);
+          bool any = false;
+          for (int i = 0; i < this->CellDims[0]; ++i)
+          {
+            const bool set = node[i >> 1] != NoCell;
+            row[i / 8] |= static_cast<std::uint8_t>(set << (i % 8));
+            any |= set;
+          }
+          for (int k = 2 * kn; any && k < std::min(2 * kn + 2, this->CellDims[2]); ++k)
+          {
+            for (int j = 2 * jn; j < std::min(2 * jn + 2, this->CellDims[1]); ++j)
+            {
+              const std::size_t start = nx * (j + ny * k);
+              std::uint8_t* out = &bits[start / 8];
+              const unsigned shift = start % 8;
+              // The row's bits end before the voxel at x = nx - 1: within the bits.
+              for (std::size_t b = 0; 8 * b < nx; ++b)
+              {
+                out[b] |= static_cast<std::uint8_t>(row[b] << shift);
+                if (shift != 0 && row[b] >> (8 - shift) != 0)
+                {
+                  out[b + 1] |= static_cast<std::uint8_t>(row[b] >> (8 - shift));
+                }
+              }
+            }
+          }
+        }
+      }
+    });
+  }
+  return true;
+}
+
 void RangePyramid::Descend(int m, const int node[3], int level, const ContributionRule& rule,
-  std::vector<std::uint8_t>& flags) const
+  std::vector<std::uint8_t>& flags, bool exact) const
 {
   const Level& l = this->Levels[m - 1];
   if (node[0] >= l.Dims[0] || node[1] >= l.Dims[1] || node[2] >= l.Dims[2])
@@ -414,6 +478,11 @@ void RangePyramid::Descend(int m, const int node[3], int level, const Contributi
       static_cast<std::size_t>(target.Dims[0]) *
         (j + static_cast<std::size_t>(target.Dims[1]) * k)];
   };
+  if (m == level && !exact)
+  {
+    flag(node[0], node[1], node[2]) = rule.AllContributing(lo, hi) ? EveryCell : SomeCell;
+    return;
+  }
   if (m == level)
   {
     int c0[3], c1[3];
@@ -431,7 +500,7 @@ void RangePyramid::Descend(int m, const int node[3], int level, const Contributi
     {
       for (int j = first[1]; j <= last[1]; ++j)
       {
-        std::fill_n(&flag(first[0], j, k), last[0] - first[0] + 1, 1);
+        std::fill_n(&flag(first[0], j, k), last[0] - first[0] + 1, exact ? 1 : EveryCell);
       }
     }
     return;
@@ -440,7 +509,7 @@ void RangePyramid::Descend(int m, const int node[3], int level, const Contributi
   {
     const int child[3] = { 2 * node[0] + (c & 1), 2 * node[1] + ((c >> 1) & 1),
       2 * node[2] + ((c >> 2) & 1) };
-    this->Descend(m - 1, child, level, rule, flags);
+    this->Descend(m - 1, child, level, rule, flags, exact);
   }
 }
 

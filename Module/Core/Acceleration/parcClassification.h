@@ -107,8 +107,19 @@ public:
   /// whose whole range decides (nothing or everything contributes) settles all its
   /// descendants at once.
   void ClassifyLevel(
-    int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const;
+    int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const
+  {
+    this->Settle(level, rule, flags, true);
+  }
   int GetNumberOfLevels() const { return static_cast<int>(this->Levels.size()); }
+  /// Which cells may be PC under rule, as bits: bit v % 8 of byte v / 8 for the cell
+  /// whose first voxel has index v (x fastest; a voxel of the last x, y or z plane begins
+  /// no cell and has bit 0). A cell's bit is set when the range of its node of level 1
+  /// meets the rule: every PC cell has its bit, and so may the other cells of its node
+  /// (finer bits would cost a transfer-function edit more than they save a frame). What
+  /// the caster reads to leave out the samples of the cells that cannot contribute
+  /// (RayCaster::SetContributingCells). False, bits empty, for a field without cells.
+  bool ClassifyCells(const ContributionRule& rule, std::vector<std::uint8_t>& bits) const;
 
   /// Memory held by the pyramid, in bytes.
   std::size_t GetMemorySize() const;
@@ -128,9 +139,20 @@ private:
   Code CodeAbove(double v) const;
   bool Query(int level, const int node[3], const int c0[3], const int c1[3],
     const ContributionRule& rule) const;
-  /// ClassifyLevel below the node of level m (>= level).
+  /// What Settle says of a node when it does not decide on the cells.
+  enum NodeState : std::uint8_t
+  {
+    NoCell = 0,    ///< no cell of the node is PC
+    SomeCell = 1,  ///< the range of the node meets the rule: some of its cells may be PC
+    EveryCell = 2  ///< every cell of the node is PC
+  };
+  /// ClassifyLevel (exact: whether the cells decide that one is PC, 0 or 1) or, without
+  /// exact, the NodeState of each node of level from the ranges of the pyramid alone.
+  void Settle(int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags,
+    bool exact) const;
+  /// Settle below the node of level m (>= level).
   void Descend(int m, const int node[3], int level, const ContributionRule& rule,
-    std::vector<std::uint8_t>& flags) const;
+    std::vector<std::uint8_t>& flags, bool exact) const;
 
   const ScalarField* Field = nullptr;
   int CellDims[3] = { 0, 0, 0 };

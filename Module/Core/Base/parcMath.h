@@ -163,6 +163,20 @@ PARC_HOT_INLINE int CountTrailingZeros(unsigned x)
   return n;
 #endif
 }
+/// The number of set bits of x.
+PARC_HOT_INLINE int PopCount(unsigned x)
+{
+#if defined(__GNUC__)
+  return __builtin_popcount(x);
+#else
+  int n = 0;
+  for (; x != 0; x &= x - 1)
+  {
+    ++n;
+  }
+  return n;
+#endif
+}
 
 } // namespace parc
 

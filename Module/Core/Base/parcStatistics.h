@@ -67,6 +67,9 @@ struct CastStatistics
   std::uint64_t Segments = 0;            ///< segments handed to the caster
   std::uint64_t Samples = 0;             ///< scalar samples taken on the lattice
   std::uint64_t ContributingSamples = 0; ///< non-zero opacity, or isosurface crossings
+  /// Samples in cells that cannot contribute (RayCaster::SetContributingCells): never
+  /// interpolated when their whole group of lanes lies in such cells.
+  std::uint64_t EmptyCellSamples = 0;
   std::uint64_t GradientEvaluations = 0;
   /// Cells whose voxel differences were loaded for gradients (the rest were cached).
   std::uint64_t DifferenceLoads = 0;
@@ -87,6 +90,7 @@ struct CastStatistics
     this->Segments += o.Segments;
     this->Samples += o.Samples;
     this->ContributingSamples += o.ContributingSamples;
+    this->EmptyCellSamples += o.EmptyCellSamples;
     this->GradientEvaluations += o.GradientEvaluations;
     this->DifferenceLoads += o.DifferenceLoads;
     this->Cells += o.Cells;

@@ -327,6 +327,19 @@ bool RayCaster::SetComponents(std::vector<Component> components)
   return true;
 }
 
+const std::uint8_t* RayCaster::ContributingCells() const
+{
+  const CastParameters& p = *this->Params;
+  if (!this->Cells || p.Blend != BlendMode::Composite || !this->Components.empty() ||
+    p.Interp != Interpolation::Linear || this->Field->GetStride() != 1)
+  {
+    return nullptr;
+  }
+  const int* dims = this->Field->GetDimensions();
+  const std::size_t voxels = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+  return this->Cells->size() == (voxels + 7) / 8 ? this->Cells->data() : nullptr;
+}
+
 bool RayCaster::ClipRay(const Ray& ray, double& tEnter, double& tExit) const
 {
   const Matrix4& w2i = this->WorldToIndex;
@@ -450,6 +463,8 @@ struct RayContext
   const LabelFunctions* SampleLabel = nullptr;
   /// The block of lattice samples taken last.
   LatticeBlock Block;
+  /// RayCaster::ContributingCells for composite rays, else null.
+  const std::uint8_t* Cells = nullptr;
   /// The corrected opacities of the block's lanes (RenderConstants::OpacityByValue; 0 for
   /// the lanes LaneOpacities was not given).
   alignas(16) float Opacities[LatticeBlock::Size];
@@ -535,11 +550,21 @@ struct RayContext
   }
 
   Vec3 IndexPosition(double t) const { return this->IndexOrigin + t * this->IndexDirection; }
-  /// Takes lattice samples k0 .. k0 + n - 1 (n <= SampleBlockSize) into Block.
-  PARC_HOT_INLINE void SampleBlock(long k0, int n)
+  /// Takes lattice samples k0 .. k0 + n - 1 (n <= SampleBlockSize) into Block; returns the
+  /// lanes that may contribute (FieldView::SampleLattice with Cells).
+  PARC_HOT_INLINE unsigned SampleBlock(long k0, int n)
   {
-    this->Field.SampleLattice(
-      this->IndexOrigin, this->IndexDirection, this->Dt, k0, n, this->P.Interp, this->Block);
+    return this->Field.SampleLattice(this->IndexOrigin, this->IndexDirection, this->Dt, k0, n,
+      this->P.Interp, this->Block, this->Cells);
+  }
+  /// Counts the lanes below visited that SampleBlock left out (sampled: its result).
+  void CountEmptyCells(unsigned sampled, int visited)
+  {
+    if (this->Cells)
+    {
+      const unsigned below = (1u << visited) - 1u;
+      this->Stats.EmptyCellSamples += static_cast<std::uint64_t>(PopCount(below & ~sampled));
+    }
   }
   float Value(int j) const { return this->Block.Values[j]; }
   /// The slot that holds, or will hold, the differences of the cell at offset.
@@ -647,9 +672,9 @@ struct RayContext
   template <class Visit>
   PARC_HOT_INLINE bool ContributingSamples(long k0, int n, int& visited, Visit&& visit)
   {
-    this->SampleBlock(k0, n);
+    const unsigned sampled = this->SampleBlock(k0, n);
     const bool byValue = this->K.OpacityByValue;
-    unsigned lanes = this->MayContribute(n);
+    unsigned lanes = this->MayContribute(n) & sampled;
     if (byValue)
     {
       lanes = this->LaneOpacities(lanes);
@@ -673,9 +698,11 @@ struct RayContext
       if (!visit(j, t, a, g, haveGradient))
       {
         visited = j + 1;
+        this->CountEmptyCells(sampled, visited);
         return false;
       }
     }
+    this->CountEmptyCells(sampled, n);
     return true;
   }
   /// The composite ray function over lattice samples k0 .. k0 + n - 1 into out (and the
@@ -687,8 +714,8 @@ struct RayContext
   /// ShadeSample and Over; returns false (visited set) when the ray stops.
   PARC_HOT_INLINE bool CompositeBlock(long k0, int n, int& visited, EventCompositor& out)
   {
-    this->SampleBlock(k0, n);
-    const unsigned lanes = this->LaneOpacities(this->MayContribute(n));
+    const unsigned sampled = this->SampleBlock(k0, n);
+    const unsigned lanes = this->LaneOpacities(this->MayContribute(n) & sampled);
     LaneBatch& b = this->Batch;
     b.Count = 0;
     bool stops = false;
@@ -715,6 +742,7 @@ struct RayContext
       this->ShadeBatch(k0);
     }
     this->Stats.ContributingSamples += static_cast<std::uint64_t>(b.Count);
+    this->CountEmptyCells(sampled, stops ? visited : n);
     if (b.Count > 0)
     {
       this->RecordHit((k0 + b.Lane[0]) * this->Dt); // the first is the nearest
@@ -2027,6 +2055,7 @@ void RayCaster::CastRayIn(const View& field, const RayQuery& query, const Segmen
     field, *this->Params, this->Constants, query.Path, indexOrigin, indexDirection, stats, true);
   context.Events = events;
   context.EntryT = tEnter;
+  context.Cells = this->ContributingCells();
   ShadowScratch ownShadowScratch;
   context.Shadows = this->Shadows;
   context.ShadowSpace = shadows ? shadows : &ownShadowScratch;

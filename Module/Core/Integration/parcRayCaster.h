@@ -192,6 +192,14 @@ public:
   bool SetComponents(std::vector<Component> components);
   const std::vector<Component>& GetComponents() const { return this->Components; }
 
+  /// The cells of the field that may contribute, as RangePyramid::ClassifyCells gives them
+  /// under this caster's parameters, or null (the default): composite rays then leave out
+  /// the samples of the other cells, whose opacity is 0, without interpolating them (the
+  /// same image). Used for a composite volume of one component and linear interpolation
+  /// whose values lie next to each other, bits of the field's size; it must outlive the
+  /// casts.
+  void SetContributingCells(const std::vector<std::uint8_t>* cells) { this->Cells = cells; }
+
   /// What shades this volume's contributions in shadow (see the file comment); null (the
   /// default) casts no shadow ray. It must outlive the casts.
   void SetOccluders(const Occluders* occluders) { this->Shadows = occluders; }
@@ -341,8 +349,12 @@ private:
   const CastParameters* Params = nullptr;
   Matrix4 WorldToIndex;
   RenderConstants Constants;
+  /// The bits of SetContributingCells that apply to this caster's rays, or null.
+  const std::uint8_t* ContributingCells() const;
+
   const Occluders* Shadows = nullptr;
   std::vector<Component> Components;
+  const std::vector<std::uint8_t>* Cells = nullptr;
 };
 
 /// The volumes that shadow a scene's shaded contributions, each with a segment source per

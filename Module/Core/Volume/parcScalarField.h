@@ -353,15 +353,23 @@ private:
 #if defined(__SSE2__)
     const __m128d vo = _mm_set1_pd(o), vd = _mm_set1_pd(d), vlast = _mm_set1_pd(last);
     const __m128d vcell = _mm_set1_pd(lastCellStart), zero = _mm_setzero_pd();
-    for (int j = 0; j < n; j += 2)
-    {
-      __m128d x = _mm_add_pd(vo, _mm_mul_pd(_mm_loadu_pd(t + j), vd));
+    // Two lanes a register of doubles; four lanes a store (a load of the four then
+    // forwards from one store).
+    auto locate = [&](const double* tj, __m128i& i, __m128& fraction) {
+      __m128d x = _mm_add_pd(vo, _mm_mul_pd(_mm_loadu_pd(tj), vd));
       x = _mm_max_pd(x, zero); // x > 0 ? x : 0, also for NaN
       x = _mm_min_pd(x, vlast); // x < last ? x : last
-      const __m128i i = _mm_cvttpd_epi32(_mm_min_pd(x, vcell));
-      _mm_storel_epi64(reinterpret_cast<__m128i*>(cell + j), i);
-      const __m128 fraction = _mm_cvtpd_ps(_mm_sub_pd(x, _mm_cvtepi32_pd(i)));
-      _mm_storel_pi(reinterpret_cast<__m64*>(f + j), fraction);
+      i = _mm_cvttpd_epi32(_mm_min_pd(x, vcell));
+      fraction = _mm_cvtpd_ps(_mm_sub_pd(x, _mm_cvtepi32_pd(i)));
+    };
+    for (int j = 0; j < n; j += 4)
+    {
+      __m128i i01, i23;
+      __m128 f01, f23;
+      locate(t + j, i01, f01);
+      locate(t + j + 2, i23, f23);
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(cell + j), _mm_unpacklo_epi64(i01, i23));
+      _mm_storeu_ps(f + j, _mm_movelh_ps(f01, f23));
     }
 #else
     for (int j = 0; j < n; ++j)
@@ -659,6 +667,9 @@ public:
         return f(this->View<float>());
     }
   }
+
+  /// Values from one voxel to the next along x (the components of a voxel).
+  int GetStride() const { return this->Stride; }
 
   // One-off access (each call dispatches on the type; loops use Dispatch).
   float GetValue(int i, int j, int k) const
