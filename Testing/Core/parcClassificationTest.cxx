@@ -375,13 +375,16 @@ TEST(SupercellGrid, FitSizeScalesUpOnlyWhatDoesNotFit)
 
 // Depth model: face count and area against an independent count of PC/empty transitions
 // along each grid line; merging keeps the area and never adds quads; closed and oriented.
+// Rows of more than 64 supercells along x (the model reads the flags 64 at a time).
 TEST(PolygonModel, DepthModelMatchesAnIndependentCount)
 {
   std::mt19937 rng(15);
-  const int dims[3] = { 12, 10, 14 };
-  for (const auto& size : SupercellSizes)
+  const std::array<int, 3> grids[] = { { 12, 10, 14 }, { 140, 7, 9 } };
+  for (int g = 0; g < 2 * static_cast<int>(std::size(SupercellSizes)); ++g)
   {
-    Scene s(rng, dims, BlendMode::Composite, size, parc::Interpolation::Linear, true);
+    const std::array<int, 3>& dims = grids[g % 2];
+    const double* size = SupercellSizes[g / 2];
+    Scene s(rng, dims.data(), BlendMode::Composite, size, parc::Interpolation::Linear, true);
     const int* n = s.Grid.GetCounts();
     std::size_t faces = 0;
     double area = 0.0;
@@ -421,7 +424,7 @@ TEST(PolygonModel, DepthModelMatchesAnIndependentCount)
     }
     EXPECT_TRUE(IsClosed(model));
     const parc::ModelStatistics stats = parc::ComputeStatistics(s.Grid, model);
-    EXPECT_EQ(stats.Cells, 11u * 9u * 13u);
+    EXPECT_EQ(stats.Cells, static_cast<std::uint64_t>(dims[0] - 1) * (dims[1] - 1) * (dims[2] - 1));
     EXPECT_EQ(stats.Polygons, faces);
     EXPECT_NEAR(stats.ContributingPercent,
       100.0 * s.Grid.GetNumberOfContributing() / s.Grid.GetNumberOfSupercells(), 1e-12);

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace parc
 {
@@ -40,12 +41,16 @@ void CoverMask(std::vector<char>& mask, int nu, int nv, bool merge, Emit&& emit)
 {
   for (int v = 0; v < nv; ++v)
   {
+    const char* row = mask.data() + static_cast<std::size_t>(nu) * v;
     for (int u = 0; u < nu; ++u)
     {
-      if (!mask[u + static_cast<std::size_t>(nu) * v])
+      // The next set entry of the row (entries are 0 or 1).
+      const void* set = std::memchr(row + u, 1, static_cast<std::size_t>(nu - u));
+      if (!set)
       {
-        continue;
+        break;
       }
+      u = static_cast<int>(static_cast<const char*>(set) - row);
       int u1 = u, v1 = v;
       if (merge)
       {
@@ -134,13 +139,44 @@ void BuildDepthModel(const SupercellGrid& grid, bool merge, PolygonModel& model)
         const std::size_t next =
           inside ? static_cast<std::size_t>(neighbour) * grid.Stride(axis) : 0;
         std::vector<char> mask(static_cast<std::size_t>(nu) * nv);
-        for (int v = 0; v < nv; ++v)
+        if (axis == 0)
         {
-          for (int u = 0; u < nu; ++u)
+          for (int v = 0; v < nv; ++v)
           {
-            const std::size_t at = u * su + v * sv;
-            mask[u + static_cast<std::size_t>(nu) * v] = grid.IsContributing(slice + at) &&
-              !(inside && grid.IsContributing(next + at));
+            for (int u = 0; u < nu; ++u)
+            {
+              const std::size_t at = u * su + v * sv;
+              mask[u + static_cast<std::size_t>(nu) * v] = grid.IsContributing(slice + at) &&
+                !(inside && grid.IsContributing(next + at));
+            }
+          }
+        }
+        else
+        {
+          // Rows along x, 64 supercells at a time: x is u (axis 2) or v (axis 1).
+          const int rows = axis == 2 ? nv : nu;
+          const std::size_t rowStride = axis == 2 ? sv : su;
+          for (int r = 0; r < rows; ++r)
+          {
+            for (int x0 = 0; x0 < n[0]; x0 += 64)
+            {
+              const std::size_t at = r * rowStride + x0;
+              std::uint64_t exposed = grid.Flags64(slice + at);
+              if (inside)
+              {
+                exposed &= ~grid.Flags64(next + at);
+              }
+              if (n[0] - x0 < 64)
+              {
+                exposed &= (std::uint64_t(1) << (n[0] - x0)) - 1;
+              }
+              for (; exposed != 0; exposed &= exposed - 1)
+              {
+                const int x = x0 + CountTrailingZeros64(exposed);
+                mask[axis == 2 ? x + static_cast<std::size_t>(nu) * r
+                               : r + static_cast<std::size_t>(nu) * x] = 1;
+              }
+            }
           }
         }
         CoverMask(mask, nu, nv, merge, [&](int u0, int u1, int v0, int v1) {

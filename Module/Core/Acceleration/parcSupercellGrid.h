@@ -84,6 +84,18 @@ public:
   {
     return ((this->Bits[index >> 6] >> (index & 63)) & 1) != 0;
   }
+  /// The flags of supercells index .. index + 63 (by Index) as bits, 0 past the last.
+  std::uint64_t Flags64(std::size_t index) const
+  {
+    const std::size_t w = index >> 6;
+    const unsigned shift = index & 63;
+    std::uint64_t flags = w < this->Bits.size() ? this->Bits[w] >> shift : 0;
+    if (shift != 0 && w + 1 < this->Bits.size())
+    {
+      flags |= this->Bits[w + 1] << (64 - shift);
+    }
+    return flags;
+  }
   std::size_t Stride(int axis) const
   {
     return axis == 0 ? 1

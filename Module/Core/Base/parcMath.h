@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 
 /// Marks the small per-sample functions the caster's loops must inline.
@@ -154,6 +155,20 @@ PARC_HOT_INLINE int CountTrailingZeros(unsigned x)
 {
 #if defined(__GNUC__)
   return __builtin_ctz(x);
+#else
+  int n = 0;
+  for (; !(x & 1u); x >>= 1)
+  {
+    ++n;
+  }
+  return n;
+#endif
+}
+/// The index of the lowest set bit of x != 0.
+PARC_HOT_INLINE int CountTrailingZeros64(std::uint64_t x)
+{
+#if defined(__GNUC__)
+  return __builtin_ctzll(x);
 #else
   int n = 0;
   for (; !(x & 1u); x >>= 1)
