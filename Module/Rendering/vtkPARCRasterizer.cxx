@@ -138,7 +138,8 @@ struct GPUModel
   GLuint VertexArray = 0;
   GLuint Positions = 0;
   GLuint Planes = 0;
-  GLsizei Count = 0; ///< quads (instances)
+  GLuint Indices = 0;
+  GLsizei Count = 0; ///< quads
   std::uint64_t Version = ~std::uint64_t(0);
   std::size_t Bytes = 0; ///< buffer storage
   double LargestCorner = 0.0; ///< the largest |vertex| (voxel-index coordinates)
@@ -150,6 +151,7 @@ struct GPUModel
       glDeleteVertexArrays(1, &this->VertexArray);
       glDeleteBuffers(1, &this->Positions);
       glDeleteBuffers(1, &this->Planes);
+      glDeleteBuffers(1, &this->Indices);
     }
     *this = GPUModel();
   }
@@ -418,15 +420,20 @@ void vtkPARCRasterizer::vtkInternals::Upload(
     glGenVertexArrays(1, &gpu.VertexArray);
     glGenBuffers(1, &gpu.Positions);
     glGenBuffers(1, &gpu.Planes);
+    glGenBuffers(1, &gpu.Indices);
   }
   gpu.LargestCorner = 0.0;
   // Per quad: its first corner and the edges to its second and fourth corners (the model's
   // quads are parallelograms), then its plane (colour models only: without planes the
-  // attribute keeps its default 0).
+  // attribute keeps its default 0); each four times, once per vertex of the quad's two
+  // triangles (one indexed draw of every quad: llvmpipe shades the vertices of one draw in
+  // batches, where an instance a quad would be a draw of four vertices).
   const std::size_t quads = model.GetNumberOfQuads();
   std::vector<float> geometry;
-  geometry.reserve(9 * quads);
-  std::vector<GLint> planes(model.Planes.empty() ? 0 : quads, 0);
+  geometry.reserve(4 * 9 * quads);
+  std::vector<GLint> planes(model.Planes.empty() ? 0 : 4 * quads, 0);
+  std::vector<GLuint> indices;
+  indices.reserve(6 * quads);
   for (std::size_t q = 0; q < quads; ++q)
   {
     const parc::Vec3* v = model.Vertices.data() + 4 * q;
@@ -434,15 +441,21 @@ void vtkPARCRasterizer::vtkInternals::Upload(
     {
       gpu.LargestCorner = std::max(gpu.LargestCorner, parc::Length(v[corner]));
     }
-    for (const parc::Vec3& x : { v[0], v[1] - v[0], v[3] - v[0] })
+    for (int vertex = 0; vertex < 4; ++vertex)
     {
-      geometry.insert(geometry.end(),
-        { static_cast<float>(x.X), static_cast<float>(x.Y), static_cast<float>(x.Z) });
+      for (const parc::Vec3& x : { v[0], v[1] - v[0], v[3] - v[0] })
+      {
+        geometry.insert(geometry.end(),
+          { static_cast<float>(x.X), static_cast<float>(x.Y), static_cast<float>(x.Z) });
+      }
+      if (q < model.Planes.size() && 4 * q < planes.size())
+      {
+        planes[4 * q + vertex] = model.Planes[q];
+      }
     }
-    if (q < model.Planes.size() && q < planes.size())
-    {
-      planes[q] = model.Planes[q];
-    }
+    // The box corners 0 to 3 (gl_VertexID & 3) as the triangles of a strip.
+    const auto first = static_cast<GLuint>(4 * q);
+    indices.insert(indices.end(), { first, first + 1, first + 2, first + 2, first + 1, first + 3 });
   }
   glBindVertexArray(gpu.VertexArray);
   glBindBuffer(GL_ARRAY_BUFFER, gpu.Positions);
@@ -451,7 +464,6 @@ void vtkPARCRasterizer::vtkInternals::Upload(
   {
     glVertexAttribPointer(a, 3, GL_FLOAT, GL_FALSE, 9 * sizeof(float),
       reinterpret_cast<const void*>(3 * a * sizeof(float)));
-    glVertexAttribDivisor(a, 1);
     glEnableVertexAttribArray(a);
   }
   if (planes.empty())
@@ -463,12 +475,15 @@ void vtkPARCRasterizer::vtkInternals::Upload(
     glBindBuffer(GL_ARRAY_BUFFER, gpu.Planes);
     glBufferData(GL_ARRAY_BUFFER, planes.size() * sizeof(GLint), planes.data(), GL_STATIC_DRAW);
     glVertexAttribIPointer(3, 1, GL_INT, 0, nullptr);
-    glVertexAttribDivisor(3, 1);
     glEnableVertexAttribArray(3);
   }
   glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.Indices); // kept in the vertex array's state
+  glBufferData(
+    GL_ELEMENT_ARRAY_BUFFER, indices.size() * sizeof(GLuint), indices.data(), GL_STATIC_DRAW);
   gpu.Count = static_cast<GLsizei>(quads);
-  gpu.Bytes = geometry.size() * sizeof(float) + planes.size() * sizeof(GLint);
+  gpu.Bytes = geometry.size() * sizeof(float) + planes.size() * sizeof(GLint) +
+    indices.size() * sizeof(GLuint);
   gpu.Version = version;
 }
 
@@ -512,7 +527,7 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
     static_cast<float>(2.0 * DilationPixels / view.Camera.Width),
     static_cast<float>(2.0 * DilationPixels / view.Camera.Height));
   glBindVertexArray(gpu.VertexArray);
-  glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, gpu.Count);
+  glDrawElements(GL_TRIANGLES, 6 * gpu.Count, GL_UNSIGNED_INT, nullptr);
 }
 
 void vtkPARCRasterizer::vtkInternals::Release()

@@ -84,7 +84,7 @@ void main()
   // margin around it, so the rasterizer never clips far-away coordinates.
   lo = max(lo - Dilation, vec2(-2.0));
   hi = min(hi + Dilation, vec2(2.0));
-  int box = gl_VertexID;
+  int box = gl_VertexID & 3;
   gl_Position = vec4((box & 1) != 0 ? hi.x : lo.x, (box & 2) != 0 ? hi.y : lo.y, 0.0, 1.0);
   // The face's plane dot(n, x) = w (eye-relative world coordinates). The ray through NDC
   // (x, y) starts at b = RayBase . (1, x, y) and runs along u = RayDirection . (1, x, y); it
