@@ -1958,6 +1958,7 @@ float RayCaster::TransmittanceIn(const View& field, const RayQuery& query,
   using Context = RayContext<View>;
   CastStatistics own;
   Context context(field, p, this->Constants, shadow.Path, indexOrigin, indexDirection, own, false);
+  context.Cells = this->ContributingCells();
   const float floor = static_cast<float>(1.0 - p.TerminationOpacity);
   float rgba[4];
   float transmittance;
