@@ -527,7 +527,8 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
     static_cast<float>(2.0 * DilationPixels / view.Camera.Width),
     static_cast<float>(2.0 * DilationPixels / view.Camera.Height));
   glBindVertexArray(gpu.VertexArray);
-  glDrawElements(GL_TRIANGLES, 6 * gpu.Count, GL_UNSIGNED_INT, nullptr);
+  glDrawRangeElements(GL_TRIANGLES, 0, std::max(4 * gpu.Count, 1) - 1, 6 * gpu.Count,
+    GL_UNSIGNED_INT, nullptr);
 }
 
 void vtkPARCRasterizer::vtkInternals::Release()
