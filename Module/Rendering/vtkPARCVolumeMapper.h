@@ -14,6 +14,12 @@
  * off. Rays sample a global lattice t_k = k * SampleDistance from the eye (perspective) or
  * from the plane through the camera position (parallel), whatever part of the ray is cast.
  *
+ * In every acceleration mode, composite rays (one component, linear interpolation) also
+ * leave out the samples of cells that cannot contribute without interpolating them: a bit
+ * per cell, classified from the cell-range pyramid with the transfer functions (0.125
+ * bytes a voxel, again only after an edit; GetCellClassificationCount,
+ * GetLastEmptyCellSampleCount). Their opacity is 0, so the image is the same.
+ *
  * Supported: scalar types (unsigned) char, short, int, float and double (point data, or
  * cell data as one voxel per cell at the cell's centre, as VTK's GPU mapper renders it;
  * up to 4 independent components, vtkVolumeProperty::IndependentComponentsOn, each with
