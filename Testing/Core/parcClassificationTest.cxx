@@ -863,12 +863,13 @@ TEST(ContributingCells, EveryPossiblyContributingCellHasItsBit)
   }
   EXPECT_GT(mixed, 20) << "scenes with some cells PC and some not";
   EXPECT_LT(spurious, outside / 5) << "cells of nodes without a PC cell";
-  RangePyramid flat; // one slice: no cells
-  flat.Build(parctest::MakeField(std::array<int, 3>{ 4, 4, 1 }.data(),
-    [](int, int, int) { return 1.f; }));
+  const int slice[3] = { 4, 4, 1 }; // one slice: no cells
+  const parc::ScalarField flatField = parctest::MakeField(slice, [](int, int, int) { return 1.f; });
+  RangePyramid flat;
+  flat.Build(flatField);
   std::vector<std::uint8_t> bits{ 1 };
   ContributionRule rule;
-  rule.Set(RandomParameters(rng, BlendMode::Composite), flat.GetField()->GetRange());
+  rule.Set(RandomParameters(rng, BlendMode::Composite), flatField.GetRange());
   EXPECT_FALSE(flat.ClassifyCells(rule, bits));
   EXPECT_TRUE(bits.empty());
 }
