@@ -237,7 +237,7 @@ stability_section() {
 sweep_section() {
   echo "## 5. Supercell sweep: polygons against ray steps (${sweep_size}x${sweep_size}, Auto)"
   echo
-  echo "Each row is Auto at one supercell size (its choice in the last column); the optimum, the smallest total, is named below each table and marked with a large dot in the plot. The default is 2."
+  echo "Each row is Auto at one supercell size (its choice in the last column); the optimum, the smallest total, is named below each table and marked with a large dot in the plot. The default is 4."
   local args i=0 table best
   echo "series,x,y" > "$out/sweep.csv"
   local scenes=("$data/tooth_103x94x161_uint8.raw --tf $tf/tooth-surface-enamel.txt --elevation -70")

@@ -66,7 +66,7 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
   --sample-distance D   world units (default: half the smallest spacing)
   --acceleration MODE   none, depth, color, both, walk (the supercells walked on the CPU,
                         no GL pass), auto (default)
-  --supercell M,N,P     supercell size in cells (default 2,2,2)
+  --supercell M,N,P     supercell size in cells (default 4,4,4, the mapper's)
   --compare-acceleration  also render with every acceleration mode, side by side: a table
                         of samples, cells, polygons, times, speedup and exactness
   --sweep-supercells S1,S2,...  also render with cubic supercells of these sizes (table)
@@ -140,7 +140,7 @@ struct Options
   int ShadowTableRounds = 0, Versus = 0, SampleCost = 0, Threads = 0, Accuracy = 0;
   int MultiSamples = 0;
   int EditCost = 0, ThreadScaling = 0, AutoTrials = 0;
-  double Supercell[3] = { 2, 2, 2 };
+  double Supercell[3] = { 4, 4, 4 };
   std::vector<double> Sweep;
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
   int Width = 300, Height = 300, Repeat = 1;

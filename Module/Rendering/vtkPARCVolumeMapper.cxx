@@ -325,6 +325,9 @@ public:
   parc::RayCaster Caster;
   parc::CastStatistics Stats; ///< of the last render
   int LastMode = ACCELERATION_NONE;
+  /// The classification decided the last frame's mode without Auto's measurements (no
+  /// supercell, or every one, may contribute): no trial is to come.
+  bool ModeSettledByClassification = false;
 
   // PARC: the classification and models, remade only when their inputs change.
   parc::AccelerationPlan Plan;
@@ -1413,6 +1416,7 @@ int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   const std::size_t pc = grid.GetNumberOfContributing();
   if (pc == grid.GetNumberOfSupercells())
   {
+    in.ModeSettledByClassification = true;
     return ACCELERATION_NONE; // every supercell may contribute: no pass can help
   }
   // Which pass pays off, if any, depends on the GL implementation (software GL makes the
@@ -1435,6 +1439,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   const int requested = self->AccelerationMode;
   vtkRenderWindow* window = ren->GetRenderWindow();
   in.LastMode = ACCELERATION_NONE;
+  in.ModeSettledByClassification = false;
   // A slice takes one sample a ray and asks for no segments: no pass can pay off.
   if (requested == ACCELERATION_NONE || in.Parameters.Blend == parc::BlendMode::Slice ||
     !self->PrepareModels(in, vol))
@@ -1446,6 +1451,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   if (grid.GetNumberOfContributing() == 0)
   {
     in.LastMode = requested;
+    in.ModeSettledByClassification = true;
     in.ReleaseUnusedPasses(window, false, false);
     return in.NoRays; // nothing can show: no pass, no sample
   }
@@ -1800,7 +1806,9 @@ vtkIdType vtkPARCVolumeMapper::GetLastShadowCellCount()
 }
 int vtkPARCVolumeMapper::GetAutoTrialsRemaining()
 {
-  return this->Internals->Sum<int>([](const vtkVolumeState& v) { return v.Plan.Auto.Remaining(); });
+  return this->Internals->Sum<int>([](const vtkVolumeState& v) {
+    return v.ModeSettledByClassification ? 0 : v.Plan.Auto.Remaining();
+  });
 }
 
 //------------------------------------------------------------------------------

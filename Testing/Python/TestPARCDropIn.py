@@ -130,16 +130,22 @@ class TestPARCDropIn(unittest.TestCase):
 
     def test_no_auto_trial_while_interacting(self):
         mapper, window = make_scene(size=200)
+        mapper.SetSupercellSize(2, 2, 2)  # some supercells empty: passes may pay off
         window.SetDesiredUpdateRate(INTERACTIVE_RATE)
         modes = set()
         for _ in range(4):
             window.Render()
             modes.add(mapper.GetLastAccelerationMode())
         self.assertEqual(len(modes), 1, "one mode while interacting")
+        self.assertGreater(mapper.GetAutoTrialsRemaining(), 0, "trials left for still frames")
         window.SetDesiredUpdateRate(STILL_RATE)
         for _ in range(6):
             window.Render()
         self.assertEqual(mapper.GetAutoTrialsRemaining(), 0, "still renders try the modes")
+        mapper.SetSupercellSize(4, 4, 4)  # every supercell may contribute: nothing to try
+        window.Render()
+        self.assertEqual(mapper.GetLastAccelerationMode(), mapper.ACCELERATION_NONE)
+        self.assertEqual(mapper.GetAutoTrialsRemaining(), 0)
 
     def test_threads(self):
         mapper, window = make_scene()
