@@ -810,6 +810,24 @@ TEST(PolygonModel, RayAxisSign)
   EXPECT_EQ(parc::RayAxisSign(model, { { 0, 5, 5 } }, forward), 0);
 }
 
+namespace
+{
+/// The pyramid, rule and cell bits of a field under parameters p.
+struct ClassifiedCells
+{
+  RangePyramid Pyramid;
+  ContributionRule Rule;
+  std::vector<std::uint8_t> Bits;
+
+  ClassifiedCells(const parc::ScalarField& field, const CastParameters& p)
+  {
+    this->Pyramid.Build(field);
+    this->Rule.Set(p, field.GetRange());
+    EXPECT_TRUE(this->Pyramid.ClassifyCells(this->Rule, this->Bits));
+  }
+};
+}
+
 // Every PC cell (brute force, from the cell ranges) has its bit, at the voxel index of the
 // cell's first voxel; the voxels of the last planes begin no cell; the cells of nodes of
 // 2x2x2 cells without a PC one rarely have theirs (only where the pyramid's coded range of
@@ -826,15 +844,10 @@ TEST(ContributingCells, EveryPossiblyContributingCellHasItsBit)
     for (BlendMode blend : AllBlendModes)
     {
       const parc::ScalarField field = RandomVolume(rng, dims);
-      const CastParameters p = RandomParameters(rng, blend);
-      RangePyramid pyramid;
-      pyramid.Build(field);
-      ContributionRule rule;
-      rule.Set(p, field.GetRange());
-      std::vector<std::uint8_t> bits;
-      ASSERT_TRUE(pyramid.ClassifyCells(rule, bits));
+      const ClassifiedCells cells(field, RandomParameters(rng, blend));
+      const std::vector<std::uint8_t>& bits = cells.Bits;
       ASSERT_EQ(bits.size(), (static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] + 7) / 8);
-      const std::vector<char> expected = CellFlags(pyramid, rule);
+      const std::vector<char> expected = CellFlags(cells.Pyramid, cells.Rule);
       const int c[3] = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
       auto pc = [&](int i, int j, int k) {
         return i < c[0] && j < c[1] && k < c[2] && expected[i + c[0] * (j + c[1] * k)] != 0;
@@ -896,16 +909,11 @@ TEST(ContributingCells, CastingLeavesOutEmptyCellsExactly)
         p.TerminationOpacity = trial % 3 == 0 ? 0.95 : 1.0;
         p.Lights.push_back(parc::Light());
         p.Lights.back().Position = { 0, 0, 1 };
-        RangePyramid pyramid;
-        pyramid.Build(field);
-        ContributionRule rule;
-        rule.Set(p, field.GetRange());
-        std::vector<std::uint8_t> bits;
-        ASSERT_TRUE(pyramid.ClassifyCells(rule, bits));
+        const ClassifiedCells cells(field, p);
         parc::RayCaster plain, skipping;
         ASSERT_TRUE(plain.Prepare({ &field, &p }));
         ASSERT_TRUE(skipping.Prepare({ &field, &p }));
-        skipping.SetContributingCells(&bits);
+        skipping.SetContributingCells(&cells.Bits);
         const parc::WholeRaySource whole;
         std::vector<parc::Segment> segments;
         std::vector<parc::LatticeRange> ranges;

@@ -421,7 +421,7 @@ bool RangePyramid::ClassifyCells(
           bool any = false;
           for (int i = 0; i < this->CellDims[0]; ++i)
           {
-            const bool set = node[i >> 1] != NoCell;
+            const bool set = node[i >> 1] != 0;
             row[i / 8] |= static_cast<std::uint8_t>(set << (i % 8));
             any |= set;
           }
@@ -480,7 +480,7 @@ void RangePyramid::Descend(int m, const int node[3], int level, const Contributi
   };
   if (m == level && !exact)
   {
-    flag(node[0], node[1], node[2]) = rule.AllContributing(lo, hi) ? EveryCell : SomeCell;
+    flag(node[0], node[1], node[2]) = 1;
     return;
   }
   if (m == level)
@@ -500,7 +500,7 @@ void RangePyramid::Descend(int m, const int node[3], int level, const Contributi
     {
       for (int j = first[1]; j <= last[1]; ++j)
       {
-        std::fill_n(&flag(first[0], j, k), last[0] - first[0] + 1, exact ? 1 : EveryCell);
+        std::fill_n(&flag(first[0], j, k), last[0] - first[0] + 1, 1);
       }
     }
     return;

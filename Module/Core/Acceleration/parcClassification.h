@@ -139,15 +139,9 @@ private:
   Code CodeAbove(double v) const;
   bool Query(int level, const int node[3], const int c0[3], const int c1[3],
     const ContributionRule& rule) const;
-  /// What Settle says of a node when it does not decide on the cells.
-  enum NodeState : std::uint8_t
-  {
-    NoCell = 0,    ///< no cell of the node is PC
-    SomeCell = 1,  ///< the range of the node meets the rule: some of its cells may be PC
-    EveryCell = 2  ///< every cell of the node is PC
-  };
-  /// ClassifyLevel (exact: whether the cells decide that one is PC, 0 or 1) or, without
-  /// exact, the NodeState of each node of level from the ranges of the pyramid alone.
+  /// ClassifyLevel (exact: whether one of a node's cells is PC) or, without exact, whether
+  /// the range of each node of level meets the rule (the pyramid's ranges alone: a node
+  /// with a PC cell always does).
   void Settle(int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags,
     bool exact) const;
   /// Settle below the node of level m (>= level).

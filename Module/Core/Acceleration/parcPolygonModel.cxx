@@ -172,7 +172,7 @@ void BuildDepthModel(const SupercellGrid& grid, bool merge, PolygonModel& model)
               }
               for (; exposed != 0; exposed &= exposed - 1)
               {
-                const int x = x0 + CountTrailingZeros64(exposed);
+                const int x = x0 + CountTrailingZeros(exposed);
                 mask[axis == 2 ? x + static_cast<std::size_t>(nu) * r
                                : r + static_cast<std::size_t>(nu) * x] = 1;
               }

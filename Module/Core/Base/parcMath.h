@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 
 /// Marks the small per-sample functions the caster's loops must inline.
 /// Marks rare work kept out of those loops, so that they stay small.
@@ -150,25 +151,14 @@ inline float FloatAtMost(double x)
   return static_cast<double>(f) > x ? std::nextafter(f, -std::numeric_limits<float>::infinity())
                                     : f;
 }
-/// The index of the lowest set bit of x != 0.
-PARC_HOT_INLINE int CountTrailingZeros(unsigned x)
+/// The index of the lowest set bit of x != 0 (an unsigned integer of up to 64 bits).
+template <typename Bits>
+PARC_HOT_INLINE int CountTrailingZeros(Bits x)
 {
+  static_assert(std::is_unsigned<Bits>::value && sizeof(Bits) <= 8, "unsigned, up to 64 bits");
 #if defined(__GNUC__)
-  return __builtin_ctz(x);
-#else
-  int n = 0;
-  for (; !(x & 1u); x >>= 1)
-  {
-    ++n;
-  }
-  return n;
-#endif
-}
-/// The index of the lowest set bit of x != 0.
-PARC_HOT_INLINE int CountTrailingZeros64(std::uint64_t x)
-{
-#if defined(__GNUC__)
-  return __builtin_ctzll(x);
+  return sizeof(Bits) > sizeof(unsigned) ? __builtin_ctzll(x)
+                                         : __builtin_ctz(static_cast<unsigned>(x));
 #else
   int n = 0;
   for (; !(x & 1u); x >>= 1)
