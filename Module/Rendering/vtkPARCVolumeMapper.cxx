@@ -1623,7 +1623,8 @@ void vtkPARCVolumeMapper::PrepareCells(vtkVolumeState& in, vtkVolume* vol)
     in.CellsClassified = ClassificationKey();
     return;
   }
-  const ClassificationKey key = in.Key(this, vol);
+  ClassificationKey key = in.Key(this, vol);
+  std::fill_n(key.Size, 3, 0.0); // cells do not depend on the supercells
   if (!(key == in.CellsClassified))
   {
     in.CellsClassified = key;
