@@ -1,8 +1,8 @@
 // The vertex shader of both PARC passes (embedded into vtkPARCRasterizer at build time).
-// One instance a quad, with the quad's corner, its two edges and its plane (voxel-index
-// coordinates); vertex gl_VertexID (0 to 3) of the instance's triangle strip becomes that
-// corner of the quad's dilated screen bounding box, each vertex computing the same flat
-// outputs. The quad is first clipped to the part in front of MinDepth. The shader also sets
+// Four vertices a quad, each with the quad's corner, its two edges and its plane
+// (voxel-index coordinates); vertex gl_VertexID & 3 becomes that corner of the quad's
+// dilated screen bounding box (two triangles: corners 0 1 2 and 2 1 3), each vertex
+// computing the same flat outputs. The quad is first clipped to the part in front of MinDepth. The shader also sets
 // up the ratios the fragment shaders evaluate (parcFaceFS.glsl).
 layout(location = 0) in vec3 Corner;
 layout(location = 1) in vec3 Edge1;
