@@ -247,7 +247,7 @@ sweep_section() {
     set -- $args
     present "$1" || continue
     echo; echo "### $(title "$@")"; echo
-    table=$(parc "$@" --size "$sweep_size" --sample-distance 0.25 --repeat "$repeat" --sweep-supercells 1,1.5,2,3,4 | grep '^|')
+    table=$(parc "$@" --size "$sweep_size" --sample-distance 0.25 --repeat "$repeat" --sweep-supercells 1,2,3,4,6,8 | grep '^|')
     echo "$table"
     best=$(echo "$table" | awk -F'|' '$2 ~ /[0-9]/ { gsub(/ /, "", $2); gsub(/ /, "", $8); gsub(/ /, "", $9);
       if (min == "" || $8 < min) { min = $8; at = $2; mode = $9 } } END { print at, min, mode }')
