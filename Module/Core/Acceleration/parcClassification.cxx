@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <numeric>
 
@@ -417,15 +418,26 @@ bool RangePyramid::ClassifyCells(
         {
           const std::uint8_t* node = &nodes[static_cast<std::size_t>(first.Dims[0]) *
             (jn + static_cast<std::size_t>(first.Dims[1]) * kn)];
-          std::fill(row.begin(), row.end(), 0);
-          bool any = false;
-          for (int i = 0; i < this->CellDims[0]; ++i)
+          if (!std::memchr(node, 1, static_cast<std::size_t>(first.Dims[0])))
           {
-            const bool set = node[i >> 1] != 0;
-            row[i / 8] |= static_cast<std::uint8_t>(set << (i % 8));
-            any |= set;
+            continue; // no cell of the row may contribute
           }
-          for (int k = 2 * kn; any && k < std::min(2 * kn + 2, this->CellDims[2]); ++k)
+          // Eight cells a byte, two a node; none from x = CellDims[0] on.
+          const int cellsX = this->CellDims[0];
+          for (int b = 0; 8 * b < cellsX; ++b)
+          {
+            unsigned byte = 0;
+            for (int q = 0; q < 4 && 8 * b + 2 * q < cellsX; ++q)
+            {
+              byte |= (node[4 * b + q] != 0 ? 3u : 0u) << (2 * q);
+            }
+            row[b] = static_cast<std::uint8_t>(byte);
+          }
+          if (cellsX % 8 != 0)
+          {
+            row[cellsX / 8] &= static_cast<std::uint8_t>((1u << (cellsX % 8)) - 1u);
+          }
+          for (int k = 2 * kn; k < std::min(2 * kn + 2, this->CellDims[2]); ++k)
           {
             for (int j = 2 * jn; j < std::min(2 * jn + 2, this->CellDims[1]); ++j)
             {
