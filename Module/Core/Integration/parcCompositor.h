@@ -36,18 +36,20 @@ struct EventCompositor
   /// Adds a sample of colour rgb and opacity a behind what was added before.
   void AddSample(const float rgb[3], float a)
   {
-    const float w = this->Transparency * a;
+    const float w = this->Absorb(a);
     for (int c = 0; c < 3; ++c)
     {
       this->Rgb[c] += w * rgb[c];
     }
-    this->Transparency *= 1.f - a;
-    this->Alpha = Accumulate(this->Alpha, w, this->Transparency);
   }
-  /// The opacity alpha with weight w added, transparency left behind it.
-  static float Accumulate(float alpha, float w, float transparency)
+  /// Puts opacity a behind what was added before (transparency and opacity, not the
+  /// colour); returns its weight, the share of its colour in the result.
+  float Absorb(float a)
   {
-    return transparency > 0.f ? alpha + w : 1.f;
+    const float w = this->Transparency * a;
+    this->Transparency *= 1.f - a;
+    this->Alpha = this->Transparency > 0.f ? this->Alpha + w : 1.f;
+    return w;
   }
   /// Adds e behind what was added before.
   void Add(const RayEvent& e)
@@ -66,9 +68,7 @@ struct EventCompositor
     {
       this->Rgb[c] += this->Transparency * rgb[c];
     }
-    const float w = this->Transparency * a;
-    this->Transparency *= 1.f - a;
-    this->Alpha = Accumulate(this->Alpha, w, this->Transparency);
+    this->Absorb(a);
   }
   void Finish(float rgba[4]) const
   {

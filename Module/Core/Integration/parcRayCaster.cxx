@@ -719,15 +719,12 @@ struct RayContext
     LaneBatch& b = this->Batch;
     b.Count = 0;
     bool stops = false;
-    // EventCompositor::AddSample's arithmetic, lane by lane.
+    // EventCompositor::AddSample lane by lane: the weights now, the colours below.
     EventCompositor left = out;
     for (unsigned m = lanes; m != 0; m &= m - 1)
     {
       const int j = CountTrailingZeros(m);
-      const float a = this->Opacities[j];
-      b.Weight[b.Count] = left.Transparency * a;
-      left.Transparency *= 1.f - a;
-      left.Alpha = EventCompositor::Accumulate(left.Alpha, b.Weight[b.Count], left.Transparency);
+      b.Weight[b.Count] = left.Absorb(this->Opacities[j]);
       b.Lane[b.Count++] = j;
       if (!left.Below(this->P.TerminationOpacity))
       {
