@@ -1613,11 +1613,8 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
 //------------------------------------------------------------------------------
 void vtkPARCVolumeMapper::PrepareCells(vtkVolumeState& in, vtkVolume* vol)
 {
-  const parc::CastParameters& p = in.Parameters;
-  if (p.Blend != parc::BlendMode::Composite || !in.Components.empty() ||
-    p.Interp != parc::Interpolation::Linear || in.Field.GetStride() != 1)
+  if (!in.Caster.ReadsContributingCells())
   {
-    // The caster would not use them (RayCaster::SetContributingCells).
     in.Caster.SetContributingCells(nullptr);
     in.Plan.ReleaseCells();
     in.CellsClassified = ClassificationKey();
@@ -1629,7 +1626,7 @@ void vtkPARCVolumeMapper::PrepareCells(vtkVolumeState& in, vtkVolume* vol)
   {
     in.CellsClassified = key;
     parc::ContributionRule rule;
-    rule.Set(p, in.Field.GetRange());
+    rule.Set(in.Parameters, in.Field.GetRange());
     in.Plan.ClassifyCells(in.Field, in.FieldVersion, rule);
   }
   in.Caster.SetContributingCells(&in.Plan.GetContributingCells());

@@ -327,11 +327,20 @@ bool RayCaster::SetComponents(std::vector<Component> components)
   return true;
 }
 
+bool RayCaster::ReadsContributingCells() const
+{
+  if (!this->Params || !this->Field)
+  {
+    return false; // not prepared
+  }
+  const CastParameters& p = *this->Params;
+  return p.Blend == BlendMode::Composite && this->Components.empty() &&
+    p.Interp == Interpolation::Linear && this->Field->GetStride() == 1;
+}
+
 const std::uint8_t* RayCaster::ContributingCells() const
 {
-  const CastParameters& p = *this->Params;
-  if (!this->Cells || p.Blend != BlendMode::Composite || !this->Components.empty() ||
-    p.Interp != Interpolation::Linear || this->Field->GetStride() != 1)
+  if (!this->Cells || !this->ReadsContributingCells())
   {
     return nullptr;
   }

@@ -199,6 +199,9 @@ public:
   /// whose values lie next to each other, bits of the field's size; it must outlive the
   /// casts.
   void SetContributingCells(const std::vector<std::uint8_t>* cells) { this->Cells = cells; }
+  /// Whether this caster's rays read the bits of SetContributingCells (prepared, with its
+  /// components set): the volumes that skip no sample need none.
+  bool ReadsContributingCells() const;
 
   /// What shades this volume's contributions in shadow (see the file comment); null (the
   /// default) casts no shadow ray. It must outlive the casts.
