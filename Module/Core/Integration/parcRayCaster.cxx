@@ -2357,7 +2357,7 @@ bool RayCaster::CastImageIn(const View& field, const Camera& view, const float* 
   auto mayHave = [&](int px, int py) { return everyRay || source.MayHaveSegments(px, py); };
   // The samples a ray not cast would have without acceleration, on the timed columns.
   auto skipOne = [&](int px, int py, RayScratch& scratch) {
-    if (TimedColumn(px))
+    if (RayCostFit::CountsUncast(px, py))
     {
       scratch.Stats.Timing.AddUncast(
         static_cast<double>(this->UnacceleratedSamples(PixelRay(view, depth, px, py))));
