@@ -140,6 +140,7 @@ struct GPUModel
   GLuint Planes = 0;
   GLuint Indices = 0;
   GLsizei Count = 0; ///< quads
+  std::size_t IndexedQuads = 0; ///< the quads the index buffer holds indices for
   std::uint64_t Version = ~std::uint64_t(0);
   std::size_t Bytes = 0; ///< buffer storage
   double LargestCorner = 0.0; ///< the largest |vertex| (voxel-index coordinates)
@@ -354,8 +355,9 @@ public:
     if (gpu.Version != version)
     {
       const auto start = std::chrono::steady_clock::now();
+      // No glFinish after it: llvmpipe copies the data in glBufferData already, and a
+      // finish here made the next draw ~0.5 ms slower.
       this->Upload(gpu, model, version);
-      glFinish(); // the copy is done here, not in the draw
       this->SetUpTime += parc::SecondsSince(start);
       ++uploads;
     }
@@ -422,41 +424,39 @@ void vtkPARCRasterizer::vtkInternals::Upload(
     glGenBuffers(1, &gpu.Planes);
     glGenBuffers(1, &gpu.Indices);
   }
-  gpu.LargestCorner = 0.0;
   // Per quad: its first corner and the edges to its second and fourth corners (the model's
   // quads are parallelograms), then its plane (colour models only: without planes the
   // attribute keeps its default 0); each four times, once per vertex of the quad's two
   // triangles (one indexed draw of every quad: llvmpipe shades the vertices of one draw in
   // batches, where an instance a quad would be a draw of four vertices).
   const std::size_t quads = model.GetNumberOfQuads();
-  std::vector<float> geometry;
-  geometry.reserve(4 * 9 * quads);
+  constexpr std::size_t floatsPerVertex = 9;
+  std::vector<float> geometry(4 * floatsPerVertex * quads);
   std::vector<GLint> planes(model.Planes.empty() ? 0 : 4 * quads, 0);
-  std::vector<GLuint> indices;
-  indices.reserve(6 * quads);
+  float* out = geometry.data();
+  double largest = 0.0; // squared
   for (std::size_t q = 0; q < quads; ++q)
   {
     const parc::Vec3* v = model.Vertices.data() + 4 * q;
     for (int corner = 0; corner < 4; ++corner)
     {
-      gpu.LargestCorner = std::max(gpu.LargestCorner, parc::Length(v[corner]));
+      largest = std::max(largest, parc::Dot(v[corner], v[corner]));
     }
-    for (int vertex = 0; vertex < 4; ++vertex)
+    const parc::Vec3 e1 = v[1] - v[0], e3 = v[3] - v[0];
+    const float vertex[floatsPerVertex] = { static_cast<float>(v[0].X),
+      static_cast<float>(v[0].Y), static_cast<float>(v[0].Z), static_cast<float>(e1.X),
+      static_cast<float>(e1.Y), static_cast<float>(e1.Z), static_cast<float>(e3.X),
+      static_cast<float>(e3.Y), static_cast<float>(e3.Z) };
+    for (int corner = 0; corner < 4; ++corner, out += floatsPerVertex)
     {
-      for (const parc::Vec3& x : { v[0], v[1] - v[0], v[3] - v[0] })
-      {
-        geometry.insert(geometry.end(),
-          { static_cast<float>(x.X), static_cast<float>(x.Y), static_cast<float>(x.Z) });
-      }
-      if (q < model.Planes.size() && 4 * q < planes.size())
-      {
-        planes[4 * q + vertex] = model.Planes[q];
-      }
+      std::copy_n(vertex, floatsPerVertex, out);
     }
-    // The box corners 0 to 3 (gl_VertexID & 3) as the triangles of a strip.
-    const auto first = static_cast<GLuint>(4 * q);
-    indices.insert(indices.end(), { first, first + 1, first + 2, first + 2, first + 1, first + 3 });
+    if (q < model.Planes.size() && !planes.empty())
+    {
+      std::fill_n(planes.data() + 4 * q, 4, model.Planes[q]);
+    }
   }
+  gpu.LargestCorner = std::sqrt(largest);
   glBindVertexArray(gpu.VertexArray);
   glBindBuffer(GL_ARRAY_BUFFER, gpu.Positions);
   glBufferData(GL_ARRAY_BUFFER, geometry.size() * sizeof(float), geometry.data(), GL_STATIC_DRAW);
@@ -479,11 +479,25 @@ void vtkPARCRasterizer::vtkInternals::Upload(
   }
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, gpu.Indices); // kept in the vertex array's state
-  glBufferData(
-    GL_ELEMENT_ARRAY_BUFFER, indices.size() * sizeof(GLuint), indices.data(), GL_STATIC_DRAW);
+  if (quads > gpu.IndexedQuads)
+  {
+    // The same indices for every model: made again only for more quads than ever before.
+    std::vector<GLuint> indices;
+    indices.reserve(6 * quads);
+    for (std::size_t q = 0; q < quads; ++q)
+    {
+      // The box corners 0 to 3 (gl_VertexID & 3) as the triangles of a strip.
+      const auto first = static_cast<GLuint>(4 * q);
+      indices.insert(
+        indices.end(), { first, first + 1, first + 2, first + 2, first + 1, first + 3 });
+    }
+    glBufferData(
+      GL_ELEMENT_ARRAY_BUFFER, indices.size() * sizeof(GLuint), indices.data(), GL_STATIC_DRAW);
+    gpu.IndexedQuads = quads;
+  }
   gpu.Count = static_cast<GLsizei>(quads);
   gpu.Bytes = geometry.size() * sizeof(float) + planes.size() * sizeof(GLint) +
-    indices.size() * sizeof(GLuint);
+    6 * gpu.IndexedQuads * sizeof(GLuint);
   gpu.Version = version;
 }
 
