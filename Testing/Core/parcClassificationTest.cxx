@@ -330,6 +330,87 @@ TEST(SupercellGrid, SupercellsCoverEveryPCCell)
   }
 }
 
+// 8- and 16-bit fields of at most 256 values have exact codes: supercells of 2^L cells are
+// then classified from the pyramid's ranges alone, and still exactly (a supercell is PC
+// when it overlaps a PC cell). A 16-bit field of a wider range reads cells as before.
+TEST(SupercellGrid, ExactCodesClassifyLevelsExactly)
+{
+  std::mt19937 rng(21);
+  const int dims[3] = { 19, 17, 21 };
+  for (const double scale : { 1.0, 2.4, 7.0 })
+  {
+    for (const bool sixteen : { false, true })
+    {
+      if (scale > 1.0 && !sixteen)
+      {
+        continue; // 8 bits hold at most 256 values
+      }
+      for (BlendMode blend : AllBlendModes)
+      {
+        Scene s(rng, dims, blend, SupercellSizes[2]);
+        // The scene's values rounded, in an integer type (scaled: ranges of about 100,
+        // 250 and 735).
+        const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+        std::vector<std::uint8_t> bytes(n);
+        std::vector<std::int16_t> shorts(n);
+        s.Field.Dispatch([&](const auto& view) {
+          std::size_t v = 0;
+          for (int k = 0; k < dims[2]; ++k)
+            for (int j = 0; j < dims[1]; ++j)
+              for (int i = 0; i < dims[0]; ++i, ++v)
+              {
+                const long rounded = std::lround(scale * view.Value(i, j, k));
+                bytes[v] = static_cast<std::uint8_t>(rounded);
+                shorts[v] = static_cast<std::int16_t>(rounded - 300); // negative values too
+              }
+        });
+        parc::ScalarField field;
+        if (sixteen)
+        {
+          field.Assign(shorts.data(), dims);
+        }
+        else
+        {
+          field.Assign(bytes.data(), dims);
+        }
+        s.Params.Opacity.SetNodes({ -300.0 + 20.0 * scale, -300.0 + 40.0 * scale,
+                                    -300.0 + 41.0 * scale, 99.0 },
+          { 0.0, 0.5, 0.0, 0.0 }, false); // a band: some cells leap over it
+        if (!sixteen)
+        {
+          s.Params.Opacity.SetNodes({ 20.0, 40.0, 41.0 }, { 0.0, 0.5, 0.0 }, false);
+        }
+        RangePyramid pyramid;
+        pyramid.Build(field);
+        ContributionRule rule;
+        rule.Set(s.Params, field.GetRange());
+        for (const double* size : { SupercellSizes[1], SupercellSizes[2] })
+        {
+          SupercellGrid grid;
+          const int cells[3] = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
+          ASSERT_TRUE(grid.Configure(cells, size));
+          grid.Classify(pyramid, rule, parc::Interpolation::Linear);
+          const std::vector<char> flags = CellFlags(pyramid, rule);
+          const int* count = grid.GetCounts();
+          for (int k = 0; k < count[2]; ++k)
+            for (int j = 0; j < count[1]; ++j)
+              for (int i = 0; i < count[0]; ++i)
+              {
+                const int width = static_cast<int>(size[0]);
+                bool overlapsPC = false;
+                for (int ck = width * k; ck < std::min(width * (k + 1), cells[2]); ++ck)
+                  for (int cj = width * j; cj < std::min(width * (j + 1), cells[1]); ++cj)
+                    for (int ci = width * i; ci < std::min(width * (i + 1), cells[0]); ++ci)
+                      overlapsPC = overlapsPC || flags[ci + cells[0] * (cj + cells[1] * ck)];
+                ASSERT_EQ(grid.IsContributing(i, j, k), overlapsPC)
+                  << scale << " " << sixteen << " " << static_cast<int>(blend);
+              }
+        }
+      }
+    }
+  }
+}
+
 TEST(SupercellGrid, RejectsInvalidSizes)
 {
   SupercellGrid grid;

@@ -158,9 +158,16 @@ void RangePyramid::Build(const ScalarField& field)
     this->CellDims[a] = std::max(dims[a] - 1, 0);
   }
   const double* range = field.GetRange();
+  const ScalarType type = field.GetScalarType();
+  // 8- and 16-bit integers (exact in the float ranges the levels are made from).
+  const bool smallIntegers = type == ScalarType::Int8 || type == ScalarType::UInt8 ||
+    type == ScalarType::Int16 || type == ScalarType::UInt16;
+  this->ExactCodes = smallIntegers && range[1] - range[0] <= CodeCount - 1;
   for (int c = 0; c < CodeCount; ++c)
   {
-    this->CodeValues[c] = range[0] + (range[1] - range[0]) * c / (CodeCount - 1);
+    this->CodeValues[c] = this->ExactCodes
+      ? std::min(range[0] + c, range[1])
+      : range[0] + (range[1] - range[0]) * c / (CodeCount - 1);
   }
   this->CodeValues[CodeCount - 1] = range[1];
   this->Levels.clear();

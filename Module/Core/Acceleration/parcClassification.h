@@ -106,10 +106,11 @@ public:
   /// axis): what AnyContributing says of each node's cells, found top-down so that a node
   /// whose whole range decides (nothing or everything contributes) settles all its
   /// descendants at once.
+  /// With exact codes the nodes' ranges alone give that answer (see ExactCodes).
   void ClassifyLevel(
     int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const
   {
-    this->Settle(level, rule, flags, true);
+    this->Settle(level, rule, flags, !this->ExactCodes);
   }
   int GetNumberOfLevels() const { return static_cast<int>(this->Levels.size()); }
   /// Which cells may be PC under rule, as bits: bit v % 8 of byte v / 8 for the cell
@@ -151,7 +152,14 @@ private:
   const ScalarField* Field = nullptr;
   int CellDims[3] = { 0, 0, 0 };
   std::vector<Level> Levels; ///< Levels[L - 1] is level L
-  double CodeValues[CodeCount]; ///< increasing, from the field's minimum to its maximum
+  /// Non-decreasing, from the field's minimum to its maximum.
+  double CodeValues[CodeCount];
+  /// Whether every value of the field is a code value (8- or 16-bit integers over a range
+  /// of at most CodeCount values), so that a node's range is exactly the range of its voxels. That
+  /// range is then the union of its cells' ranges, each meeting the next (neighbours share
+  /// voxels): a rule, which tests a range against intervals, meets the node's range exactly
+  /// when it meets one of its cells' ranges, and no node needs its cells read.
+  bool ExactCodes = false;
 };
 
 } // namespace parc
