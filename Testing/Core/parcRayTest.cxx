@@ -271,3 +271,32 @@ TEST(Ray, LatticeSampleCountCountsTheSamplesOfAnInterval)
   EXPECT_EQ(parc::LatticeSampleCount(0.6, 0.9, 0.5), 0);
   EXPECT_EQ(parc::LatticeSampleCount(2.0, 1.0, 0.5), 0);
 }
+
+// The bit counts and positions the caster's lane masks rely on, against bit-by-bit loops.
+TEST(BitOperations, PopCountAndTrailingZerosMatchBitLoops)
+{
+  std::mt19937 rng(31);
+  for (int trial = 0; trial < 20000; ++trial)
+  {
+    // Sparse and dense masks, and the extremes.
+    std::uint32_t x = trial == 0 ? 0u : (trial == 1 ? ~0u : static_cast<std::uint32_t>(rng()));
+    if (trial % 3 == 2)
+    {
+      x &= static_cast<std::uint32_t>(rng());
+    }
+    int count = 0, lowest = -1;
+    for (int b = 31; b >= 0; --b)
+    {
+      if ((x >> b) & 1u)
+      {
+        ++count;
+        lowest = b;
+      }
+    }
+    ASSERT_EQ(parc::PopCount(x), count) << x;
+    if (x != 0)
+    {
+      ASSERT_EQ(parc::CountTrailingZeros(x), lowest) << x;
+    }
+  }
+}

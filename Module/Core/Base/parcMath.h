@@ -168,18 +168,18 @@ PARC_HOT_INLINE int CountTrailingZeros(Bits x)
   return n;
 #endif
 }
-/// The number of set bits of x.
-PARC_HOT_INLINE int PopCount(unsigned x)
+/// The number of set bits of x (32 bits).
+PARC_HOT_INLINE int PopCount(std::uint32_t x)
 {
-#if defined(__GNUC__)
+#if defined(__POPCNT__)
   return __builtin_popcount(x);
 #else
-  int n = 0;
-  for (; x != 0; x &= x - 1)
-  {
-    ++n;
-  }
-  return n;
+  // Bits summed in pairs, nibbles, bytes, then the bytes (no call to a library routine,
+  // which __builtin_popcount becomes without the instruction).
+  x = x - ((x >> 1) & 0x55555555u);
+  x = (x & 0x33333333u) + ((x >> 2) & 0x33333333u);
+  x = (x + (x >> 4)) & 0x0F0F0F0Fu;
+  return static_cast<int>((x * 0x01010101u) >> 24);
 #endif
 }
 
