@@ -41,6 +41,38 @@ parc::ScalarField RandomVolume(std::mt19937& rng, const int dims[3])
   });
 }
 
+/// field's values times scale, rounded, plus offset, as 16-bit integers (sixteen) or
+/// 8-bit ones (a copy).
+parc::ScalarField IntegerField(const parc::ScalarField& field, double scale, int offset,
+  bool sixteen)
+{
+  const int* dims = field.GetDimensions();
+  const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+  std::vector<std::uint8_t> bytes(n);
+  std::vector<std::int16_t> shorts(n);
+  field.Dispatch([&](const auto& view) {
+    std::size_t v = 0;
+    for (int k = 0; k < dims[2]; ++k)
+      for (int j = 0; j < dims[1]; ++j)
+        for (int i = 0; i < dims[0]; ++i, ++v)
+        {
+          const long rounded = std::lround(scale * view.Value(i, j, k)) + offset;
+          bytes[v] = static_cast<std::uint8_t>(rounded);
+          shorts[v] = static_cast<std::int16_t>(rounded);
+        }
+  });
+  parc::ScalarField integers;
+  if (sixteen)
+  {
+    integers.Assign(shorts.data(), dims);
+  }
+  else
+  {
+    integers.Assign(bytes.data(), dims);
+  }
+  return integers;
+}
+
 /// Random parameters of a ray function: a random piecewise-linear opacity with zero
 /// stretches, random iso values and averaged range.
 CastParameters RandomParameters(std::mt19937& rng, BlendMode blend)
@@ -349,30 +381,8 @@ TEST(SupercellGrid, ExactCodesClassifyLevelsExactly)
       {
         Scene s(rng, dims, blend, SupercellSizes[2]);
         // The scene's values rounded, in an integer type (scaled: ranges of about 100,
-        // 250 and 735).
-        const std::size_t n = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
-        std::vector<std::uint8_t> bytes(n);
-        std::vector<std::int16_t> shorts(n);
-        s.Field.Dispatch([&](const auto& view) {
-          std::size_t v = 0;
-          for (int k = 0; k < dims[2]; ++k)
-            for (int j = 0; j < dims[1]; ++j)
-              for (int i = 0; i < dims[0]; ++i, ++v)
-              {
-                const long rounded = std::lround(scale * view.Value(i, j, k));
-                bytes[v] = static_cast<std::uint8_t>(rounded);
-                shorts[v] = static_cast<std::int16_t>(rounded - 300); // negative values too
-              }
-        });
-        parc::ScalarField field;
-        if (sixteen)
-        {
-          field.Assign(shorts.data(), dims);
-        }
-        else
-        {
-          field.Assign(bytes.data(), dims);
-        }
+        // 250 and 735; negative 16-bit values).
+        const parc::ScalarField field = IntegerField(s.Field, scale, sixteen ? -300 : 0, sixteen);
         s.Params.Opacity.SetNodes({ -300.0 + 20.0 * scale, -300.0 + 40.0 * scale,
                                     -300.0 + 41.0 * scale, 99.0 },
           { 0.0, 0.5, 0.0, 0.0 }, false); // a band: some cells leap over it
@@ -966,6 +976,45 @@ TEST(ContributingCells, EveryPossiblyContributingCellHasItsBit)
   rule.Set(RandomParameters(rng, BlendMode::Composite), flatField.GetRange());
   EXPECT_FALSE(flat.ClassifyCells(rule, bits));
   EXPECT_TRUE(bits.empty());
+}
+
+// With exact codes (8-bit values) a cell's bit is exactly whether a cell of its node is PC,
+// for rules of one interval or threshold (from the level's codes) and of several
+// intervals (from the descent).
+TEST(ContributingCells, ExactCodesGiveExactlyTheNodesWithAPCCell)
+{
+  std::mt19937 rng(32);
+  const int dims[3] = { 14, 11, 17 };
+  int several = 0;
+  for (int trial = 0; trial < 12; ++trial)
+  {
+    for (BlendMode blend : AllBlendModes)
+    {
+      const parc::ScalarField field = IntegerField(RandomVolume(rng, dims), 2.0, 0, false);
+      const CastParameters p = RandomParameters(rng, blend);
+      const ClassifiedCells cells(field, p);
+      several += !cells.Rule.TestsEndsApart();
+      const std::vector<char> pcCells = CellFlags(cells.Pyramid, cells.Rule);
+      const int c[3] = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
+      for (int k = 0; k < c[2]; ++k)
+        for (int j = 0; j < c[1]; ++j)
+          for (int i = 0; i < c[0]; ++i)
+          {
+            bool nodePC = false;
+            for (int n = 0; n < 8; ++n)
+            {
+              const int ci = (i & ~1) + (n & 1), cj = (j & ~1) + ((n >> 1) & 1);
+              const int ck = (k & ~1) + (n >> 2);
+              nodePC |= ci < c[0] && cj < c[1] && ck < c[2] &&
+                pcCells[ci + c[0] * (cj + c[1] * ck)] != 0;
+            }
+            const std::size_t v = i + static_cast<std::size_t>(dims[0]) * (j + dims[1] * k);
+            ASSERT_EQ((cells.Bits[v / 8] >> (v % 8)) & 1, nodePC ? 1 : 0)
+              << i << " " << j << " " << k << " blend " << static_cast<int>(blend);
+          }
+    }
+  }
+  EXPECT_GT(several, 5) << "rules of several intervals";
 }
 
 // Composite rays leave out the samples of cells that cannot contribute and give the same

@@ -370,9 +370,53 @@ bool RangePyramid::AnyContributing(const int c0[3], const int c1[3],
   return false;
 }
 
+void RangePyramid::SettleFromCodes(
+  int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const
+{
+  // A node passes when its maximum code is at least the first code whose value meets the
+  // high end's test, and its minimum at most the last code whose value meets the low
+  // end's (both tests are monotone, and code values do not decrease).
+  int first = 0, last = CodeCount - 1;
+  while (first < CodeCount && !rule.MeetsHigh(this->CodeValues[first]))
+  {
+    ++first;
+  }
+  while (last >= 0 && !rule.MeetsLow(this->CodeValues[last]))
+  {
+    --last;
+  }
+  const Level& target = this->Levels[level - 1];
+  flags.assign(target.Min.size(), 0);
+  if (first >= CodeCount || last < 0)
+  {
+    return; // no value meets one of the tests
+  }
+  const Code high = static_cast<Code>(first), low = static_cast<Code>(last);
+  constexpr vtkIdType Chunk = 1 << 16;
+  const vtkIdType n = static_cast<vtkIdType>(flags.size());
+  vtkSMPTools::For(0, (n + Chunk - 1) / Chunk, [&](vtkIdType c0, vtkIdType c1) {
+    // Locals only (a byte store could alias anything reached through a reference): the
+    // compiler then compares many bytes at once.
+    const Code* lo = target.Min.data();
+    const Code* hi = target.Max.data();
+    std::uint8_t* out = flags.data();
+    const Code h = high, l = low;
+    const vtkIdType begin = c0 * Chunk, end = std::min(c1 * Chunk, n);
+    for (vtkIdType i = begin; i < end; ++i)
+    {
+      out[i] = static_cast<std::uint8_t>((hi[i] >= h) & (lo[i] <= l));
+    }
+  });
+}
+
 void RangePyramid::Settle(int level, const ContributionRule& rule,
   std::vector<std::uint8_t>& flags, bool exact) const
 {
+  if (!exact && rule.TestsEndsApart())
+  {
+    this->SettleFromCodes(level, rule, flags);
+    return;
+  }
   const Level& target = this->Levels[level - 1];
   flags.assign(static_cast<std::size_t>(target.Dims[0]) * target.Dims[1] * target.Dims[2], 0);
   // Start a few levels up (enough nodes to share among threads, each settling many).

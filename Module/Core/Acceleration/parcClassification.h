@@ -51,6 +51,43 @@ public:
     }
   }
 
+  /// Whether the rule tests the two ends of a range apart (one interval or a threshold):
+  /// IsPossiblyContributing(lo, hi) == MeetsLow(lo) && MeetsHigh(hi), where MeetsLow holds
+  /// up to some value and MeetsHigh from some value on. False for several intervals.
+  bool TestsEndsApart() const
+  {
+    return this->Blend == BlendMode::MaximumIntensity ||
+      this->Blend == BlendMode::MinimumIntensity || this->Hi.size() <= 1;
+  }
+  /// The test of a range's low end, with IsPossiblyContributing's arithmetic.
+  bool MeetsLow(double lo) const
+  {
+    lo -= this->Margin;
+    switch (this->Blend)
+    {
+      case BlendMode::MaximumIntensity:
+        return true;
+      case BlendMode::MinimumIntensity:
+        return lo <= this->Threshold;
+      default:
+        return this->Hi.size() == 1 && lo <= this->Hi[0];
+    }
+  }
+  /// The test of a range's high end, with IsPossiblyContributing's arithmetic.
+  bool MeetsHigh(double hi) const
+  {
+    hi += this->Margin;
+    switch (this->Blend)
+    {
+      case BlendMode::MaximumIntensity:
+        return hi >= this->Threshold;
+      case BlendMode::MinimumIntensity:
+        return true;
+      default:
+        return this->Hi.size() == 1 && this->Lo[0] <= hi;
+    }
+  }
+
   /// True when every cell whose samples lie within [lo, hi] is possibly contributing: a
   /// query may then stop without looking at the cells (never true for isosurfaces).
   bool AllContributing(double lo, double hi) const;
@@ -84,7 +121,8 @@ private:
 /// keep one-byte codes of 256 values evenly spread over the field's range, the minimum
 /// rounded down and the maximum rounded up: a node's coded range holds its true range, so
 /// a query descends wherever it would with exact ranges and decides on the exact cell
-/// ranges (for 8-bit data the codes are the values themselves).
+/// ranges (for 8- and 16-bit data of at most 256 values the codes are the values
+/// themselves: see ExactCodes).
 class RangePyramid
 {
 public:
@@ -145,6 +183,11 @@ private:
   /// with a PC cell always does).
   void Settle(int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags,
     bool exact) const;
+  /// Settle without exact for a rule that tests the ends of a range apart, in one pass
+  /// over the level's codes (no descent from above: a node's ancestors all pass when it
+  /// does, their ranges holding its range).
+  void SettleFromCodes(
+    int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const;
   /// Settle below the node of level m (>= level).
   void Descend(int m, const int node[3], int level, const ContributionRule& rule,
     std::vector<std::uint8_t>& flags, bool exact) const;

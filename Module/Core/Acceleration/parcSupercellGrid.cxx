@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
 
 namespace parc
@@ -178,7 +179,12 @@ void SupercellGrid::Classify(const std::vector<Channel>& channels, Interpolation
     this->Size[1] == this->Size[0] && this->Size[2] == this->Size[0] &&
     std::all_of(channels.begin(), channels.end(),
       [level](const Channel& c) { return level <= c.Pyramid->GetNumberOfLevels(); });
-  if (levels)
+  if (levels && channels.size() == 1)
+  {
+    channels[0].Pyramid->ClassifyLevel(level, *channels[0].Rule, flags);
+    flags.resize(this->Count, 0); // as many nodes as supercells: no change
+  }
+  else if (levels)
   {
     std::vector<std::uint8_t> channelFlags;
     for (const Channel& c : channels)
@@ -209,12 +215,30 @@ void SupercellGrid::Classify(const std::vector<Channel>& channels, Interpolation
       }
     });
   }
+  this->PackFlags(flags);
+}
+
+void SupercellGrid::PackFlags(const std::vector<std::uint8_t>& flags)
+{
   std::fill(this->Bits.begin(), this->Bits.end(), 0);
   this->ContributingCount = 0;
-  for (std::size_t n = 0; n < flags.size() && n < this->Count; ++n)
+  const std::size_t n = std::min(flags.size(), this->Count);
+  std::size_t i = 0;
+  // Eight flags at a time: the low bit of each byte gathered into one byte by a multiply
+  // (the flags are 0 or 1, so no carries cross the bytes that are summed).
+  for (; i + 8 <= n; i += 8)
   {
-    this->Bits[n >> 6] |= static_cast<std::uint64_t>(flags[n] != 0) << (n & 63);
-    this->ContributingCount += flags[n] != 0;
+    std::uint64_t eight;
+    std::memcpy(&eight, flags.data() + i, 8); // byte m of the flags is bits 8m on (x86)
+    const std::uint64_t packed = ((eight & 0x0101010101010101ull) * 0x0102040810204080ull) >> 56;
+    this->Bits[i >> 6] |= packed << (i & 63);
+    this->ContributingCount += static_cast<std::size_t>(PopCount(static_cast<std::uint32_t>(
+      packed)));
+  }
+  for (; i < n; ++i)
+  {
+    this->Bits[i >> 6] |= static_cast<std::uint64_t>(flags[i] != 0) << (i & 63);
+    this->ContributingCount += flags[i] != 0;
   }
 }
 

@@ -121,6 +121,8 @@ public:
 private:
   bool ClassifySupercell(const RangePyramid& pyramid, const ContributionRule& rule,
     Interpolation interpolation, int i, int j, int k) const;
+  /// Bits and ContributingCount from a byte (0 or 1) a supercell.
+  void PackFlags(const std::vector<std::uint8_t>& flags);
 
   int CellDims[3] = { 0, 0, 0 };
   double Size[3] = { 1.0, 1.0, 1.0 };
