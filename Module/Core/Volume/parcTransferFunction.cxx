@@ -28,6 +28,13 @@ void PiecewiseLinearFunction::SetNodes(std::vector<double> x, std::vector<double
       this->NodeThresholds.push_back(FloatAtLeast(x));
     }
   }
+  this->Pieces.assign(4 * (n + 1), 0.f);
+  for (std::size_t c = 1; c < n; ++c)
+  {
+    this->Pieces[4 * c] = static_cast<float>(this->X[c - 1]);
+    this->Pieces[4 * c + 1] = static_cast<float>(this->Y[c - 1]);
+    this->Pieces[4 * c + 2] = static_cast<float>(this->Slope[c - 1]);
+  }
   this->X0 = n > 0 ? this->X.front() : 0.0;
   this->XN = n > 0 ? this->X.back() : 0.0;
   const std::size_t buckets = std::min<std::size_t>(std::max<std::size_t>(4 * n, 1024), 4096);
@@ -53,6 +60,7 @@ void PiecewiseLinearFunction::SetConstant(double value)
   this->X.clear();
   this->Y.clear();
   this->Slope.clear();
+  this->Pieces.clear();
   this->NodeThresholds.clear();
   this->Constant = value;
 }

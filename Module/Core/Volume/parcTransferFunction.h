@@ -34,9 +34,9 @@ public:
   /// A constant function (no nodes).
   void SetConstant(double value);
 
-  /// f(s) >= 0 for opacity functions; evaluated in double and returned as float. The
-  /// piece holding s is found in constant time: a table of buckets over the nodes' range
-  /// gives a node at or before s, then at most a few nodes are stepped over.
+  /// f(s) >= 0 for opacity functions. The piece holding s is found in constant time: a
+  /// table of buckets over the nodes' range gives a node at or before s, then at most a few
+  /// nodes are stepped over; on it f is evaluated in float (see OnPiece).
   PARC_HOT_INLINE float Evaluate(double s) const
   {
     if (s >= this->X0 && s < this->XN) // the nodes' range (NaN fails)
@@ -61,8 +61,11 @@ public:
     if (n > 0)
     {
       // Lane by lane, the count c of nodes at or before s: on the piece c - 1 for
-      // 0 < c < n (Evaluate's range), else outside it.
+      // 0 < c < n (Evaluate's range), below the range for c = 0 (also NaN), else at or
+      // after its end. OnPiece for four lanes at once, from their pieces' entries.
       alignas(16) std::int32_t counts[4];
+      alignas(16) float values[4];
+      const __m128 left = _mm_set1_ps(static_cast<float>(this->LeftValue()));
       while (lanes != 0)
       {
         const int first = CountTrailingZeros(lanes) & ~3;
@@ -73,13 +76,22 @@ public:
           c = _mm_sub_epi32(c, _mm_castps_si128(_mm_cmpge_ps(v, _mm_set1_ps(x))));
         }
         _mm_store_si128(reinterpret_cast<__m128i*>(counts), c);
+        __m128 x = _mm_loadu_ps(this->Pieces.data() + 4 * counts[0]);
+        __m128 y = _mm_loadu_ps(this->Pieces.data() + 4 * counts[1]);
+        __m128 slope = _mm_loadu_ps(this->Pieces.data() + 4 * counts[2]);
+        __m128 unused = _mm_loadu_ps(this->Pieces.data() + 4 * counts[3]);
+        _MM_TRANSPOSE4_PS(x, y, slope, unused);
+        const __m128 f = _mm_add_ps(y, _mm_mul_ps(_mm_sub_ps(v, x), slope));
+        const __m128 below = _mm_castsi128_ps(_mm_cmpeq_epi32(c, _mm_setzero_si128()));
+        // max(f, 0) is 0 for a NaN f, like OnPiece.
+        const __m128 onPiece = _mm_max_ps(f, _mm_setzero_ps());
+        _mm_store_ps(values, _mm_or_ps(_mm_and_ps(below, left), _mm_andnot_ps(below, onPiece)));
         unsigned group = (lanes >> first) & 0xFu;
         lanes &= ~(0xFu << first);
         for (; group != 0; group &= group - 1)
         {
           const int lane = CountTrailingZeros(group), j = first + lane;
-          const auto count = static_cast<std::size_t>(counts[lane]);
-          out[j] = count - 1 < n - 1 ? this->OnPiece(count - 1, s[j]) : this->Evaluate(s[j]);
+          out[j] = static_cast<std::size_t>(counts[lane]) < n ? values[lane] : this->Evaluate(s[j]);
         }
       }
       return;
@@ -107,10 +119,14 @@ public:
   const std::vector<double>& GetY() const { return this->Y; }
 
 private:
-  /// f(s) on the piece from node i to node i + 1.
+  /// f(s) on the piece from node i to node i + 1, in float from the piece's entry:
+  /// max(y + (s - x) slope, 0). On a piece whose nodes are both 0 that is 0; elsewhere it
+  /// is non-zero only where the exact function is, so IsNonZeroOn holds for it.
   PARC_HOT_INLINE float OnPiece(std::size_t i, double s) const
   {
-    return static_cast<float>(std::max(this->Y[i] + (s - this->X[i]) * this->Slope[i], 0.0));
+    const float* e = &this->Pieces[4 * (i + 1)];
+    const float f = e[1] + (static_cast<float>(s) - e[0]) * e[2];
+    return f > 0.f ? f : 0.f;
   }
   /// Evaluate for s outside [X0, XN) or NaN, and for functions without nodes.
   float EvaluateOutside(double s) const;
@@ -118,6 +134,9 @@ private:
   double RightValue() const { return this->Clamp ? this->Y.back() : 0.0; }
 
   std::vector<double> X, Y, Slope;
+  /// Entry c (four floats: x, y and slope of the piece c - 1, then 0) for 0 < c < n nodes;
+  /// entries 0 and n are zeros (so that four lanes load theirs whatever their counts).
+  std::vector<float> Pieces;
   /// FloatAtLeast of each node's x (a float s is at or after a node exactly when it is at
   /// or after its threshold), for 2 to MaxCountedNodes nodes; else empty.
   std::vector<float> NodeThresholds;
