@@ -7,6 +7,7 @@
 #include <cstring>
 #include <limits>
 #include <random>
+#include <vector>
 
 using parc::PiecewiseLinearFunction;
 
@@ -165,3 +166,47 @@ TEST(ColorTable, InterpolatesAndClamps)
   t.Lookup(9.0, rgb);
   EXPECT_FLOAT_EQ(rgb[2], 1.f);
 }
+
+#if defined(__SSE2__)
+// Four lanes at once give Lookup's bits, lane by lane: inside the table, on its entries,
+// outside it, at infinities and NaN.
+TEST(ColorTable, FourLanesGiveLookupsBits)
+{
+  std::mt19937 rng(78);
+  std::uniform_real_distribution<double> u(0.0, 1.0);
+  const float inf = std::numeric_limits<float>::infinity();
+  for (int trial = 0; trial < 2000; ++trial)
+  {
+    const int n = 2 + static_cast<int>(u(rng) * 300);
+    std::vector<float> rgb(3 * static_cast<std::size_t>(n));
+    for (float& c : rgb)
+    {
+      c = static_cast<float>(u(rng));
+    }
+    const double lo = -1000.0 + 2000.0 * u(rng), hi = lo + (u(rng) < 0.05 ? 0.0 : 500.0 * u(rng));
+    parc::ColorTable t;
+    t.SetTable(lo, hi, rgb);
+    alignas(16) float s[4];
+    for (float& v : s)
+    {
+      const double pick = u(rng);
+      v = pick < 0.7 ? static_cast<float>(lo - 10.0 + (hi - lo + 20.0) * u(rng))
+        : pick < 0.85 ? static_cast<float>(lo + (hi - lo) * std::floor(u(rng) * n) / (n - 1))
+        : pick < 0.95 ? (u(rng) < 0.5 ? inf : -inf)
+                      : std::numeric_limits<float>::quiet_NaN();
+    }
+    __m128 four[4];
+    t.LookupFour(_mm_load_ps(s), four);
+    for (int l = 0; l < 4; ++l)
+    {
+      float expected[3];
+      t.Lookup(s[l], expected);
+      alignas(16) float got[4];
+      _mm_store_ps(got, four[l]);
+      EXPECT_EQ(std::memcmp(expected, got, sizeof(expected)), 0)
+        << "trial " << trial << ", s " << s[l] << ": " << got[0] << " instead of " << expected[0];
+      EXPECT_EQ(got[3], 0.f);
+    }
+  }
+}
+#endif

@@ -781,11 +781,9 @@ struct RayContext
     for (int i = 0; i < b.Count; i += 4)
     {
       // Four lanes' (red, green, blue, 0), turned into channels of four lanes.
+      const auto value = [&](int l) { return this->Value(b.Lane[std::min(i + l, b.Count - 1)]); };
       __m128 c[4];
-      for (int l = 0; l < 4; ++l)
-      {
-        c[l] = this->P.Color.LookupVector(this->Value(b.Lane[std::min(i + l, b.Count - 1)]));
-      }
+      this->P.Color.LookupFour(_mm_setr_ps(value(0), value(1), value(2), value(3)), c);
       _MM_TRANSPOSE4_PS(c[0], c[1], c[2], c[3]);
       for (int ch = 0; ch < 3; ++ch)
       {

@@ -178,15 +178,17 @@ double PiecewiseLinearFunction::LastNonZero() const
 
 void ColorTable::SetTable(double lo, double hi, std::vector<float> rgb)
 {
-  this->Count = static_cast<int>(rgb.size() / 3);
-  this->RGBA.assign(4 * static_cast<std::size_t>(this->Count), 0.f);
-  for (std::size_t i = 0; i < static_cast<std::size_t>(this->Count); ++i)
+  const std::size_t n = rgb.size() / 3;
+  this->RGBA.assign(4 * n, 0.f);
+  for (std::size_t i = 0; i < n; ++i)
   {
     std::copy_n(&rgb[3 * i], 3, &this->RGBA[4 * i]);
   }
-  this->Lo = lo;
-  this->Hi = hi > lo ? hi : lo;
-  this->Scale = (this->Hi > this->Lo) ? (this->Count - 1) / (this->Hi - this->Lo) : 0.0;
+  hi = hi > lo ? hi : lo;
+  this->LoF = static_cast<float>(lo);
+  this->ScaleF = static_cast<float>(hi > lo ? (static_cast<double>(n) - 1.0) / (hi - lo) : 0.0);
+  this->LastF = static_cast<float>(n - 1);
+  this->LastStartF = static_cast<float>(n - 2);
 }
 
 } // namespace parc

@@ -151,6 +151,7 @@ private:
 };
 
 /// An RGB function sampled into a table over [Lo, Hi], linearly interpolated, clamped.
+/// The place in the table is found in float: u = (s - Lo) Scale, clamped to [0, n - 1].
 class ColorTable
 {
 public:
@@ -158,43 +159,46 @@ public:
   void SetTable(double lo, double hi, std::vector<float> rgb);
   PARC_HOT_INLINE void Lookup(double s, float rgb[3]) const
   {
-    float f;
-    const float* a = this->Entry(s, f);
+    float u = (static_cast<float>(s) - this->LoF) * this->ScaleF;
+    u = u > 0.f ? u : 0.f; // also NaN
+    u = u < this->LastF ? u : this->LastF;
+    const float below = u < this->LastStartF ? u : this->LastStartF;
+    const int i = static_cast<int>(below);
+    const float f = u - static_cast<float>(i);
+    const float* a = &this->RGBA[4 * static_cast<std::size_t>(i)];
     for (int c = 0; c < 3; ++c)
     {
       rgb[c] = a[c] + f * (a[c + 4] - a[c]);
     }
   }
 #if defined(__SSE2__)
-  /// Lookup as the lanes of a register (red, green, blue, 0): the same bits.
-  PARC_HOT_INLINE __m128 LookupVector(double s) const
+  /// Lookup of the four lanes of s at once: rgb[l] holds lane l's (red, green, blue, 0),
+  /// the same bits.
+  PARC_HOT_INLINE void LookupFour(__m128 s, __m128 rgb[4]) const
   {
-    float f;
-    const float* a = this->Entry(s, f);
-    const __m128 low = _mm_loadu_ps(a), high = _mm_loadu_ps(a + 4);
-    return _mm_add_ps(low, _mm_mul_ps(_mm_set1_ps(f), _mm_sub_ps(high, low)));
+    __m128 u = _mm_mul_ps(_mm_sub_ps(s, _mm_set1_ps(this->LoF)), _mm_set1_ps(this->ScaleF));
+    u = _mm_max_ps(u, _mm_setzero_ps()); // u > 0 ? u : 0, also NaN
+    u = _mm_min_ps(u, _mm_set1_ps(this->LastF)); // u < last ? u : last
+    const __m128i i = _mm_cvttps_epi32(_mm_min_ps(u, _mm_set1_ps(this->LastStartF)));
+    alignas(16) std::int32_t entry[4];
+    alignas(16) float f[4];
+    _mm_store_si128(reinterpret_cast<__m128i*>(entry), i);
+    _mm_store_ps(f, _mm_sub_ps(u, _mm_cvtepi32_ps(i)));
+    for (int l = 0; l < 4; ++l)
+    {
+      const float* a = &this->RGBA[4 * static_cast<std::size_t>(entry[l])];
+      const __m128 low = _mm_loadu_ps(a), high = _mm_loadu_ps(a + 4);
+      rgb[l] = _mm_add_ps(low, _mm_mul_ps(_mm_set1_ps(f[l]), _mm_sub_ps(high, low)));
+    }
   }
 #endif
 
 private:
-  /// The entry at or below s (its red, green, blue and a 0, then the next entry's) and the
-  /// fraction f of the way to the next.
-  PARC_HOT_INLINE const float* Entry(double s, float& f) const
-  {
-    double u = (s - this->Lo) * this->Scale;
-    u = u > 0.0 ? u : 0.0; // also NaN
-    const double last = this->Count - 1;
-    u = u < last ? u : last;
-    int i = static_cast<int>(u);
-    i = i < this->Count - 2 ? i : this->Count - 2;
-    f = static_cast<float>(u - i);
-    return &this->RGBA[4 * static_cast<std::size_t>(i)];
-  }
-
   /// Four floats an entry: red, green, blue, 0.
   std::vector<float> RGBA{ 1.f, 1.f, 1.f, 0.f, 1.f, 1.f, 1.f, 0.f };
-  double Lo = 0.0, Hi = 1.0, Scale = 1.0;
-  int Count = 2;
+  /// The table's first scalar and its entries per scalar unit, in float; the last entry's
+  /// place (n - 1) and the last place an interpolation starts from (n - 2).
+  float LoF = 0.f, ScaleF = 1.f, LastF = 1.f, LastStartF = 0.f;
 };
 
 } // namespace parc
