@@ -69,11 +69,12 @@ std::size_t CheckLatticeBlocks(int stride, unsigned seed)
     {
       const int count = 1 + static_cast<int>(rng() % parc::LatticeBlock::Size);
       parc::LatticeBlock block;
+      const parc::RayLattice lattice(o, d, n);
       field.Dispatch(
-        [&](const auto& view) { view.SampleLattice(o, d, dt, k0, count, mode, block); });
+        [&](const auto& view) { view.SampleLattice(lattice, dt, k0, count, mode, block); });
       for (int j = 0; j < count; ++j)
       {
-        const parc::Vec3 p = o + (static_cast<double>(k0 + j) * dt) * d;
+        const parc::Vec3 p = lattice.Point(static_cast<double>(k0 + j) * dt);
         const float expected = field.Sample(p, mode);
         EXPECT_EQ(0, std::memcmp(&expected, &block.Values[j], sizeof(float)))
           << ray << " " << j << ": " << expected << " " << block.Values[j];
@@ -107,6 +108,34 @@ TEST(ScalarField, LatticeBlocksAreTheSamplesAtTheirPositions)
     CheckLatticeBlocks<std::uint16_t>(stride, 7);
     CheckLatticeBlocks<std::int16_t>(stride, 8);
     CheckLatticeBlocks<float>(stride, 9);
+  }
+}
+
+// A ray's lattice points lie on the ray, within float rounding of the field's size,
+// however far the ray's origin is: the points are made from where it passes the field.
+TEST(ScalarField, LatticePointsStayPreciseForFarOrigins)
+{
+  const int dims[3] = { 300, 200, 500 };
+  std::mt19937 rng(10);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  for (const double far : { 0.0, 1e4, 1e7, 1e10 })
+  {
+    for (int trial = 0; trial < 50; ++trial)
+    {
+      const parc::Vec3 target(150 + 150 * u(rng), 100 + 100 * u(rng), 250 + 250 * u(rng));
+      const parc::Vec3 d = parc::Normalized(parc::Vec3(u(rng), u(rng), u(rng)));
+      const double dt = 0.37;
+      const parc::Vec3 o = target - far * d; // the eye, far back along the ray
+      const parc::RayLattice lattice(o, d, dims);
+      for (int step = -800; step <= 800; step += 57)
+      {
+        const double t = far + step * dt; // near target
+        const parc::Vec3 exact = o + t * d, p = lattice.Point(t);
+        // Float rounding of coordinates up to ~1000 voxels; at 1e10 t itself is only
+        // known to ~1e-6 of a voxel in double.
+        EXPECT_LT(parc::Length(p - exact), 2e-4) << far << " " << step;
+      }
+    }
   }
 }
 

@@ -459,8 +459,8 @@ struct RayContext
   const CastParameters& P;
   const RayCaster::RenderConstants& K;
   const Ray& WorldRay;
-  Vec3 IndexOrigin;
-  Vec3 IndexDirection;
+  /// The ray's sample points in index coordinates (the ray o + t d of the constructor).
+  RayLattice Lattice;
   double Dt;
   CastStatistics& Stats;
   double FirstHit = std::numeric_limits<double>::infinity();
@@ -511,8 +511,7 @@ struct RayContext
     , P(p)
     , K(k)
     , WorldRay(ray)
-    , IndexOrigin(indexOrigin)
-    , IndexDirection(indexDirection)
+    , Lattice(indexOrigin, indexDirection, field.GetDimensions())
     , Dt(p.SampleDistance)
     , Stats(stats)
     , ToEye(-ray.Direction)
@@ -558,12 +557,12 @@ struct RayContext
     return out.Below(this->P.TerminationOpacity);
   }
 
-  Vec3 IndexPosition(double t) const { return this->IndexOrigin + t * this->IndexDirection; }
+  Vec3 IndexPosition(double t) const { return this->Lattice.Point(t); }
   /// Takes lattice samples k0 .. k0 + n - 1 (n <= SampleBlockSize) into Block; returns the
   /// lanes that may contribute (FieldView::SampleLattice with Cells).
   PARC_HOT_INLINE unsigned SampleBlock(long k0, int n)
   {
-    return this->Field.SampleLattice(this->IndexOrigin, this->IndexDirection, this->Dt, k0, n,
+    return this->Field.SampleLattice(this->Lattice, this->Dt, k0, n,
       this->P.Interp, this->Block, this->Cells);
   }
   /// Counts the lanes below visited that SampleBlock left out (sampled: its result).

@@ -91,6 +91,41 @@ struct SampleLocation
   std::ptrdiff_t Offset;
 };
 
+/// A ray's points in index coordinates as the caster samples them: the point of ray
+/// parameter t is Origin + float(t - BaseT) Direction, in float, with Origin the ray's
+/// point at BaseT, where the ray passes closest to the field's centre. Coordinates and
+/// steps then stay about the size of the field, small enough for float, wherever the eye
+/// is; and a parameter gives the same point wherever it is computed (Point, and the lanes
+/// of FieldView::SampleLattice).
+struct RayLattice
+{
+  float Origin[3] = { 0.f, 0.f, 0.f };
+  float Direction[3] = { 0.f, 0.f, 0.f };
+  double BaseT = 0.0;
+
+  /// The lattice of the ray o + t d (index coordinates) through a field of dims voxels.
+  RayLattice(const Vec3& o, const Vec3& d, const int dims[3])
+  {
+    const Vec3 centre(0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1));
+    const double dd = Dot(d, d);
+    this->BaseT = dd > 0.0 ? Dot(centre - o, d) / dd : 0.0;
+    const Vec3 base = o + this->BaseT * d;
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Origin[a] = static_cast<float>(base[a]);
+      this->Direction[a] = static_cast<float>(d[a]);
+    }
+  }
+  /// The offset from BaseT, as the points are made from it.
+  float Offset(double t) const { return static_cast<float>(t - this->BaseT); }
+  Vec3 Point(double t) const
+  {
+    const float u = this->Offset(t);
+    return { this->Origin[0] + u * this->Direction[0], this->Origin[1] + u * this->Direction[1],
+      this->Origin[2] + u * this->Direction[2] };
+  }
+};
+
 /// Consecutive lattice samples along a ray, taken together (FieldView::SampleLattice),
 /// one lane per sample: values and, for linear interpolation, locations.
 struct LatticeBlock
@@ -175,39 +210,40 @@ public:
     this->Locate(p, cell, f);
     return this->Trilinear(cell, f);
   }
-  /// The samples of the lattice o + (k dt) d (index coordinates) for k = k0 .. k0 +
-  /// count - 1 (count <= LatticeBlock::Size) into block; lanes up to the next multiple of
-  /// LatticeBlock::Lanes hold the samples after them. Each is the same arithmetic as
-  /// Sample(o + (k dt) d) and its location that of Locate. No branch depends on the data,
-  /// and each step works on several lanes at once.
+  /// The samples at the points lattice.Point(k dt) for k = k0 .. k0 + count - 1 (count <=
+  /// LatticeBlock::Size) into block; lanes up to the next multiple of LatticeBlock::Lanes
+  /// hold the samples after them. Each is the same arithmetic as Sample of that point and
+  /// its location that of Locate. No branch depends on the data, and each step works on
+  /// several lanes at once.
   /// cells (optional, linear interpolation of a field whose x neighbours are next to each
   /// other): a bit per cell, bit c % 8 of byte c / 8 for the cell whose first voxel is value
   /// c. Only the groups of LatticeBlock::Lanes lanes where some lane's cell has its bit set
   /// are sampled (the values of the others are 0). Returns the lanes sampled whose cell
   /// has its bit set, as bits 1 << j (all n lanes without cells).
-  PARC_HOT_INLINE unsigned SampleLattice(const Vec3& o, const Vec3& d, double dt, long k0,
+  PARC_HOT_INLINE unsigned SampleLattice(const RayLattice& lattice, double dt, long k0,
     int count, Interpolation mode, LatticeBlock& block,
     const std::uint8_t* cells = nullptr) const
   {
     const int n = LatticeBlock::Lanes * ((count + LatticeBlock::Lanes - 1) / LatticeBlock::Lanes);
-    double t[LatticeBlock::Size];
-    for (int j = 0; j < n; ++j)
-    {
-      t[j] = (static_cast<double>(k0) + j) * dt; // k0 + j exactly, as a double
-    }
     const unsigned all = (1u << n) - 1u;
     if (mode == Interpolation::Nearest)
     {
       for (int j = 0; j < n; ++j)
       {
-        block.Values[j] = this->SampleNearest(o + t[j] * d);
+        block.Values[j] =
+          this->SampleNearest(lattice.Point((static_cast<double>(k0) + j) * dt));
       }
       return all;
     }
+    alignas(16) float u[LatticeBlock::Size];
+    for (int j = 0; j < n; ++j)
+    {
+      u[j] = lattice.Offset((static_cast<double>(k0) + j) * dt); // k0 + j exactly, as a double
+    }
     for (int a = 0; a < 3; ++a)
     {
-      LocateLanes(o[a], d[a], t, n, this->Last[a], this->LastCell[a], block.Cell[a],
-        block.Fractions[a]);
+      LocateLanes(lattice.Origin[a], lattice.Direction[a], u, n, this->Last[a],
+        this->LastCell[a], block.Cell[a], block.Fractions[a]);
     }
     for (int j = 0; j < n; ++j)
     {
@@ -344,42 +380,36 @@ private:
   // The lanes of a LatticeBlock, with SSE2 where there is SSE2: the same IEEE operations
   // in the same order as the scalar code (LocateAxis, Interpolate), so the same bits.
 
-  /// LocateAxis for the coordinates o + t[j] d of the lanes. The last cell holds
-  /// [lastCell, last], so min(floor(x), lastCell) = floor(min(x, lastCell)).
+  /// LocateAxis for the coordinates o + u[j] d (in float) of the lanes. The last cell
+  /// holds [lastCell, last], so min(floor(x), lastCell) = floor(min(x, lastCell)).
   static PARC_HOT_INLINE void LocateLanes(
-    double o, double d, const double* t, int n, double last, int lastCell, int* cell, float* f)
+    float o, float d, const float* u, int n, double last, int lastCell, int* cell, float* f)
   {
-    const double lastCellStart = lastCell;
+    // Coordinates in float are exact in LocateAxis's double (last and lastCell are whole
+    // numbers of cells, exact in float): the same cells and fractions.
+    const float lastF = static_cast<float>(last), lastCellF = static_cast<float>(lastCell);
 #if defined(__SSE2__)
-    const __m128d vo = _mm_set1_pd(o), vd = _mm_set1_pd(d), vlast = _mm_set1_pd(last);
-    const __m128d vcell = _mm_set1_pd(lastCellStart), zero = _mm_setzero_pd();
-    // Two lanes a register of doubles; four lanes a store (a load of the four then
-    // forwards from one store).
-    auto locate = [&](const double* tj, __m128i& i, __m128& fraction) {
-      __m128d x = _mm_add_pd(vo, _mm_mul_pd(_mm_loadu_pd(tj), vd));
-      x = _mm_max_pd(x, zero); // x > 0 ? x : 0, also for NaN
-      x = _mm_min_pd(x, vlast); // x < last ? x : last
-      i = _mm_cvttpd_epi32(_mm_min_pd(x, vcell));
-      fraction = _mm_cvtpd_ps(_mm_sub_pd(x, _mm_cvtepi32_pd(i)));
-    };
+    const __m128 vo = _mm_set1_ps(o), vd = _mm_set1_ps(d), vlast = _mm_set1_ps(lastF);
+    const __m128 vcell = _mm_set1_ps(lastCellF), zero = _mm_setzero_ps();
     for (int j = 0; j < n; j += 4)
     {
-      __m128i i01, i23;
-      __m128 f01, f23;
-      locate(t + j, i01, f01);
-      locate(t + j + 2, i23, f23);
-      _mm_storeu_si128(reinterpret_cast<__m128i*>(cell + j), _mm_unpacklo_epi64(i01, i23));
-      _mm_storeu_ps(f + j, _mm_movelh_ps(f01, f23));
+      __m128 x = _mm_add_ps(vo, _mm_mul_ps(_mm_load_ps(u + j), vd));
+      x = _mm_max_ps(x, zero); // x > 0 ? x : 0, also for NaN
+      x = _mm_min_ps(x, vlast); // x < last ? x : last
+      const __m128i i = _mm_cvttps_epi32(_mm_min_ps(x, vcell));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(cell + j), i);
+      _mm_storeu_ps(f + j, _mm_sub_ps(x, _mm_cvtepi32_ps(i)));
     }
+    static_assert(LatticeBlock::Lanes == 4, "four lanes to an SSE register");
 #else
     for (int j = 0; j < n; ++j)
     {
-      double x = o + t[j] * d;
-      x = x > 0.0 ? x : 0.0; // also NaN
-      x = x < last ? x : last;
-      const int i = static_cast<int>(x < lastCellStart ? x : lastCellStart);
+      float x = o + u[j] * d;
+      x = x > 0.f ? x : 0.f; // also NaN
+      x = x < lastF ? x : lastF;
+      const int i = static_cast<int>(x < lastCellF ? x : lastCellF);
       cell[j] = i;
-      f[j] = static_cast<float>(x - i);
+      f[j] = x - static_cast<float>(i);
     }
 #endif
   }
