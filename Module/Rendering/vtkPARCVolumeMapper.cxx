@@ -1389,6 +1389,7 @@ void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
     frame.Casting = share * this->CastingTime;
     frame.Samples = static_cast<double>(volume.Stats.Samples);
     frame.Contributing = static_cast<double>(volume.Stats.ContributingSamples);
+    frame.EmptyCells = static_cast<double>(volume.Stats.EmptyCellSamples);
     frame.Timing = volume.Stats.Timing;
     const std::uint64_t version = volume.Plan.GetModelVersion();
     const std::size_t contributing = volume.Plan.GetGrid().GetNumberOfContributing();

@@ -48,8 +48,8 @@
  *   as the way out. A 2-D transfer function (vtkVolumeProperty TF_2D) warns once: the 1-D
  *   functions are used.
  * - The colour function is sampled into a 1024-entry table over the data range (or its
- *   own range: SetColorRangeType); opacity functions are evaluated exactly from their
- *   nodes (segments with a non-default midpoint or sharpness are subdivided into 32 linear
+ *   own range: SetColorRangeType); opacity functions are evaluated from their nodes, no
+ *   table (segments with a non-default midpoint or sharpness are subdivided into 32 linear
  *   pieces).
  * - Additive and average-intensity blending give grey images, as VTK defines them (see
  *   vtkVolumeMapper::SetBlendMode) and its GPU mapper draws them: each sample adds its value,
@@ -266,7 +266,7 @@ public:
    * range; NATIVE, the colour function's own range (vtkColorTransferFunction::GetRange, or
    * the gray function's), values outside it taking its end colours. NATIVE makes pieces of
    * a distributed volume, whose data ranges differ, use the same table (ParaView's "PARC
-   * Volume" sets it). Opacity functions are evaluated exactly either way.
+   * Volume" sets it). Opacity functions are evaluated from their nodes either way.
    */
   vtkSetClampMacro(ColorRangeType, int, SCALAR, NATIVE);
   vtkGetMacro(ColorRangeType, int);

@@ -179,6 +179,33 @@ TEST(AutoTrials, TriesAPassPredictedFasterAndLearnsTheColourProjection)
   EXPECT_EQ(autoTrials.Choose(1, 100, 200, 200), AutoTrials::Color);
 }
 
+// A Depth frame whose pass costs 0.02 s (Color's predicted 0.035 s) and whose rays hold
+// 0.5M non-contributing samples of about 0.15 us: Color, predicted to leave out half of
+// them (0.038 s), is tried. When the caster left out 0.4M of them as samples of empty
+// cells, those are what Color would leave out, at EmptyCellCostShare of the cost (0.009
+// s): Color is not predicted faster, and not tried (a colour trial frame was 1.4x the
+// settled one on the iron protein, whose empty cells are left out).
+TEST(AutoTrials, EmptyCellSamplesLeftOutMakeColourNoFaster)
+{
+  for (const bool emptyCells : { true, false })
+  {
+    AutoTrials autoTrials;
+    autoTrials.Choose(1, 100, 200, 200);
+    const RayCostFit fit = ExactFit(40e-9);
+    const double samples = fit.Samples() * RayCostFit::ColumnStride;
+    FrameMeasure depth = Frame(0.02, 0.2, samples, fit);
+    depth.EmptyCells = emptyCells ? 0.4 * samples : 0.0;
+    autoTrials.Record(1, 100, depth, true);
+    const int next = autoTrials.Choose(1, 100, 200, 200);
+    EXPECT_EQ(next == AutoTrials::Color, !emptyCells) << emptyCells;
+    if (emptyCells)
+    {
+      EXPECT_EQ(next, AutoTrials::Depth);
+      EXPECT_EQ(autoTrials.Remaining(), 0) << "settled on Depth";
+    }
+  }
+}
+
 TEST(AutoTrials, WithoutTimedRaysEveryPassIsTriedInTurn)
 {
   AutoTrials autoTrials;

@@ -105,12 +105,16 @@ bool AutoTrials::PredictUnmeasured(
     seconds = this->Predict(none, modelVersion, contributing);
     return true;
   }
-  // Colour: Depth's samples less half of those that contribute nothing.
+  // Colour: Depth's casting less half of the samples outside PC supercells. When the
+  // caster leaves out empty cells those are its empty-cell samples, which cost little;
+  // else they are among the non-contributing samples.
   const Estimate& measuredColor = this->Estimates[Color];
   Estimate color = depth;
   color.Projection *= this->ColorProjectionRatio;
-  color.Casting = std::max(
-    depth.Casting - 0.5 * (depth.Samples - depth.ContributingSamples) * this->SampleSeconds, 0.0);
+  const double leftOut = depth.EmptyCellSamples > 0.0
+    ? EmptyCellCostShare * depth.EmptyCellSamples
+    : depth.Samples - depth.ContributingSamples;
+  color.Casting = std::max(depth.Casting - 0.5 * leftOut * this->SampleSeconds, 0.0);
   if (c == Color)
   {
     seconds = this->Predict(color, modelVersion, contributing);
@@ -159,7 +163,7 @@ void AutoTrials::Record(std::uint64_t modelVersion, std::size_t contributing,
       frame.Projection + frame.Casting < e.Projection + e.Casting)
     {
       e = { true, false, modelVersion, this->ViewVersion, contributing, rays, frame.Projection,
-        frame.Casting, frame.Samples, frame.Contributing };
+        frame.Casting, frame.Samples, frame.Contributing, frame.EmptyCells };
     }
     this->RecordSampleCost(frame);
     const Estimate& depth = this->Estimates[Depth];
@@ -184,7 +188,7 @@ void AutoTrials::RecordSetUp(
       const double rays = static_cast<double>(this->Size[0]) * this->Size[1];
       const double projection = std::max(frame.Projection - frame.SetUp, 0.0);
       e = { true, true, modelVersion, this->ViewVersion, contributing, rays, projection,
-        frame.Casting, frame.Samples, frame.Contributing };
+        frame.Casting, frame.Samples, frame.Contributing, frame.EmptyCells };
     }
     this->RecordSampleCost(frame);
   }

@@ -34,6 +34,8 @@ struct FrameMeasure
   double Casting = 0.0;    ///< seconds of casting (wall)
   double Samples = 0.0;
   double Contributing = 0.0;
+  /// Samples left out in cells that cannot contribute (CastStatistics::EmptyCellSamples).
+  double EmptyCells = 0.0;
   RayCostFit Timing;
 };
 
@@ -45,7 +47,9 @@ struct FrameMeasure
 /// the frames measured: None from the samples its rays would add (RayCostFit's
 /// unaccelerated samples) at the measured cost of a non-contributing sample; Color from
 /// Depth's projection times the ratio of colour to depth projection (learned, a prior
-/// until measured) and Depth's casting less half its non-contributing samples; Both from
+/// until measured) and Depth's casting less half the samples Color leaves out: outside the
+/// PC supercells, so in empty cells (of little cost when the caster leaves out empty
+/// cells: EmptyCellCostShare), else among the non-contributing ones; Both from
 /// the projections of Depth and Color and the faster casting of the two. Each frame takes
 /// the candidate with the least estimate or prediction (Depth first), so a candidate is
 /// tried only when it is predicted to win: no trial of a mode that is surely slow. The
@@ -78,6 +82,10 @@ struct AutoTrials
   /// A non-contributing sample's share of the mean cost of a sample, when the frame's rays
   /// do not determine it.
   static constexpr double NonContributingShare = 0.5;
+  /// A sample left out in an empty cell (located and its cell's bit read, never
+  /// interpolated or classified) against one that is interpolated and contributes nothing:
+  /// the part of a sample's work that locating it is, about a third.
+  static constexpr double EmptyCellCostShare = 0.3;
   struct Estimate
   {
     bool Measured = false;
@@ -88,6 +96,7 @@ struct AutoTrials
     double Rays = 0.0;              ///< ray-image pixels of that frame
     double Projection = 0.0, Casting = 0.0;
     double Samples = 0.0, ContributingSamples = 0.0; ///< of that frame
+    double EmptyCellSamples = 0.0; ///< of that frame
   };
   int Size[2] = { 0, 0 }; ///< the ray image of the current frame
   Estimate Estimates[Count];

@@ -1,8 +1,9 @@
 // PARC for VTK: transfer functions of the core.
 //
-// PiecewiseLinearFunction is evaluated exactly from its nodes (no lookup table), so the
-// classification can decide *exactly* whether it is non-zero anywhere on a scalar interval
-// (DESIGN.md section 2): the caster and the classifier use the same function.
+// PiecewiseLinearFunction is evaluated from its nodes (no lookup table): on the piece
+// holding a value, in float. The classification decides *exactly* from the nodes whether
+// it is non-zero anywhere on a scalar interval (DESIGN.md section 2), and the float value
+// is non-zero only where the function is: the caster and the classifier agree.
 // ColorTable is a sampled colour function; colour never decides what is skipped.
 #ifndef parcTransferFunction_h
 #define parcTransferFunction_h
