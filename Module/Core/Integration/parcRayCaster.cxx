@@ -849,10 +849,19 @@ struct RayContext
       }
     }
     unsigned nonZero = 0;
+#if defined(__SSE2__)
+    for (int j = 0; j < LatticeBlock::Size; j += 4)
+    {
+      const __m128 zero = _mm_setzero_ps();
+      nonZero |= static_cast<unsigned>(_mm_movemask_ps(_mm_cmpneq_ps(_mm_loadu_ps(a + j), zero)))
+        << j;
+    }
+#else
     for (int j = 0; j < LatticeBlock::Size; ++j)
     {
       nonZero |= static_cast<unsigned>(a[j] != 0.f) << j;
     }
+#endif
     this->CorrectOpacities(a);
     return lanes & nonZero;
   }

@@ -175,6 +175,11 @@ public:
     this->Step[0] = stride;
     this->Step[1] = stride * dims[0];
     this->Step[2] = this->Step[1] * dims[1];
+    for (int n = 0; n < 8; ++n)
+    {
+      this->Corner[n] = ((n & 1) ? this->Step[0] : 0) + ((n & 2) ? this->Step[1] : 0) +
+        ((n & 4) ? this->Step[2] : 0);
+    }
   }
 
   const int* GetDimensions() const { return this->Dims; }
@@ -418,8 +423,7 @@ private:
   /// Interpolates the located lanes of block's group from lane first into its values.
   PARC_HOT_INLINE void SampleGroup(LatticeBlock& block, int first) const
   {
-    std::ptrdiff_t corner[8];
-    this->CornerOffsets(corner);
+    const std::ptrdiff_t* corner = this->Corner;
     const std::ptrdiff_t* offsets = block.Offset + first;
 #if defined(__SSE2__)
     static_assert(LatticeBlock::Lanes == 4, "four lanes to an SSE register");
@@ -510,20 +514,9 @@ private:
     return cell[0] * this->Step[0] + cell[1] * this->Step[1] + cell[2] * this->Step[2];
   }
   const T* CellPointer(const int cell[3]) const { return this->Data + this->CellOffset(cell); }
-  /// The offsets of a cell's 8 corners from its first voxel (corner n: x offset n & 1,
-  /// y (n >> 1) & 1, z (n >> 2) & 1).
-  PARC_HOT_INLINE void CornerOffsets(std::ptrdiff_t corner[8]) const
-  {
-    for (int n = 0; n < 8; ++n)
-    {
-      corner[n] = ((n & 1) ? this->Step[0] : 0) + ((n & 2) ? this->Step[1] : 0) +
-        ((n & 4) ? this->Step[2] : 0);
-    }
-  }
   PARC_HOT_INLINE void LoadCorners(const T* v, float c[8]) const
   {
-    std::ptrdiff_t corner[8];
-    this->CornerOffsets(corner);
+    const std::ptrdiff_t* corner = this->Corner;
     for (int n = 0; n < 8; ++n)
     {
       c[n] = static_cast<float>(v[corner[n]]);
@@ -554,8 +547,7 @@ private:
   /// are taken in integers, exactly, and converted together.
   PARC_HOT_INLINE void LoadDifferences(const T* v, float d[8][4]) const
   {
-    std::ptrdiff_t corner[8];
-    this->CornerOffsets(corner);
+    const std::ptrdiff_t* corner = this->Corner;
     LaneValue c[8];
     for (int n = 0; n < 8; ++n)
     {
@@ -641,6 +633,9 @@ private:
 
   const T* Data;
   std::ptrdiff_t Step[3]; ///< elements between neighbours along x, y, z
+  /// The offsets of a cell's 8 corners from its first voxel (corner n: x offset n & 1,
+  /// y (n >> 1) & 1, z (n >> 2) & 1).
+  std::ptrdiff_t Corner[8];
   int Dims[3];
   double Last[3]; ///< the last index coordinate along x, y, z
   int LastCell[3]; ///< the last cell index along x, y, z

@@ -54,7 +54,8 @@ public:
     return this->EvaluateOutside(s);
   }
   /// Evaluate(s[j]) into out[j] for each lane j in lanes (bits 1 << j, j < 32), the same
-  /// bits; the other lanes of out are left alone. s holds whole groups of four lanes.
+  /// bits; the other lanes of out are left alone. s and out hold whole groups of four
+  /// lanes.
   PARC_HOT_INLINE void EvaluateLanes(const float* s, unsigned lanes, float* out) const
   {
 #if defined(__SSE2__)
@@ -65,7 +66,8 @@ public:
       // 0 < c < n (Evaluate's range), below the range for c = 0 (also NaN), else at or
       // after its end. OnPiece for four lanes at once, from their pieces' entries.
       alignas(16) std::int32_t counts[4];
-      alignas(16) float values[4];
+      const __m128i end = _mm_set1_epi32(static_cast<std::int32_t>(n));
+      const __m128i laneBit = _mm_setr_epi32(1, 2, 4, 8);
       const __m128 left = _mm_set1_ps(static_cast<float>(this->LeftValue()));
       while (lanes != 0)
       {
@@ -86,13 +88,21 @@ public:
         const __m128 below = _mm_castsi128_ps(_mm_cmpeq_epi32(c, _mm_setzero_si128()));
         // max(f, 0) is 0 for a NaN f, like OnPiece.
         const __m128 onPiece = _mm_max_ps(f, _mm_setzero_ps());
-        _mm_store_ps(values, _mm_or_ps(_mm_and_ps(below, left), _mm_andnot_ps(below, onPiece)));
-        unsigned group = (lanes >> first) & 0xFu;
+        const __m128 value = _mm_or_ps(_mm_and_ps(below, left), _mm_andnot_ps(below, onPiece));
+        const unsigned group = (lanes >> first) & 0xFu;
         lanes &= ~(0xFu << first);
-        for (; group != 0; group &= group - 1)
+        // The group's lanes asked for take their values, the others keep theirs.
+        const __m128i asked = _mm_and_si128(_mm_set1_epi32(static_cast<int>(group)), laneBit);
+        const __m128 write = _mm_castsi128_ps(_mm_cmpeq_epi32(asked, laneBit));
+        const __m128 kept = _mm_loadu_ps(out + first);
+        _mm_storeu_ps(out + first, _mm_or_ps(_mm_and_ps(write, value), _mm_andnot_ps(write, kept)));
+        // At or after the last node (rare): Evaluate's end values.
+        unsigned ends =
+          group & static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(c, end))));
+        for (; ends != 0; ends &= ends - 1)
         {
-          const int lane = CountTrailingZeros(group), j = first + lane;
-          out[j] = static_cast<std::size_t>(counts[lane]) < n ? values[lane] : this->Evaluate(s[j]);
+          const int j = first + CountTrailingZeros(ends);
+          out[j] = this->Evaluate(s[j]);
         }
       }
       return;
