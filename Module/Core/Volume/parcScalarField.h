@@ -339,27 +339,12 @@ public:
   PARC_HOT_INLINE Vec3f InteriorGradient(
     const SampleLocation& w, CellDifferences& differences) const
   {
-    if (w.Offset != differences.Offset)
-    {
-      this->LoadDifferences(this->Data + w.Offset, differences.Values);
-      differences.Offset = w.Offset;
-    }
-    const float(*d)[4] = differences.Values;
 #if defined(__SSE2__)
-    // Interpolate for the three axes at once: the same operations, lane by lane.
-    auto lerp = [](__m128 a, __m128 b, __m128 t) {
-      return _mm_add_ps(a, _mm_mul_ps(t, _mm_sub_ps(b, a)));
-    };
-    const __m128 fx = _mm_set1_ps(w.Fractions[0]), fy = _mm_set1_ps(w.Fractions[1]);
-    const __m128 fz = _mm_set1_ps(w.Fractions[2]);
-    const __m128 c00 = lerp(_mm_load_ps(d[0]), _mm_load_ps(d[1]), fx);
-    const __m128 c10 = lerp(_mm_load_ps(d[2]), _mm_load_ps(d[3]), fx);
-    const __m128 c01 = lerp(_mm_load_ps(d[4]), _mm_load_ps(d[5]), fx);
-    const __m128 c11 = lerp(_mm_load_ps(d[6]), _mm_load_ps(d[7]), fx);
     alignas(16) float g[4];
-    _mm_store_ps(g,
-      _mm_mul_ps(_mm_set1_ps(0.5f), lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz)));
+    _mm_store_ps(g, this->InteriorGradientVector(w, differences));
 #else
+    this->EnsureDifferences(w, differences);
+    const float(*d)[4] = differences.Values;
     float g[3];
     for (int a = 0; a < 3; ++a)
     {
@@ -370,8 +355,38 @@ public:
 #endif
     return { g[0], g[1], g[2] };
   }
+#if defined(__SSE2__)
+  /// InteriorGradient as the lanes of a register (x, y, z, 0): the same bits. The three
+  /// axes are interpolated at once, with the same operations lane by lane.
+  PARC_HOT_INLINE __m128 InteriorGradientVector(
+    const SampleLocation& w, CellDifferences& differences) const
+  {
+    this->EnsureDifferences(w, differences);
+    const float(*d)[4] = differences.Values;
+    auto lerp = [](__m128 a, __m128 b, __m128 t) {
+      return _mm_add_ps(a, _mm_mul_ps(t, _mm_sub_ps(b, a)));
+    };
+    const __m128 fx = _mm_set1_ps(w.Fractions[0]), fy = _mm_set1_ps(w.Fractions[1]);
+    const __m128 fz = _mm_set1_ps(w.Fractions[2]);
+    const __m128 c00 = lerp(_mm_load_ps(d[0]), _mm_load_ps(d[1]), fx);
+    const __m128 c10 = lerp(_mm_load_ps(d[2]), _mm_load_ps(d[3]), fx);
+    const __m128 c01 = lerp(_mm_load_ps(d[4]), _mm_load_ps(d[5]), fx);
+    const __m128 c11 = lerp(_mm_load_ps(d[6]), _mm_load_ps(d[7]), fx);
+    return _mm_mul_ps(_mm_set1_ps(0.5f), lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz));
+  }
+#endif
 
 private:
+  /// Loads differences for w's cell unless they hold it already.
+  PARC_HOT_INLINE void EnsureDifferences(
+    const SampleLocation& w, CellDifferences& differences) const
+  {
+    if (w.Offset != differences.Offset)
+    {
+      this->LoadDifferences(this->Data + w.Offset, differences.Values);
+      differences.Offset = w.Offset;
+    }
+  }
   /// The cell along one axis and the fraction inside it, for x clamped to [0, last]
   /// (last = lastCell + 1, the number of cells).
   static PARC_HOT_INLINE void LocateAxis(double x, double last, int lastCell, int& i, float& f)
