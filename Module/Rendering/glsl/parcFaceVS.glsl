@@ -32,6 +32,74 @@ vec3 Numerator(vec3 q, float c, vec3 d, vec3 m)
   return vec3(l.x * d.x + m.x * k.x, l.x * d.y + l.y * d.x + m.x * k.y + m.y * k.x,
     l.x * d.z + l.z * d.x + m.x * k.z + m.z * k.x);
 }
+// The quad's projection (no corner in front of MinDepth clipped: a convex quadrilateral),
+// each edge moved out by the dilation box's extent along the edge's normal: it holds every
+// point within the dilation of the projection, as the dilated bounding box does, often in
+// far less area (fewer fragments). False, q unset, when it is not smaller than boxArea, has
+// a corner beyond the box's margin (NDC -2 to 2) or is degenerate.
+bool TightQuad(float depth[4], vec4 clip[4], float boxArea, out vec2 q[4])
+{
+  vec2 p[4];
+  float twiceArea = 0.0;
+  for (int i = 0; i < 4; ++i)
+  {
+    if (depth[i] < MinDepth || clip[i].w <= 0.0)
+    {
+      return false;
+    }
+    p[i] = clip[i].xy / clip[i].w;
+  }
+  for (int i = 0; i < 4; ++i)
+  {
+    vec2 a = p[i];
+    vec2 b = p[(i + 1) % 4];
+    twiceArea += a.x * b.y - a.y * b.x;
+  }
+  if (abs(twiceArea) < 1.0e-12)
+  {
+    return false;
+  }
+  // Edge i runs from p[i] to p[i + 1]; its outward unit normal n and offset c: the moved
+  // edge is dot(n, x) = c.
+  float orientation = sign(twiceArea);
+  vec2 n[4];
+  float c[4];
+  for (int i = 0; i < 4; ++i)
+  {
+    vec2 e = p[(i + 1) % 4] - p[i];
+    float len = length(e);
+    if (len == 0.0)
+    {
+      return false;
+    }
+    n[i] = orientation * vec2(e.y, -e.x) / len;
+    c[i] = dot(n[i], p[i]) + Dilation.x * abs(n[i].x) + Dilation.y * abs(n[i].y);
+  }
+  // Corner i where the moved edges i - 1 and i meet.
+  float area = 0.0;
+  for (int i = 0; i < 4; ++i)
+  {
+    vec2 a = n[(i + 3) % 4];
+    vec2 b = n[i];
+    float ca = c[(i + 3) % 4];
+    float det = a.x * b.y - a.y * b.x;
+    if (abs(det) < 1.0e-3)
+    {
+      return false; // nearly parallel neighbours: a far spike
+    }
+    q[i] = vec2(ca * b.y - a.y * c[i], a.x * c[i] - ca * b.x) / det;
+    if (any(greaterThan(abs(q[i]), vec2(2.0))))
+    {
+      return false;
+    }
+  }
+  for (int i = 0; i < 4; ++i)
+  {
+    area += q[i].x * q[(i + 1) % 4].y - q[i].y * q[(i + 1) % 4].x;
+  }
+  return 0.5 * abs(area) < boxArea;
+}
+
 void main()
 {
   vec3 corners[4] = vec3[4](Corner, Corner + Edge1, Corner + Edge1 + Edge3, Corner + Edge3);
@@ -85,7 +153,16 @@ void main()
   lo = max(lo - Dilation, vec2(-2.0));
   hi = min(hi + Dilation, vec2(2.0));
   int box = gl_VertexID & 3;
-  gl_Position = vec4((box & 1) != 0 ? hi.x : lo.x, (box & 2) != 0 ? hi.y : lo.y, 0.0, 1.0);
+  vec2 q[4];
+  if (TightQuad(depth, clip, (hi.x - lo.x) * (hi.y - lo.y), q))
+  {
+    // The strip's corners 0 1 2 3 are the quad's 0 1 3 2.
+    gl_Position = vec4(q[box == 2 ? 3 : (box == 3 ? 2 : box)], 0.0, 1.0);
+  }
+  else
+  {
+    gl_Position = vec4((box & 1) != 0 ? hi.x : lo.x, (box & 2) != 0 ? hi.y : lo.y, 0.0, 1.0);
+  }
   // The face's plane dot(n, x) = w (eye-relative world coordinates). The ray through NDC
   // (x, y) starts at b = RayBase . (1, x, y) and runs along u = RayDirection . (1, x, y); it
   // meets the plane at p = b + u (w - dot(n, b)) / dot(n, u). For a vector q and offset c,
