@@ -30,7 +30,9 @@ namespace
 constexpr int PlanesPerAttachment = 128; ///< one GL_RGBA32UI texel: 4 x 32 bits
 constexpr int MaxAttachments = 8;
 constexpr int PlanesPerPass = PlanesPerAttachment * MaxAttachments;
-constexpr double DilationPixels = 0.75; ///< bounding-box growth, more than half a pixel
+/// How far a face's rasterized area reaches beyond its projection (its bounding box, or its
+/// edges along their normals), more than half a pixel.
+constexpr double DilationPixels = 0.75;
 constexpr double NearClipFraction = 0.5; ///< perspective: clip at this fraction of near
 /// Relative size of the x, y terms of the inverse projection's w row below which the rays
 /// count as affine in NDC x, y (otherwise the depth pass keeps whole face ranges).

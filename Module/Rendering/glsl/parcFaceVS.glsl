@@ -1,9 +1,10 @@
 // The vertex shader of both PARC passes (embedded into vtkPARCRasterizer at build time).
 // Four vertices a quad, each with the quad's corner, its two edges and its plane
-// (voxel-index coordinates); vertex gl_VertexID & 3 becomes that corner of the quad's
-// dilated screen bounding box (two triangles: corners 0 1 2 and 2 1 3), each vertex
-// computing the same flat outputs. The quad is first clipped to the part in front of MinDepth. The shader also sets
-// up the ratios the fragment shaders evaluate (parcFaceFS.glsl).
+// (voxel-index coordinates); vertex gl_VertexID & 3 becomes a corner of the quad's dilated
+// screen projection (TightQuad) or, when that is no smaller, of its dilated bounding box
+// (two triangles: corners 0 1 2 and 2 1 3), each vertex computing the same flat outputs.
+// The quad is first clipped to the part in front of MinDepth. The shader also sets up the
+// ratios the fragment shaders evaluate (parcFaceFS.glsl).
 layout(location = 0) in vec3 Corner;
 layout(location = 1) in vec3 Edge1;
 layout(location = 2) in vec3 Edge3;
