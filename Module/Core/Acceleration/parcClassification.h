@@ -38,29 +38,23 @@ public:
   /// True when a cell whose samples lie in [lo, hi] may change a ray's result.
   PARC_HOT_INLINE bool IsPossiblyContributing(double lo, double hi) const
   {
-    lo -= this->Margin;
-    hi += this->Margin;
-    switch (this->Blend)
+    if (!this->TestsEndsApart())
     {
-      case BlendMode::MaximumIntensity:
-        return hi >= this->Threshold;
-      case BlendMode::MinimumIntensity:
-        return lo <= this->Threshold;
-      default:
-        return this->MeetsInterval(lo, hi);
+      return this->MeetsInterval(lo - this->Margin, hi + this->Margin);
     }
+    return this->MeetsLow(lo) && this->MeetsHigh(hi);
   }
 
   /// Whether the rule tests the two ends of a range apart (one interval or a threshold):
-  /// IsPossiblyContributing(lo, hi) == MeetsLow(lo) && MeetsHigh(hi), where MeetsLow holds
-  /// up to some value and MeetsHigh from some value on. False for several intervals.
-  bool TestsEndsApart() const
+  /// IsPossiblyContributing(lo, hi) is then MeetsLow(lo) && MeetsHigh(hi), where MeetsLow
+  /// holds up to some value and MeetsHigh from some value on. False for several intervals.
+  PARC_HOT_INLINE bool TestsEndsApart() const
   {
     return this->Blend == BlendMode::MaximumIntensity ||
       this->Blend == BlendMode::MinimumIntensity || this->Hi.size() <= 1;
   }
-  /// The test of a range's low end, with IsPossiblyContributing's arithmetic.
-  bool MeetsLow(double lo) const
+  /// The test of a range's low end (see TestsEndsApart).
+  PARC_HOT_INLINE bool MeetsLow(double lo) const
   {
     lo -= this->Margin;
     switch (this->Blend)
@@ -73,8 +67,8 @@ public:
         return this->Hi.size() == 1 && lo <= this->Hi[0];
     }
   }
-  /// The test of a range's high end, with IsPossiblyContributing's arithmetic.
-  bool MeetsHigh(double hi) const
+  /// The test of a range's high end (see TestsEndsApart).
+  PARC_HOT_INLINE bool MeetsHigh(double hi) const
   {
     hi += this->Margin;
     switch (this->Blend)
@@ -96,13 +90,9 @@ public:
   double GetMargin() const { return this->Margin; }
 
 private:
-  /// Whether [lo, hi] meets one of the intervals.
+  /// Whether [lo, hi] meets one of several intervals.
   PARC_HOT_INLINE bool MeetsInterval(double lo, double hi) const
   {
-    if (this->Hi.size() == 1) // the common case: one interval
-    {
-      return lo <= this->Hi[0] && this->Lo[0] <= hi;
-    }
     // The first interval ending at or after lo; it is met if it starts at or before hi.
     const auto it = std::lower_bound(this->Hi.begin(), this->Hi.end(), lo);
     return it != this->Hi.end() && this->Lo[it - this->Hi.begin()] <= hi;
