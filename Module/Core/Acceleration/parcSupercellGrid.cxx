@@ -179,22 +179,19 @@ void SupercellGrid::Classify(const std::vector<Channel>& channels, Interpolation
     this->Size[1] == this->Size[0] && this->Size[2] == this->Size[0] &&
     std::all_of(channels.begin(), channels.end(),
       [level](const Channel& c) { return level <= c.Pyramid->GetNumberOfLevels(); });
-  if (levels && channels.size() == 1)
+  if (levels)
   {
-    channels[0].Pyramid->ClassifyLevel(level, *channels[0].Rule, flags);
-    flags.resize(this->Count, 0); // as many nodes as supercells: no change
-  }
-  else if (levels)
-  {
+    // The first channel's flags in place, the others ORed into them.
     std::vector<std::uint8_t> channelFlags;
-    for (const Channel& c : channels)
+    for (std::size_t c = 0; c < channels.size(); ++c)
     {
-      c.Pyramid->ClassifyLevel(level, *c.Rule, channelFlags);
-      for (std::size_t n = 0; n < flags.size() && n < channelFlags.size(); ++n)
+      channels[c].Pyramid->ClassifyLevel(level, *channels[c].Rule, c == 0 ? flags : channelFlags);
+      for (std::size_t n = 0; c > 0 && n < flags.size() && n < channelFlags.size(); ++n)
       {
         flags[n] |= channelFlags[n];
       }
     }
+    flags.resize(this->Count, 0); // as many nodes as supercells: no change
   }
   else
   {
