@@ -47,10 +47,12 @@ struct RayCostFit
   /// A counted ray of the timed columns that was not cast (no segment), of u unaccelerated
   /// samples (see UncastRowStride).
   void AddUncast(double u) { this->Unaccelerated += UncastRowStride * u; }
+  /// Whether the primary ray of pixel column px is timed when it is cast.
+  static bool TimesColumn(int px) { return px % ColumnStride == 0; }
   /// Whether the ray of pixel (px, py) is counted when it is not cast.
   static bool CountsUncast(int px, int py)
   {
-    return px % ColumnStride == 0 && py % UncastRowStride == 0;
+    return TimesColumn(px) && py % UncastRowStride == 0;
   }
   RayCostFit& operator+=(const RayCostFit& o)
   {

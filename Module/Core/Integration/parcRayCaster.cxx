@@ -2354,12 +2354,6 @@ bool CastTiles(const Camera& view, const float* depth, const Cast& castOne,
   }
   return completed;
 }
-
-/// Whether the ray of pixel column px is one of those RayCostFit times.
-bool TimedColumn(int px)
-{
-  return (px % RayCostFit::ColumnStride) == 0;
-}
 }
 
 bool RayCaster::CastImage(const Camera& view, const float* depth,
@@ -2381,7 +2375,7 @@ bool RayCaster::CastImageIn(const View& field, const Camera& view, const float* 
     {
       scratch.Differences.resize(DifferenceCacheCells);
     }
-    if (!TimedColumn(query.Pixel[0]))
+    if (!RayCostFit::TimesColumn(query.Pixel[0]))
     {
       this->CastRayIn(field, query, source, scratch.Segments, scratch.Ranges, pixel,
         scratch.Stats, nullptr, nullptr, &scratch.Differences, &scratch.Shadows);
