@@ -30,6 +30,23 @@ namespace
 constexpr int PlanesPerAttachment = 128; ///< one GL_RGBA32UI texel: 4 x 32 bits
 constexpr int MaxAttachments = 8;
 constexpr int PlanesPerPass = PlanesPerAttachment * MaxAttachments;
+/// An unsigned integer colour attachment of the plane pass: its internal format, the
+/// format glReadPixels reads it as and its 32-bit words per texel.
+struct TexelFormat
+{
+  GLenum Internal;
+  GLenum Format;
+  int Words;
+};
+constexpr TexelFormat WideTexel{ GL_RGBA32UI, GL_RGBA_INTEGER, 4 };
+/// The attachment of fewest channels that holds words 32-bit words (at most 4; three
+/// channels are not renderable everywhere).
+TexelFormat NarrowestTexel(int words)
+{
+  return words == 1 ? TexelFormat{ GL_R32UI, GL_RED_INTEGER, 1 }
+    : words == 2    ? TexelFormat{ GL_RG32UI, GL_RG_INTEGER, 2 }
+                    : WideTexel;
+}
 /// How far a face's rasterized area reaches beyond its projection (its bounding box, or its
 /// edges along their normals), more than half a pixel.
 constexpr double DilationPixels = 0.75;
@@ -177,7 +194,9 @@ struct RenderTarget
   /// Bytes of renderbuffer storage.
   std::size_t GetMemorySize() const
   {
-    const std::size_t texel = this->Format == GL_RG32F ? 8 : 16; // RG32F or RGBA32UI
+    const std::size_t texel = this->Format == GL_R32UI ? 4
+      : this->Format == GL_RG32F || this->Format == GL_RG32UI ? 8
+                                                              : 16; // RGBA32UI
     return this->Renderbuffers.size() * texel * static_cast<std::size_t>(this->Size[0]) *
       static_cast<std::size_t>(this->Size[1]);
   }
@@ -803,18 +822,19 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
     const int w = view.Camera.Width, h = view.Camera.Height;
     const std::size_t pixels = static_cast<std::size_t>(w) * h;
     passes = std::max(1, (model.PlaneCount + PlanesPerPass - 1) / PlanesPerPass);
-    // Words per pixel: whole attachments (4 words each) up to the planes needed.
+    // Words per pixel: the planes' words in one attachment of one, two or four channels
+    // (fewer bytes to blend and read back), else whole attachments of four.
     const int planeWords = std::max(1, (model.PlaneCount + 31) / 32);
     const int attachmentsTotal = (planeWords + 3) / 4;
-    wordsPerPixel = 4 * attachmentsTotal;
-    bits.assign(pixels * wordsPerPixel, 0u);
+    const TexelFormat texel = attachmentsTotal == 1 ? NarrowestTexel(planeWords) : WideTexel;
+    wordsPerPixel = attachmentsTotal == 1 ? texel.Words : 4 * attachmentsTotal;
+    bits.resize(pixels * wordsPerPixel);
     std::vector<std::uint32_t>& texels = in.Texels;
-    texels.resize(4 * pixels);
     state->vtkglDisable(GL_BLEND);
     for (int pass = 0; pass < passes; ++pass)
     {
       const int attachments = std::min(MaxAttachments, attachmentsTotal - pass * MaxAttachments);
-      if (!in.BindTarget(1, GL_RGBA32UI, attachments, w, h, this->LastError))
+      if (!in.BindTarget(1, texel.Internal, attachments, w, h, this->LastError))
       {
         return false;
       }
@@ -832,7 +852,13 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
       for (int a = 0; a < attachments; ++a)
       {
         state->vtkglReadBuffer(GL_COLOR_ATTACHMENT0 + a);
-        glReadPixels(0, 0, w, h, GL_RGBA_INTEGER, GL_UNSIGNED_INT, texels.data());
+        if (attachmentsTotal == 1)
+        {
+          glReadPixels(0, 0, w, h, texel.Format, GL_UNSIGNED_INT, bits.data());
+          continue;
+        }
+        texels.resize(4 * pixels);
+        glReadPixels(0, 0, w, h, texel.Format, GL_UNSIGNED_INT, texels.data());
         const int word0 = 4 * (pass * MaxAttachments + a);
         for (std::size_t p = 0; p < pixels; ++p)
         {

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <iostream>
 #include <random>
+#include <set>
 
 namespace
 {
@@ -28,6 +29,7 @@ struct Tally
   std::size_t TightLines = 0; ///< pixel-less depth answers that left part of the line out
   std::size_t ShadowLines = 0;      ///< shadow rays checked against the light passes
   std::size_t TightShadowLines = 0; ///< light answers that left part of the ray out
+  std::set<int> Words; ///< the words per pixel of the plane passes
 };
 
 /// Whether the union of segments holds every interval of ideal.
@@ -208,6 +210,7 @@ bool CheckCamera(vtkRenderWindow* window, vtkRenderer* ren, vtkPARCRasterizer* r
     std::cerr << name << ": " << rasterizer->GetLastError() << "\n";
     return false;
   }
+  tally.Words.insert(words);
   parc::PlaneBufferSource planes;
   planes.Set(view.Camera, bits, words, &grid, axis, colorModel.FirstPlane, worldToIndex);
   const parc::SegmentOracle oracle(grid, worldToIndex);
@@ -325,7 +328,11 @@ int TestPARCRasterizer(int argc, char* argv[])
   const parc::Matrix4 identity;
   std::mt19937 rng(5);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
-  const double sizes[][3] = { { 1, 1, 1 }, { 3, 5, 5 }, { 2.5, 1.5, 0.7 } };
+  // Plane counts from 7 to 160: colour passes into attachments of one, two and four
+  // channels, and into two attachments.
+  const double sizes[][3] = { { 1, 1, 1 }, { 3, 5, 5 }, { 2.5, 1.5, 0.7 }, { 0.4, 1, 1 },
+    { 1, 2, 0.2 } };
+  constexpr int sized = 2 * static_cast<int>(sizeof(sizes) / sizeof(sizes[0]));
   Tally tally;
   int cameras = 0;
   // The last run places the volume with anisotropic spacing, a rotation by 20 degrees about
@@ -352,14 +359,14 @@ int TestPARCRasterizer(int argc, char* argv[])
       placed(r, 3) = offset;
     }
   }
-  for (int run = 0; run < 7; ++run)
+  for (int run = 0; run <= sized; ++run)
   {
     // Each size with separate faces and with merged faces (the mapper's models), then the
     // placed volume with merged 2x2x2 supercells.
     const double twos[3] = { 2, 2, 2 };
-    const double* size = run < 6 ? sizes[run / 2] : twos;
-    const bool merge = run >= 6 || (run % 2) == 1;
-    const parc::Matrix4& placement = run < 6 ? identity : placed;
+    const double* size = run < sized ? sizes[run / 2] : twos;
+    const bool merge = run >= sized || (run % 2) == 1;
+    const parc::Matrix4& placement = run < sized ? identity : placed;
     parc::SupercellGrid grid;
     grid.Configure(pyramid.GetCellDimensions(), size);
     grid.Classify(pyramid, rule, parc::Interpolation::Linear);
@@ -369,7 +376,7 @@ int TestPARCRasterizer(int argc, char* argv[])
     {
       parc::BuildColorModel(grid, a, merge, colorModels[a]);
     }
-    if ((run == 0 || run == 6) &&
+    if ((run == 0 || run == sized) &&
       (!CheckLights(window, rasterizer, grid, depthModel, placement, rng, tally) ||
         !CheckLights(window, rasterizer, grid, colorModels[run == 0 ? 0 : 2], placement, rng, tally)))
     {
@@ -478,6 +485,11 @@ int TestPARCRasterizer(int argc, char* argv[])
   if (tally.TightLines < tally.Lines / 2)
   {
     std::cerr << "Fewer than half of the queries without a pixel were narrowed.\n";
+    return EXIT_FAILURE;
+  }
+  if (tally.Words != std::set<int>{ 1, 2, 4, 8 })
+  {
+    std::cerr << "Expected plane passes of 1, 2, 4 and 8 words a pixel.\n";
     return EXIT_FAILURE;
   }
   if (tally.FrontOnly == 0 || tally.FrontOnly == cameras)
