@@ -12,8 +12,9 @@
  *   "greater" far buffer of the paper.
  * - RenderPlanes: the colour model into up to 8 GL_RGBA32UI attachments (1024 planes a
  *   pass) with glLogicOp(GL_OR); each fragment sets the bit of its face's plane. Only as
- *   many attachments as the planes need are attached; more than 1024 planes take several
- *   passes.
+ *   many attachments as the planes need are attached, and up to 64 planes one of one or
+ *   two channels (GL_R32UI, GL_RG32UI: fewer bytes to blend and read back); more than 1024
+ *   planes take several passes.
  *
  * Conservative by construction (DESIGN.md section 2): the vertex shader (each of a quad's
  * four vertices carries the whole quad) clips each quad to the part in front of the eye
