@@ -562,6 +562,16 @@ private:
   /// are taken in integers, exactly, and converted together.
   PARC_HOT_INLINE void LoadDifferences(const T* v, float d[8][4]) const
   {
+#if defined(__SSE2__)
+    if constexpr (PairedCorners)
+    {
+      if (this->Step[0] == 1)
+      {
+        this->LoadDifferencesOfRows(v, d);
+        return;
+      }
+    }
+#endif
     const std::ptrdiff_t* corner = this->Corner;
     LaneValue c[8];
     for (int n = 0; n < 8; ++n)
@@ -608,6 +618,90 @@ private:
 #endif
     }
   }
+#if defined(__SSE2__)
+  /// LoadDifferences of 8- and 16-bit values whose x neighbours are next to each other:
+  /// the same differences from 12 loads instead of 32. Each of the cell's four x rows is
+  /// read with its outer neighbours (x = -1 .. 2), the outer voxels along y and z two at a
+  /// time; the differences of four corners are taken together and turned corner by corner.
+  PARC_HOT_INLINE void LoadDifferencesOfRows(const T* v, float d[8][4]) const
+  {
+    const std::ptrdiff_t sy = this->Step[1], sz = this->Step[2];
+    // row[y + 2 z]: x = -1 .. 2 of the cell's row (y, z).
+    __m128i row[4];
+    for (int r = 0; r < 4; ++r)
+    {
+      row[r] = WidenFour(LoadFour(v - 1 + (r & 1) * sy + (r >> 1) * sz));
+    }
+    // The corners (x = 0, 1) of rows (0, z) and (1, z), as lanes 0 1 2 3.
+    const __m128i centre[2] = { MiddlePairs(row[0], row[1]), MiddlePairs(row[2], row[3]) };
+    // The outer voxels (x = 0, 1) before and after the cell along y, per z, and along z,
+    // per y (as lanes 0 1 2 3: y or z = 0, then 1).
+    const __m128i yBefore = WidenFour(LoadPairs(v - sy, v - sy + sz));
+    const __m128i yAfter = WidenFour(LoadPairs(v + 2 * sy, v + 2 * sy + sz));
+    const __m128i zBefore = WidenFour(LoadPairs(v - sz, v + sy - sz));
+    const __m128i zAfter = WidenFour(LoadPairs(v + 2 * sz, v + sy + 2 * sz));
+    for (int z = 0; z < 2; ++z)
+    {
+      // Corners 4 z .. 4 z + 3: (x, y) = (0, 0), (1, 0), (0, 1), (1, 1).
+      const __m128i& c = centre[z];
+      const __m128i dx = _mm_sub_epi32(_mm_unpackhi_epi64(row[2 * z], row[2 * z + 1]),
+        _mm_unpacklo_epi64(row[2 * z], row[2 * z + 1]));
+      const __m128i yPair = z == 0 ? yBefore : _mm_srli_si128(yBefore, 8);
+      const __m128i yNext = z == 0 ? yAfter : _mm_srli_si128(yAfter, 8);
+      const __m128i dy = _mm_sub_epi32(_mm_unpacklo_epi64(_mm_srli_si128(c, 8), yNext),
+        _mm_unpacklo_epi64(yPair, c));
+      const __m128i dz = z == 0 ? _mm_sub_epi32(centre[1], zBefore)
+                                : _mm_sub_epi32(zAfter, centre[0]);
+      __m128 ax = _mm_cvtepi32_ps(dx), ay = _mm_cvtepi32_ps(dy), az = _mm_cvtepi32_ps(dz);
+      __m128 zero = _mm_setzero_ps();
+      _MM_TRANSPOSE4_PS(ax, ay, az, zero);
+      _mm_store_ps(d[4 * z], ax);
+      _mm_store_ps(d[4 * z + 1], ay);
+      _mm_store_ps(d[4 * z + 2], az);
+      _mm_store_ps(d[4 * z + 3], zero);
+    }
+  }
+  /// Four values as the bits of one integer (the first lowest).
+  using Four = std::conditional_t<sizeof(T) == 1, std::uint32_t, std::uint64_t>;
+  static PARC_HOT_INLINE Four LoadFour(const T* p)
+  {
+    Four bits;
+    std::memcpy(&bits, p, sizeof(bits));
+    return bits;
+  }
+  /// Two values at a, then two at b, as the bits of one integer.
+  static PARC_HOT_INLINE Four LoadPairs(const T* a, const T* b)
+  {
+    using Half = std::conditional_t<sizeof(T) == 1, std::uint16_t, std::uint32_t>;
+    Half low, high;
+    std::memcpy(&low, a, sizeof(low));
+    std::memcpy(&high, b, sizeof(high));
+    return static_cast<Four>(low) | (static_cast<Four>(high) << (16 * sizeof(T)));
+  }
+  /// Four values (Four's bits) as 32-bit integers, exactly.
+  static PARC_HOT_INLINE __m128i WidenFour(Four bits)
+  {
+    constexpr int shift = 32 - 8 * static_cast<int>(sizeof(T));
+    __m128i x;
+    if constexpr (sizeof(T) == 1)
+    {
+      x = _mm_cvtsi32_si128(static_cast<int>(bits));
+      x = _mm_unpacklo_epi8(x, x); // each value in the top byte of its lane, after the next
+    }
+    else
+    {
+      x = _mm_cvtsi64_si128(static_cast<long long>(bits));
+    }
+    x = _mm_unpacklo_epi16(x, x);
+    return std::is_signed<T>::value ? _mm_srai_epi32(x, shift) : _mm_srli_epi32(x, shift);
+  }
+  /// Lanes 1 and 2 of a, then of b (x = 0, 1 of two rows read from x = -1).
+  static PARC_HOT_INLINE __m128i MiddlePairs(__m128i a, __m128i b)
+  {
+    return _mm_castps_si128(
+      _mm_shuffle_ps(_mm_castsi128_ps(a), _mm_castsi128_ps(b), _MM_SHUFFLE(2, 1, 2, 1)));
+  }
+#endif
   /// Central differences of SampleLinear with the offsets clamped to the box.
   Vec3 GradientNearFaces(const Vec3& p, const int cell[3], const float f[3]) const
   {
