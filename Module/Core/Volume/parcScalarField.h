@@ -473,6 +473,8 @@ private:
   /// Whether a cell's two x neighbours fit one 32-bit load (8- and 16-bit integers), so
   /// that LoadGroupCorners may load them together when they are next to each other.
   static constexpr bool PairedCorners = std::is_integral<T>::value && sizeof(T) <= 2;
+  /// Two neighbouring values as the bits of one integer (the first lowest, x86).
+  using Pair = std::conditional_t<sizeof(T) == 1, std::uint16_t, std::uint32_t>;
   /// The corner values c[corner] of the cells at offsets[0 .. 3], lane by lane, as floats;
   /// held in registers (no store and load again). With x neighbours next to each other
   /// (Step[0] = 1) each pair of corners (x offsets 0 and 1) is loaded at once and split
@@ -484,7 +486,6 @@ private:
     {
       if (this->Step[0] == 1)
       {
-        using Pair = std::conditional_t<sizeof(T) == 1, std::uint16_t, std::uint32_t>;
         constexpr int bits = 8 * sizeof(T);
         constexpr bool sign = std::is_signed<T>::value;
         for (int m = 0; m < 8; m += 2)
@@ -672,25 +673,26 @@ private:
   /// Two values at a, then two at b, as the bits of one integer.
   static PARC_HOT_INLINE Four LoadPairs(const T* a, const T* b)
   {
-    using Half = std::conditional_t<sizeof(T) == 1, std::uint16_t, std::uint32_t>;
-    Half low, high;
+    Pair low, high;
     std::memcpy(&low, a, sizeof(low));
     std::memcpy(&high, b, sizeof(high));
-    return static_cast<Four>(low) | (static_cast<Four>(high) << (16 * sizeof(T)));
+    return static_cast<Four>(low) | (static_cast<Four>(high) << (8 * sizeof(Pair)));
   }
   /// Four values (Four's bits) as 32-bit integers, exactly.
   static PARC_HOT_INLINE __m128i WidenFour(Four bits)
   {
     constexpr int shift = 32 - 8 * static_cast<int>(sizeof(T));
+    // Each value repeated to fill its 32-bit lane (bytes twice, then 16 bits twice), so
+    // that its top bits are the value, shifted down with or without its sign.
     __m128i x;
     if constexpr (sizeof(T) == 1)
     {
       x = _mm_cvtsi32_si128(static_cast<int>(bits));
-      x = _mm_unpacklo_epi8(x, x); // each value in the top byte of its lane, after the next
+      x = _mm_unpacklo_epi8(x, x);
     }
     else
     {
-      x = _mm_cvtsi64_si128(static_cast<long long>(bits));
+      x = _mm_set_epi64x(0, static_cast<long long>(bits));
     }
     x = _mm_unpacklo_epi16(x, x);
     return std::is_signed<T>::value ? _mm_srai_epi32(x, shift) : _mm_srli_epi32(x, shift);
