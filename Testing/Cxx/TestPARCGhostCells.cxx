@@ -5,9 +5,9 @@
 // float ray-cast images, composited front to back, match the whole volume's to the float
 // rounding of their sample points (point and cell scalars, shaded; the colour table over
 // the colour function's own range, ColorRangeType NATIVE, as the pieces' data ranges
-// differ), and each piece's image
-// is bit-identical with and without acceleration. With shadows, pieces holding the whole
-// volume in their ghost layers cast the whole volume's shadows.
+// differ), and each piece's image is bit-identical with and without acceleration. With
+// shadows, pieces holding the whole volume in their ghost layers cast the whole volume's
+// shadows.
 #include "parcTestScene.h"
 
 #include <vtkCellData.h>
