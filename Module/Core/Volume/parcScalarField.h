@@ -479,11 +479,77 @@ private:
   /// held in registers (no store and load again). With x neighbours next to each other
   /// (Step[0] = 1) each pair of corners (x offsets 0 and 1) is loaded at once and split
   /// apart four lanes at a time: the same values as one load a corner.
+  /// LoadGroupCorners of 8-bit values whose x neighbours are next to each other: the pairs
+  /// of corners of rows y = 0 and 1 (z = 0), then of y = 0 and 1 (z = 1), each into the
+  /// 16-bit words of one register (row after row, lane after lane), then split apart into
+  /// even and odd corners: the same values.
+  PARC_HOT_INLINE void LoadBytePairs(
+    const std::ptrdiff_t* offsets, const std::ptrdiff_t corner[8], __m128 c[8]) const
+  {
+    const T* base[4] = { this->Data + offsets[0], this->Data + offsets[1],
+      this->Data + offsets[2], this->Data + offsets[3] };
+    auto pair = [&](int l, int m) {
+      std::uint16_t p;
+      std::memcpy(&p, base[l] + corner[m], sizeof(p));
+      return static_cast<int>(p);
+    };
+    __m128i rows[2];
+    for (int z = 0; z < 2; ++z)
+    {
+      const int m = 4 * z;
+      __m128i w = _mm_cvtsi32_si128(pair(0, m));
+      w = _mm_insert_epi16(w, pair(1, m), 1);
+      w = _mm_insert_epi16(w, pair(2, m), 2);
+      w = _mm_insert_epi16(w, pair(3, m), 3);
+      w = _mm_insert_epi16(w, pair(0, m + 2), 4);
+      w = _mm_insert_epi16(w, pair(1, m + 2), 5);
+      w = _mm_insert_epi16(w, pair(2, m + 2), 6);
+      w = _mm_insert_epi16(w, pair(3, m + 2), 7);
+      rows[z] = w;
+    }
+    const __m128i zero = _mm_setzero_si128();
+    for (int z = 0; z < 2; ++z)
+    {
+      // The even corner's bits low (x86), as 16-bit words.
+      __m128i even, odd;
+      if (std::is_signed<T>::value)
+      {
+        even = _mm_srai_epi16(_mm_slli_epi16(rows[z], 8), 8);
+        odd = _mm_srai_epi16(rows[z], 8);
+      }
+      else
+      {
+        even = _mm_and_si128(rows[z], _mm_set1_epi16(0xFF));
+        odd = _mm_srli_epi16(rows[z], 8);
+      }
+      // Words to 32 bits (signed: the word in both halves, shifted down).
+      auto low = [&](__m128i v) {
+        return std::is_signed<T>::value ? _mm_srai_epi32(_mm_unpacklo_epi16(v, v), 16)
+                                        : _mm_unpacklo_epi16(v, zero);
+      };
+      auto high = [&](__m128i v) {
+        return std::is_signed<T>::value ? _mm_srai_epi32(_mm_unpackhi_epi16(v, v), 16)
+                                        : _mm_unpackhi_epi16(v, zero);
+      };
+      c[4 * z] = _mm_cvtepi32_ps(low(even));
+      c[4 * z + 1] = _mm_cvtepi32_ps(low(odd));
+      c[4 * z + 2] = _mm_cvtepi32_ps(high(even));
+      c[4 * z + 3] = _mm_cvtepi32_ps(high(odd));
+    }
+  }
   PARC_HOT_INLINE void LoadGroupCorners(
     const std::ptrdiff_t* offsets, const std::ptrdiff_t corner[8], __m128 c[8]) const
   {
     if constexpr (PairedCorners)
     {
+      if constexpr (sizeof(T) == 1)
+      {
+        if (this->Step[0] == 1)
+        {
+          this->LoadBytePairs(offsets, corner, c);
+          return;
+        }
+      }
       if (this->Step[0] == 1)
       {
         constexpr int bits = 8 * sizeof(T);
