@@ -769,22 +769,31 @@ struct RayContext
         break;
       }
     }
-    this->BatchColors();
-    if (this->P.Shade)
-    {
-      this->ShadeBatch(k0);
-    }
     this->Stats.ContributingSamples += static_cast<std::uint64_t>(b.Count);
     this->CountEmptyCells(sampled, stops ? visited : n);
     if (b.Count > 0)
     {
       this->RecordHit((k0 + b.Lane[0]) * this->Dt); // the first is the nearest
     }
-    for (int i = 0; i < b.Count; ++i)
+#if defined(__SSE2__)
+    if (!this->P.Shade && !this->Events)
     {
-      for (int c = 0; c < 3; ++c)
+      this->AddBatchColors(out);
+    }
+    else
+#endif
+    {
+      this->BatchColors();
+      if (this->P.Shade)
       {
-        out.Rgb[c] += b.Weight[i] * b.Rgb[c][i];
+        this->ShadeBatch(k0);
+      }
+      for (int i = 0; i < b.Count; ++i)
+      {
+        for (int c = 0; c < 3; ++c)
+        {
+          out.Rgb[c] += b.Weight[i] * b.Rgb[c][i];
+        }
       }
     }
     out.Alpha = left.Alpha;
@@ -800,6 +809,34 @@ struct RayContext
     }
     return !stops;
   }
+#if defined(__SSE2__)
+  /// Adds the weighted colours of the lanes of Batch to out, unshaded, as BatchColors and
+  /// CompositeBlock's sums do (the same bits) without turning lanes into channels.
+  PARC_HOT_INLINE void AddBatchColors(EventCompositor& out)
+  {
+    const LaneBatch& b = this->Batch;
+    __m128 sum = _mm_setr_ps(out.Rgb[0], out.Rgb[1], out.Rgb[2], 0.f);
+    for (int i = 0; i < b.Count; i += 4)
+    {
+      __m128 c[4];
+      this->P.Color.LookupFour(this->BatchValues(i), c);
+      for (int l = 0; l < std::min(4, b.Count - i); ++l)
+      {
+        sum = _mm_add_ps(sum, _mm_mul_ps(_mm_set1_ps(b.Weight[i + l]), c[l]));
+      }
+    }
+    alignas(16) float rgb[4];
+    _mm_store_ps(rgb, sum);
+    std::copy_n(rgb, 3, out.Rgb);
+  }
+  /// The values of lanes i .. i + 3 of Batch (its last lane repeated past Count).
+  PARC_HOT_INLINE __m128 BatchValues(int i) const
+  {
+    const LaneBatch& b = this->Batch;
+    const auto value = [&](int l) { return this->Value(b.Lane[std::min(i + l, b.Count - 1)]); };
+    return _mm_setr_ps(value(0), value(1), value(2), value(3));
+  }
+#endif
   /// The colours of the lanes of Batch (see CompositeBlock).
   PARC_HOT_INLINE void BatchColors()
   {
@@ -808,9 +845,8 @@ struct RayContext
     for (int i = 0; i < b.Count; i += 4)
     {
       // Four lanes' (red, green, blue, 0), turned into channels of four lanes.
-      const auto value = [&](int l) { return this->Value(b.Lane[std::min(i + l, b.Count - 1)]); };
       __m128 c[4];
-      this->P.Color.LookupFour(_mm_setr_ps(value(0), value(1), value(2), value(3)), c);
+      this->P.Color.LookupFour(this->BatchValues(i), c);
       _MM_TRANSPOSE4_PS(c[0], c[1], c[2], c[3]);
       for (int ch = 0; ch < 3; ++ch)
       {
