@@ -105,8 +105,8 @@ TEST(SceneCaster, OneVolumeIsItsOwnImage)
 // stops, colours, shading several lanes at a time); behind a mask (here all ones, hiding
 // nothing) each sample goes the whole way alone. Both give the same bits, events and counts,
 // alone and in a scene, under lights from every side with odd, even and fractional
-// specular powers, opacity corrections by square roots and by powers, constant and varying
-// gradient opacity, and rays that stop early.
+// specular powers, with quantized normals, opacity corrections by square roots and by
+// powers, constant and varying gradient opacity, and rays that stop early.
 TEST(SceneCaster, StagedCompositingIsPerSampleCompositing)
 {
   const parc::ScalarField field = Blobs();
@@ -124,8 +124,19 @@ TEST(SceneCaster, StagedCompositingIsPerSampleCompositing)
     c.Position = { 30.0, -60.0, 5.0 };
     p.Lights = { a, b, c };
   };
+  parc::NormalVolume normals;
+  normals.Build(field);
+  auto quantized = [&normals](CastParameters& p) {
+    p.Shading = parc::ShadingModel::QuantizedNormals;
+    p.Normals = &normals;
+  };
   const Variant variants[] = {
     { "unshaded", [](CastParameters& p) { p.Shade = false; } },
+    { "quantized normals", quantized },
+    { "quantized normals, three lights", [&](CastParameters& p) { quantized(p); lights(p); } },
+    { "quantized normals, nearest", [&](CastParameters& p) {
+       quantized(p);
+       p.Interp = parc::Interpolation::Nearest; } },
     { "one light", [](CastParameters&) {} },
     { "three lights, power 3", [&](CastParameters& p) { lights(p); p.SpecularPower = 3.0; } },
     { "three lights, power 1", [&](CastParameters& p) { lights(p); p.SpecularPower = 1.0; } },
@@ -165,6 +176,7 @@ TEST(SceneCaster, StagedCompositingIsPerSampleCompositing)
     parc::RayCaster stagedCaster, maskedCaster;
     ASSERT_TRUE(stagedCaster.Prepare({ &field, &staged }));
     ASSERT_TRUE(maskedCaster.Prepare({ &field, &masked }));
+    EXPECT_EQ(staged.Normals != nullptr, stagedCaster.UsesQuantizedNormals()) << variant.Name;
     for (const double angle : { 0.3, 2.0 })
     {
       const parc::Camera view = ParallelView(angle);

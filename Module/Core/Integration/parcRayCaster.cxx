@@ -776,7 +776,7 @@ struct RayContext
       this->RecordHit((k0 + b.Lane[0]) * this->Dt); // the first is the nearest
     }
 #if defined(__SSE2__)
-    if (!this->P.Shade && !this->Events)
+    if (!this->Events && (!this->P.Shade || this->InterpolatesNormalShading()))
     {
       this->AddBatchColors(out);
     }
@@ -809,12 +809,19 @@ struct RayContext
     }
     return !stops;
   }
+  /// Whether shaded samples interpolate the shading of their cells' quantized normals.
+  bool InterpolatesNormalShading() const
+  {
+    return !this->K.NormalShading.empty() && this->P.Interp == Interpolation::Linear;
+  }
 #if defined(__SSE2__)
-  /// Adds the weighted colours of the lanes of Batch to out, unshaded, as BatchColors and
+  /// Adds the weighted colours of the lanes of Batch to out, unshaded or shaded by
+  /// quantized normals (InterpolatesNormalShading), as BatchColors, ShadeBatch and
   /// CompositeBlock's sums do (the same bits) without turning lanes into channels.
   PARC_HOT_INLINE void AddBatchColors(EventCompositor& out)
   {
     const LaneBatch& b = this->Batch;
+    const bool shade = this->P.Shade;
     __m128 sum = _mm_setr_ps(out.Rgb[0], out.Rgb[1], out.Rgb[2], 0.f);
     for (int i = 0; i < b.Count; i += 4)
     {
@@ -822,12 +829,28 @@ struct RayContext
       this->P.Color.LookupFour(this->BatchValues(i), c);
       for (int l = 0; l < std::min(4, b.Count - i); ++l)
       {
-        sum = _mm_add_ps(sum, _mm_mul_ps(_mm_set1_ps(b.Weight[i + l]), c[l]));
+        const __m128 rgb = shade ? this->ShadeByNormals(b.Lane[i + l], c[l]) : c[l];
+        sum = _mm_add_ps(sum, _mm_mul_ps(_mm_set1_ps(b.Weight[i + l]), rgb));
       }
     }
     alignas(16) float rgb[4];
     _mm_store_ps(rgb, sum);
     std::copy_n(rgb, 3, out.Rgb);
+  }
+  /// ShadeQuantized of lane j of the block, colour (red, green, blue, 0) rgb, in a register.
+  PARC_HOT_INLINE __m128 ShadeByNormals(int j, __m128 rgb) const
+  {
+    const LatticeBlock& block = this->Block;
+    const int cell[3] = { block.Cell[0][j], block.Cell[1][j], block.Cell[2][j] };
+    const float f[3] = { block.Fractions[0][j], block.Fractions[1][j], block.Fractions[2][j] };
+    std::uint16_t codes[8];
+    this->P.Normals->CellCorners(cell, codes);
+    alignas(16) float diffuse[4], specular[4];
+    InterpolateFactors(this->K.NormalShading.data(), codes, f, diffuse, specular);
+    const __m128 ambient = _mm_set1_ps(static_cast<float>(this->P.Ambient));
+    const __m128 lit = _mm_add_ps(
+      _mm_mul_ps(rgb, _mm_add_ps(ambient, _mm_load_ps(diffuse))), _mm_load_ps(specular));
+    return _mm_min_ps(_mm_set1_ps(1.f), lit); // std::min(lit, 1.f), NaN kept
   }
   /// The values of lanes i .. i + 3 of Batch (its last lane repeated past Count).
   PARC_HOT_INLINE __m128 BatchValues(int i) const
