@@ -169,6 +169,25 @@ std::vector<RayCaster::ShadingFactors> NormalShadingTable(
   }
   return table;
 }
+
+/// The (diffuse, specular) pairs of table's factors when each is the same for red, green
+/// and blue; else empty (see RenderConstants::GreyNormalShading).
+std::vector<float> GreyFactors(const std::vector<RayCaster::ShadingFactors>& table)
+{
+  std::vector<float> pairs;
+  pairs.reserve(2 * table.size());
+  for (const RayCaster::ShadingFactors& f : table)
+  {
+    if (!(f.Diffuse[0] == f.Diffuse[1] && f.Diffuse[0] == f.Diffuse[2] &&
+          f.Specular[0] == f.Specular[1] && f.Specular[0] == f.Specular[2]))
+    {
+      return {};
+    }
+    pairs.push_back(f.Diffuse[0]);
+    pairs.push_back(f.Specular[0]);
+  }
+  return pairs;
+}
 }
 
 bool RayCaster::Prepare(const Volume& volume)
@@ -285,6 +304,7 @@ bool RayCaster::Prepare(const Volume& volume)
   k.NormalShading = QuantizedNormalsApply(*field, *parameters)
     ? NormalShadingTable(*parameters, volume.WorldToIndex)
     : std::vector<ShadingFactors>(); // frees the table of an earlier render
+  k.GreyNormalShading = GreyFactors(k.NormalShading);
   k.GradientNeeded = (parameters->Shade && k.NormalShading.empty()) ||
     (parameters->UseGradientOpacity && !k.GradientOpacityConstant) || labelGradients;
   k.ColorByValue = k.OpacityByValue && parameters->ColorShiftCount == 0;
@@ -443,6 +463,28 @@ PARC_HOT_INLINE void InterpolateFactors(const RayCaster::ShadingFactors* table,
   }
 #endif
 }
+
+#if defined(__SSE2__)
+/// InterpolateFactors of (diffuse, specular) pairs (RenderConstants::GreyNormalShading):
+/// the pair in lanes 0 and 1, the same bits as either colour channel of InterpolateFactors.
+PARC_HOT_INLINE __m128 InterpolateGreyFactors(
+  const float* pairs, const std::uint16_t codes[8], const float f[3])
+{
+  // Corners a and b side by side: (diffuse a, specular a, diffuse b, specular b).
+  const auto two = [&](int a, int b) {
+    const __m128 low =
+      _mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(pairs + 2 * codes[a]));
+    return _mm_loadh_pi(low, reinterpret_cast<const __m64*>(pairs + 2 * codes[b]));
+  };
+  const auto lerp = [](__m128 a, __m128 b, float t) {
+    return _mm_add_ps(a, _mm_mul_ps(_mm_set1_ps(t), _mm_sub_ps(b, a)));
+  };
+  const __m128 z0 = lerp(two(0, 2), two(1, 3), f[0]); // along x: corners 0 2 | z = 0
+  const __m128 z1 = lerp(two(4, 6), two(5, 7), f[0]); // corners 4 6 | z = 1
+  const __m128 y = lerp(_mm_movelh_ps(z0, z1), _mm_movehl_ps(z1, z0), f[1]); // z = 0 | 1
+  return lerp(y, _mm_movehl_ps(y, y), f[2]);
+}
+#endif
 
 /// Appends an event, out of the sample loops (only several volumes keep events).
 PARC_NOINLINE void AppendEvent(
@@ -845,11 +887,22 @@ struct RayContext
     const float f[3] = { block.Fractions[0][j], block.Fractions[1][j], block.Fractions[2][j] };
     std::uint16_t codes[8];
     this->P.Normals->CellCorners(cell, codes);
-    alignas(16) float diffuse[4], specular[4];
-    InterpolateFactors(this->K.NormalShading.data(), codes, f, diffuse, specular);
+    __m128 diffuse, specular;
+    if (!this->K.GreyNormalShading.empty())
+    {
+      const __m128 pair = InterpolateGreyFactors(this->K.GreyNormalShading.data(), codes, f);
+      diffuse = _mm_shuffle_ps(pair, pair, 0x00);
+      specular = _mm_shuffle_ps(pair, pair, 0x55);
+    }
+    else
+    {
+      alignas(16) float d[4], s[4];
+      InterpolateFactors(this->K.NormalShading.data(), codes, f, d, s);
+      diffuse = _mm_load_ps(d);
+      specular = _mm_load_ps(s);
+    }
     const __m128 ambient = _mm_set1_ps(static_cast<float>(this->P.Ambient));
-    const __m128 lit = _mm_add_ps(
-      _mm_mul_ps(rgb, _mm_add_ps(ambient, _mm_load_ps(diffuse))), _mm_load_ps(specular));
+    const __m128 lit = _mm_add_ps(_mm_mul_ps(rgb, _mm_add_ps(ambient, diffuse)), specular);
     return _mm_min_ps(_mm_set1_ps(1.f), lit); // std::min(lit, 1.f), NaN kept
   }
   /// The values of lanes i .. i + 3 of Batch (its last lane repeated past Count).
