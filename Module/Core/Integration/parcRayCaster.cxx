@@ -308,6 +308,11 @@ bool RayCaster::Prepare(const Volume& volume)
   k.GradientNeeded = (parameters->Shade && k.NormalShading.empty()) ||
     (parameters->UseGradientOpacity && !k.GradientOpacityConstant) || labelGradients;
   k.ColorByValue = k.OpacityByValue && parameters->ColorShiftCount == 0;
+  k.GreyLights = std::all_of(k.DirectionalLights.begin(), k.DirectionalLights.end(),
+    [](const DirectionalLight& light) {
+      return light.Diffuse.X == light.Diffuse.Y && light.Diffuse.X == light.Diffuse.Z &&
+        light.Specular.X == light.Specular.Y && light.Specular.X == light.Specular.Z;
+    });
   k.ShadeLanesTogether = parameters->Shade && k.NormalShading.empty() &&
     k.PositionalLights.empty() && k.DirectionalLights.size() <= MaxHoistedLights &&
     k.IntegerSpecularPower >= 0 &&
@@ -1273,6 +1278,7 @@ void RayContext<View>::ShadeLanes()
   };
   const RayCaster::DirectionalLight* lights = this->K.DirectionalLights.data();
   const std::size_t count = this->K.DirectionalLights.size();
+  const int channels = this->K.GreyLights ? 1 : 3;
   for (int i = 0; i < b.Count; i += 4)
   {
     const __m128 gx = _mm_load_ps(b.Gradient[0] + i), gy = _mm_load_ps(b.Gradient[1] + i);
@@ -1303,13 +1309,18 @@ void RayContext<View>::ShadeLanes()
         x = _mm_mul_ps(x, x);
       }
       const __m128 spec = _mm_and_ps(_mm_cmpgt_ps(ndh, zero), power);
-      for (int c = 0; c < 3; ++c)
+      for (int c = 0; c < channels; ++c)
       {
         const __m128 d = _mm_set1_ps((&light.Diffuse.X)[c]);
         const __m128 sc = _mm_set1_ps((&light.Specular.X)[c]);
         diffuse[c] = Select(lit, _mm_add_ps(diffuse[c], _mm_mul_ps(ndl, d)), diffuse[c]);
         specular[c] = Select(lit, _mm_add_ps(specular[c], _mm_mul_ps(spec, sc)), specular[c]);
       }
+    }
+    for (int c = channels; c < 3; ++c) // white lights: the same as red
+    {
+      diffuse[c] = diffuse[0];
+      specular[c] = specular[0];
     }
     for (int c = 0; c < 3; ++c)
     {

@@ -306,6 +306,9 @@ public:
     /// transpose of the world-to-index matrix's linear part.
     float GradientToWorld[9] = { 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f };
     int IntegerSpecularPower = -1; ///< SpecularPower when it is a small whole number
+    /// Whether every directional light's diffuse and specular factors are the same for
+    /// red, green and blue (white lights): one channel's shading serves all three.
+    bool GreyLights = false;
     std::vector<DirectionalLight> DirectionalLights;
     std::vector<PositionalLight> PositionalLights;
     std::vector<double> SortedIsoValues;
