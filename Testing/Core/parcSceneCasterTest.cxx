@@ -147,6 +147,9 @@ TEST(SceneCaster, StagedCompositingIsPerSampleCompositing)
     { "unit distance", [](CastParameters& p) { p.SampleDistance = 1.0; } },
     { "opaque, rays stop", [](CastParameters& p) {
        p.Opacity.SetNodes({ 0.0, 60.0, 120.0 }, { 0.0, 0.0, 1.0 }, true); } },
+    { "unshaded, rays stop", [](CastParameters& p) {
+       p.Shade = false;
+       p.Opacity.SetNodes({ 0.0, 60.0, 120.0 }, { 0.0, 0.0, 1.0 }, true); } },
     { "constant gradient opacity", [](CastParameters& p) {
        p.UseGradientOpacity = true;
        p.GradientOpacity.SetConstant(0.5); } },

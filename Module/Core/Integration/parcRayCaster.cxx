@@ -793,10 +793,17 @@ struct RayContext
   /// the opacities, the lanes composited before the ray may stop with their weights (the
   /// compositor's own arithmetic, so that no colour, gradient or shading is computed for a
   /// lane that is not), their colours, their shading, then the weighted colours in ray
-  /// order. The same bits, events and counts as ContributingSamples with SampleColor,
-  /// ShadeSample and Over; returns false (visited set) when the ray stops.
+  /// order (unshaded samples without events: CompositeUnshadedBlock). The same bits, events
+  /// and counts as ContributingSamples with SampleColor, ShadeSample and Over; returns false
+  /// (visited set) when the ray stops.
   PARC_HOT_INLINE bool CompositeBlock(long k0, int n, int& visited, EventCompositor& out)
   {
+#if defined(__SSE2__)
+    if (!this->P.Shade && !this->Events)
+    {
+      return this->CompositeUnshadedBlock(k0, n, visited, out);
+    }
+#endif
     const unsigned sampled = this->SampleBlock(k0, n);
     const unsigned lanes = this->LaneOpacities(this->MayContribute(n) & sampled);
     LaneBatch& b = this->Batch;
@@ -823,9 +830,9 @@ struct RayContext
       this->RecordHit((k0 + b.Lane[0]) * this->Dt); // the first is the nearest
     }
 #if defined(__SSE2__)
-    if (!this->Events && (!this->P.Shade || this->InterpolatesNormalShading()))
+    if (!this->Events && this->InterpolatesNormalShading())
     {
-      this->AddBatchColors(out);
+      this->AddNormalShadedColors(out);
     }
     else
 #endif
@@ -862,13 +869,12 @@ struct RayContext
     return !this->K.NormalShading.empty() && this->P.Interp == Interpolation::Linear;
   }
 #if defined(__SSE2__)
-  /// Adds the weighted colours of the lanes of Batch to out, unshaded or shaded by
-  /// quantized normals (InterpolatesNormalShading), as BatchColors, ShadeBatch and
-  /// CompositeBlock's sums do (the same bits) without turning lanes into channels.
-  PARC_HOT_INLINE void AddBatchColors(EventCompositor& out)
+  /// Adds the weighted colours of the lanes of Batch, shaded by quantized normals
+  /// (InterpolatesNormalShading), to out, as BatchColors, ShadeBatch and CompositeBlock's
+  /// sums do (the same bits) without turning lanes into channels.
+  PARC_HOT_INLINE void AddNormalShadedColors(EventCompositor& out)
   {
     const LaneBatch& b = this->Batch;
-    const bool shade = this->P.Shade;
     __m128 sum = _mm_setr_ps(out.Rgb[0], out.Rgb[1], out.Rgb[2], 0.f);
     for (int i = 0; i < b.Count; i += 4)
     {
@@ -876,7 +882,7 @@ struct RayContext
       this->P.Color.LookupFour(this->BatchValues(i), c);
       for (int l = 0; l < std::min(4, b.Count - i); ++l)
       {
-        const __m128 rgb = shade ? this->ShadeByNormals(b.Lane[i + l], c[l]) : c[l];
+        const __m128 rgb = this->ShadeByNormals(b.Lane[i + l], c[l]);
         sum = _mm_add_ps(sum, _mm_mul_ps(_mm_set1_ps(b.Weight[i + l]), rgb));
       }
     }
@@ -916,6 +922,65 @@ struct RayContext
     const LaneBatch& b = this->Batch;
     const auto value = [&](int l) { return this->Value(b.Lane[std::min(i + l, b.Count - 1)]); };
     return _mm_setr_ps(value(0), value(1), value(2), value(3));
+  }
+#endif
+#if defined(__SSE2__)
+  /// CompositeBlock of unshaded samples without events, the same bits and counts, over
+  /// every lane rather than those gathered into Batch: a lane of opacity 0 changes nothing
+  /// (its weight is 0 and the transparency is multiplied by 1), and its weight times its
+  /// colour adds 0.
+  PARC_HOT_INLINE bool CompositeUnshadedBlock(
+    long k0, int n, int& visited, EventCompositor& out)
+  {
+    const unsigned sampled = this->SampleBlock(k0, n);
+    const unsigned lanes = this->LaneOpacities(this->MayContribute(n) & sampled);
+    if (lanes == 0)
+    {
+      this->CountEmptyCells(sampled, n);
+      return true;
+    }
+    alignas(16) float weight[LatticeBlock::Size];
+    EventCompositor left = out;
+    int end = n; // the lanes composited: those before end
+    bool stops = false;
+    for (int j = 0; j < n; ++j)
+    {
+      weight[j] = left.Absorb(this->Opacities[j]);
+      if (!left.Below(this->P.TerminationOpacity))
+      {
+        stops = true;
+        end = j + 1;
+        break;
+      }
+    }
+    const unsigned composited = lanes & ((1u << end) - 1u);
+    this->Stats.ContributingSamples += static_cast<std::uint64_t>(PopCount(composited));
+    this->CountEmptyCells(sampled, end);
+    this->RecordHit((k0 + CountTrailingZeros(composited)) * this->Dt);
+    __m128 sum = _mm_setr_ps(out.Rgb[0], out.Rgb[1], out.Rgb[2], 0.f);
+    for (int first = 0; first < end; first += LatticeBlock::Lanes)
+    {
+      if (((composited >> first) & ((1u << LatticeBlock::Lanes) - 1u)) == 0)
+      {
+        continue;
+      }
+      __m128 c[4];
+      this->P.Color.LookupFour(_mm_loadu_ps(this->Block.Values + first), c);
+      for (int l = 0; l < std::min(4, end - first); ++l)
+      {
+        sum = _mm_add_ps(sum, _mm_mul_ps(_mm_set1_ps(weight[first + l]), c[l]));
+      }
+    }
+    alignas(16) float rgb[4];
+    _mm_store_ps(rgb, sum);
+    std::copy_n(rgb, 3, out.Rgb);
+    out.Alpha = left.Alpha;
+    out.Transparency = left.Transparency;
+    if (stops)
+    {
+      visited = end;
+    }
+    return !stops;
   }
 #endif
   /// The colours of the lanes of Batch (see CompositeBlock).
