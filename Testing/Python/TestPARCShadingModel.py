@@ -11,9 +11,12 @@ from TestPARCPipeline import make_scene
 from vtkmodules.vtkRenderingCore import vtkLight
 
 VOXELS = 41 ** 3  # make_scene's wavelet
-# What the model holds: 2 bytes of normal per voxel, and a table of 32 bytes per normal
-# (diffuse and specular factors) for the 128 x 128 normals and the zero one.
-NORMALS_BYTES = 2 * VOXELS + 32 * (1 + 128 * 128)
+NORMALS = 1 + 128 * 128  # the 128 x 128 directions and the zero normal
+# What the model holds: 2 bytes of normal per voxel, and a table of the diffuse and
+# specular factors of each normal: one of each under white lights (8 bytes), one of each
+# per colour channel otherwise (32 bytes).
+NORMALS_BYTES = 2 * VOXELS + 8 * NORMALS
+COLOURED_TABLE_BYTES = 32 * NORMALS
 
 
 class TestPARCShadingModel(unittest.TestCase):
@@ -57,6 +60,33 @@ class TestPARCShadingModel(unittest.TestCase):
         self.assertEqual(mapper.GetLastShadingModel(), vtkPARCVolumeMapper.SHADING_EXACT)
         self.assertEqual(quantized_memory - mapper.GetMemorySize(), NORMALS_BYTES,
                          "the normals are freed")
+
+    def test_coloured_lights_take_a_table_per_channel(self):
+        mapper, window = make_scene()
+        mapper.SetShadingModelToQuantizedNormals()
+        white = self.render(mapper, window)
+        white_memory = mapper.GetMemorySize()
+        renderer = window.GetRenderers().GetFirstRenderer()
+        light = vtkLight()
+        light.SetLightTypeToCameraLight()
+        light.SetColor(1.0, 0.5, 0.25)
+        renderer.AddLight(light)
+        coloured = self.render(mapper, window)
+        self.assertEqual(mapper.GetLastShadingModel(),
+                         vtkPARCVolumeMapper.SHADING_QUANTIZED_NORMALS)
+        self.assertEqual(mapper.GetMemorySize() - white_memory,
+                         COLOURED_TABLE_BYTES - 8 * NORMALS)
+        self.assertFalse(np.array_equal(coloured, white))
+        # The orange light lights red more than blue: the channels are shaded apart.
+        lit = white[..., 3] > 0.1
+
+        def red_over_blue(image):
+            return image[..., 0][lit].sum() / image[..., 2][lit].sum()
+        self.assertGreater(red_over_blue(coloured), 1.05 * red_over_blue(white))
+        for mode in (vtkPARCVolumeMapper.ACCELERATION_DEPTH_BUFFER,
+                     vtkPARCVolumeMapper.ACCELERATION_COLOR_BUFFER):
+            self.assertTrue(np.array_equal(self.render(mapper, window, mode), coloured),
+                            vtkPARCVolumeMapper.GetAccelerationModeAsString(mode))
 
     def test_positional_lights_are_shaded_exactly(self):
         mapper, window = make_scene()

@@ -174,6 +174,7 @@ std::vector<RayCaster::ShadingFactors> NormalShadingTable(
 /// and blue; else empty (see RenderConstants::GreyNormalShading).
 std::vector<float> GreyFactors(const std::vector<RayCaster::ShadingFactors>& table)
 {
+#if defined(__SSE2__)
   std::vector<float> pairs;
   pairs.reserve(2 * table.size());
   for (const RayCaster::ShadingFactors& f : table)
@@ -187,6 +188,10 @@ std::vector<float> GreyFactors(const std::vector<RayCaster::ShadingFactors>& tab
     pairs.push_back(f.Specular[0]);
   }
   return pairs;
+#else
+  static_cast<void>(table);
+  return {}; // InterpolateGreyFactors needs SSE
+#endif
 }
 }
 
@@ -301,11 +306,15 @@ bool RayCaster::Prepare(const Volume& volume)
       k.IsoThresholds.push_back(FloatAtLeast(v));
     }
   }
-  k.NormalShading = QuantizedNormalsApply(*field, *parameters)
+  // One table, or none; the tables of an earlier render are freed.
+  k.QuantizedNormals = QuantizedNormalsApply(*field, *parameters);
+  std::vector<ShadingFactors> factors = k.QuantizedNormals
     ? NormalShadingTable(*parameters, volume.WorldToIndex)
-    : std::vector<ShadingFactors>(); // frees the table of an earlier render
-  k.GreyNormalShading = GreyFactors(k.NormalShading);
-  k.GradientNeeded = (parameters->Shade && k.NormalShading.empty()) ||
+    : std::vector<ShadingFactors>();
+  k.GreyNormalShading = GreyFactors(factors);
+  k.NormalShading =
+    k.GreyNormalShading.empty() ? std::move(factors) : std::vector<ShadingFactors>();
+  k.GradientNeeded = (parameters->Shade && !k.QuantizedNormals) ||
     (parameters->UseGradientOpacity && !k.GradientOpacityConstant) || labelGradients;
   k.ColorByValue = k.OpacityByValue && parameters->ColorShiftCount == 0;
   k.GreyLights = std::all_of(k.DirectionalLights.begin(), k.DirectionalLights.end(),
@@ -313,7 +322,7 @@ bool RayCaster::Prepare(const Volume& volume)
       return light.Diffuse.X == light.Diffuse.Y && light.Diffuse.X == light.Diffuse.Z &&
         light.Specular.X == light.Specular.Y && light.Specular.X == light.Specular.Z;
     });
-  k.ShadeLanesTogether = parameters->Shade && k.NormalShading.empty() &&
+  k.ShadeLanesTogether = parameters->Shade && !k.QuantizedNormals &&
     k.PositionalLights.empty() && k.DirectionalLights.size() <= MaxHoistedLights &&
     k.IntegerSpecularPower >= 0 &&
     std::none_of(k.DirectionalLights.begin(), k.DirectionalLights.end(),
@@ -866,7 +875,7 @@ struct RayContext
   /// Whether shaded samples interpolate the shading of their cells' quantized normals.
   bool InterpolatesNormalShading() const
   {
-    return !this->K.NormalShading.empty() && this->P.Interp == Interpolation::Linear;
+    return this->K.QuantizedNormals && this->P.Interp == Interpolation::Linear;
   }
 #if defined(__SSE2__)
   /// Adds the weighted colours of the lanes of Batch, shaded by quantized normals
@@ -899,22 +908,28 @@ struct RayContext
     std::uint16_t codes[8];
     this->P.Normals->CellCorners(cell, codes);
     __m128 diffuse, specular;
+    this->InterpolateNormalFactors(codes, f, diffuse, specular);
+    const __m128 ambient = _mm_set1_ps(static_cast<float>(this->P.Ambient));
+    const __m128 lit = _mm_add_ps(_mm_mul_ps(rgb, _mm_add_ps(ambient, diffuse)), specular);
+    return _mm_min_ps(_mm_set1_ps(1.f), lit); // std::min(lit, 1.f), NaN kept
+  }
+  /// The diffuse and specular factors (red, green, blue; the fourth lane is not one)
+  /// interpolated at fractions f from the normals of a cell's corners (codes) with the
+  /// render's table.
+  PARC_HOT_INLINE void InterpolateNormalFactors(
+    const std::uint16_t codes[8], const float f[3], __m128& diffuse, __m128& specular) const
+  {
     if (!this->K.GreyNormalShading.empty())
     {
       const __m128 pair = InterpolateGreyFactors(this->K.GreyNormalShading.data(), codes, f);
       diffuse = _mm_shuffle_ps(pair, pair, 0x00);
       specular = _mm_shuffle_ps(pair, pair, 0x55);
+      return;
     }
-    else
-    {
-      alignas(16) float d[4], s[4];
-      InterpolateFactors(this->K.NormalShading.data(), codes, f, d, s);
-      diffuse = _mm_load_ps(d);
-      specular = _mm_load_ps(s);
-    }
-    const __m128 ambient = _mm_set1_ps(static_cast<float>(this->P.Ambient));
-    const __m128 lit = _mm_add_ps(_mm_mul_ps(rgb, _mm_add_ps(ambient, diffuse)), specular);
-    return _mm_min_ps(_mm_set1_ps(1.f), lit); // std::min(lit, 1.f), NaN kept
+    alignas(16) float d[4], s[4];
+    InterpolateFactors(this->K.NormalShading.data(), codes, f, d, s);
+    diffuse = _mm_load_ps(d);
+    specular = _mm_load_ps(s);
   }
   /// The values of lanes i .. i + 3 of Batch (its last lane repeated past Count).
   PARC_HOT_INLINE __m128 BatchValues(int i) const
@@ -1268,7 +1283,7 @@ struct RayContext
   PARC_HOT_INLINE void ShadeSample(
     float rgb[3], double t, int j, const Vec3f& g, bool haveGradient)
   {
-    if (!this->K.NormalShading.empty())
+    if (this->K.QuantizedNormals)
     {
       this->ShadeQuantized(rgb, t, j);
       return;
@@ -1413,15 +1428,23 @@ template <class View>
 void RayContext<View>::ShadeQuantized(float rgb[3], double t, int j) const
 {
   const NormalVolume& normals = *this->P.Normals;
-  const RayCaster::ShadingFactors* table = this->K.NormalShading.data();
-  float diffuse[4], specular[4];
+  alignas(16) float diffuse[4], specular[4];
   if (this->P.Interp == Interpolation::Nearest)
   {
     int voxel[3];
     NearestVoxel(this->IndexPosition(t), normals.GetDimensions(), voxel);
-    const RayCaster::ShadingFactors& f = table[normals.At(voxel[0], voxel[1], voxel[2])];
-    std::copy_n(f.Diffuse, 4, diffuse);
-    std::copy_n(f.Specular, 4, specular);
+    const std::uint16_t code = normals.At(voxel[0], voxel[1], voxel[2]);
+    if (!this->K.GreyNormalShading.empty())
+    {
+      const float* pair = &this->K.GreyNormalShading[2 * static_cast<std::size_t>(code)];
+      std::fill_n(diffuse, 3, pair[0]);
+      std::fill_n(specular, 3, pair[1]);
+    }
+    else
+    {
+      std::copy_n(this->K.NormalShading[code].Diffuse, 3, diffuse);
+      std::copy_n(this->K.NormalShading[code].Specular, 3, specular);
+    }
   }
   else
   {
@@ -1430,7 +1453,14 @@ void RayContext<View>::ShadeQuantized(float rgb[3], double t, int j) const
       : this->Field.LocationOf(this->IndexPosition(t));
     std::uint16_t codes[8];
     normals.CellCorners(w.Cell, codes);
-    InterpolateFactors(table, codes, w.Fractions, diffuse, specular);
+#if defined(__SSE2__)
+    __m128 d, s;
+    this->InterpolateNormalFactors(codes, w.Fractions, d, s);
+    _mm_store_ps(diffuse, d);
+    _mm_store_ps(specular, s);
+#else
+    InterpolateFactors(this->K.NormalShading.data(), codes, w.Fractions, diffuse, specular);
+#endif
   }
   const float ambient = static_cast<float>(this->P.Ambient);
   for (int c = 0; c < 3; ++c)

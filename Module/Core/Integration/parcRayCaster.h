@@ -242,7 +242,7 @@ public:
   /// constant.
   bool NeedsGradient() const { return this->Constants.GradientNeeded; }
   /// Whether shaded samples use the quantized normals (see CastParameters::Shading).
-  bool UsesQuantizedNormals() const { return !this->Constants.NormalShading.empty(); }
+  bool UsesQuantizedNormals() const { return this->Constants.QuantizedNormals; }
   /// Bytes of the quantized normals' shading table (0 for exact shading).
   std::size_t GetShadingTableMemorySize() const
   {
@@ -315,11 +315,15 @@ public:
     /// Per sorted iso value v, when there are only a few, the smallest float at least v: a
     /// float sample lies below v exactly when it lies below that float.
     std::vector<float> IsoThresholds;
-    /// Per normal code, its shading factors when shaded samples use the quantized normals
-    /// (CastParameters::Shading); empty for exact shading.
+    /// Whether shaded samples use the quantized normals (CastParameters::Shading), shaded
+    /// by one of the two tables below.
+    bool QuantizedNormals = false;
+    /// Per normal code, its shading factors; empty for exact shading and under white
+    /// lights.
     std::vector<ShadingFactors> NormalShading;
-    /// NormalShading as (diffuse, specular) pairs when every factor is the same for red,
-    /// green and blue (white lights: a quarter of the bytes, fewer operations); else empty.
+    /// Per normal code, its (diffuse, specular) pair when every factor is the same for
+    /// red, green and blue (white lights: a quarter of the bytes, fewer operations); else
+    /// empty.
     std::vector<float> GreyNormalShading;
   };
 
