@@ -272,6 +272,7 @@ bool RayCaster::Prepare(const Volume& volume)
     for (int c = 0; c < 3; ++c)
     {
       k.GradientToWorld[3 * r + c] = static_cast<float>(volume.WorldToIndex(c, r));
+      k.GradientToWorldColumns[c][r] = k.GradientToWorld[3 * r + c];
     }
   }
   const double power = parameters->SpecularPower;
@@ -667,10 +668,10 @@ struct RayContext
     this->Stats.DifferenceLoads += (slot.Offset != w.Offset);
     const __m128 g = this->Field.InteriorGradientVector(w, slot);
     // GradientToWorld's columns times g's coordinates, summed in WorldGradient's order.
-    const float* m = this->K.GradientToWorld;
-    const __m128 x = _mm_mul_ps(_mm_setr_ps(m[0], m[3], m[6], 0.f), _mm_shuffle_ps(g, g, 0x00));
-    const __m128 y = _mm_mul_ps(_mm_setr_ps(m[1], m[4], m[7], 0.f), _mm_shuffle_ps(g, g, 0x55));
-    const __m128 z = _mm_mul_ps(_mm_setr_ps(m[2], m[5], m[8], 0.f), _mm_shuffle_ps(g, g, 0xAA));
+    const auto column = [&](int c) { return _mm_load_ps(this->K.GradientToWorldColumns[c]); };
+    const __m128 x = _mm_mul_ps(column(0), _mm_shuffle_ps(g, g, 0x00));
+    const __m128 y = _mm_mul_ps(column(1), _mm_shuffle_ps(g, g, 0x55));
+    const __m128 z = _mm_mul_ps(column(2), _mm_shuffle_ps(g, g, 0xAA));
     _mm_store_ps(world, _mm_add_ps(_mm_add_ps(x, y), z));
     return true;
   }

@@ -305,6 +305,9 @@ public:
     /// World gradient = GradientToWorld (row-major 3x3) times the voxel-index gradient: the
     /// transpose of the world-to-index matrix's linear part.
     float GradientToWorld[9] = { 1.f, 0.f, 0.f, 0.f, 1.f, 0.f, 0.f, 0.f, 1.f };
+    /// GradientToWorld's columns, each with a fourth entry 0 (a register each).
+    alignas(16) float GradientToWorldColumns[3][4] = { { 1.f, 0.f, 0.f, 0.f },
+      { 0.f, 1.f, 0.f, 0.f }, { 0.f, 0.f, 1.f, 0.f } };
     int IntegerSpecularPower = -1; ///< SpecularPower when it is a small whole number
     /// Whether every directional light's diffuse and specular factors are the same for
     /// red, green and blue (white lights): one channel's shading serves all three.
