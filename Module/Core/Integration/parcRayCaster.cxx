@@ -939,8 +939,6 @@ struct RayContext
     const auto value = [&](int l) { return this->Value(b.Lane[std::min(i + l, b.Count - 1)]); };
     return _mm_setr_ps(value(0), value(1), value(2), value(3));
   }
-#endif
-#if defined(__SSE2__)
   /// CompositeBlock of unshaded samples without events, the same bits and counts, over
   /// every lane rather than those gathered into Batch: a lane of opacity 0 changes nothing
   /// (its weight is 0 and the transparency is multiplied by 1), and its weight times its
