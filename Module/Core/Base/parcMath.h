@@ -8,6 +8,10 @@
 #include <limits>
 #include <type_traits>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 /// Marks the small per-sample functions the caster's loops must inline.
 /// Marks rare work kept out of those loops, so that they stay small.
 #if defined(__GNUC__)
@@ -168,6 +172,13 @@ PARC_HOT_INLINE int CountTrailingZeros(Bits x)
   return n;
 #endif
 }
+#if defined(__SSE2__)
+/// mask ? a : b, lane by lane (mask lanes all ones or all zeros).
+PARC_HOT_INLINE __m128 Select(__m128 mask, __m128 a, __m128 b)
+{
+  return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
+}
+#endif
 /// The number of set bits of x (32 bits).
 PARC_HOT_INLINE int PopCount(std::uint32_t x)
 {

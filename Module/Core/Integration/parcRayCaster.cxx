@@ -406,14 +406,6 @@ float FlipUnlessPositive(float x, float sign)
 }
 
 
-#if defined(__SSE2__)
-/// mask ? a : b, lane by lane (mask lanes all ones or all zeros).
-__m128 Select(__m128 mask, __m128 a, __m128 b)
-{
-  return _mm_or_ps(_mm_and_ps(mask, a), _mm_andnot_ps(mask, b));
-}
-#endif
-
 /// x^n for a whole n >= 0 by repeated squaring.
 float IntegerPower(float x, int n)
 {
@@ -498,6 +490,21 @@ PARC_HOT_INLINE __m128 InterpolateGreyFactors(
   const __m128 z1 = lerp(two(4, 6), two(5, 7), f[0]); // corners 4 6 | z = 1
   const __m128 y = lerp(_mm_movelh_ps(z0, z1), _mm_movehl_ps(z1, z0), f[1]); // z = 0 | 1
   return lerp(y, _mm_movehl_ps(y, y), f[2]);
+}
+#endif
+
+#if defined(__SSE2__)
+/// The colour sums of out as a register (red, green, blue, 0).
+PARC_HOT_INLINE __m128 ColourSums(const EventCompositor& out)
+{
+  return _mm_setr_ps(out.Rgb[0], out.Rgb[1], out.Rgb[2], 0.f);
+}
+/// Sets the colour sums of out from a register of ColourSums.
+PARC_HOT_INLINE void SetColourSums(EventCompositor& out, __m128 sums)
+{
+  alignas(16) float rgb[4];
+  _mm_store_ps(rgb, sums);
+  std::copy_n(rgb, 3, out.Rgb);
 }
 #endif
 
@@ -885,7 +892,7 @@ struct RayContext
   PARC_HOT_INLINE void AddNormalShadedColors(EventCompositor& out)
   {
     const LaneBatch& b = this->Batch;
-    __m128 sum = _mm_setr_ps(out.Rgb[0], out.Rgb[1], out.Rgb[2], 0.f);
+    __m128 sum = ColourSums(out);
     for (int i = 0; i < b.Count; i += 4)
     {
       __m128 c[4];
@@ -896,9 +903,7 @@ struct RayContext
         sum = _mm_add_ps(sum, _mm_mul_ps(_mm_set1_ps(b.Weight[i + l]), rgb));
       }
     }
-    alignas(16) float rgb[4];
-    _mm_store_ps(rgb, sum);
-    std::copy_n(rgb, 3, out.Rgb);
+    SetColourSums(out, sum);
   }
   /// ShadeQuantized of lane j of the block, colour (red, green, blue, 0) rgb, in a register.
   PARC_HOT_INLINE __m128 ShadeByNormals(int j, __m128 rgb) const
@@ -971,7 +976,7 @@ struct RayContext
     this->Stats.ContributingSamples += static_cast<std::uint64_t>(PopCount(composited));
     this->CountEmptyCells(sampled, end);
     this->RecordHit((k0 + CountTrailingZeros(composited)) * this->Dt);
-    __m128 sum = _mm_setr_ps(out.Rgb[0], out.Rgb[1], out.Rgb[2], 0.f);
+    __m128 sum = ColourSums(out);
     for (int first = 0; first < end; first += LatticeBlock::Lanes)
     {
       if (((composited >> first) & ((1u << LatticeBlock::Lanes) - 1u)) == 0)
@@ -985,9 +990,7 @@ struct RayContext
         sum = _mm_add_ps(sum, _mm_mul_ps(_mm_set1_ps(weight[first + l]), c[l]));
       }
     }
-    alignas(16) float rgb[4];
-    _mm_store_ps(rgb, sum);
-    std::copy_n(rgb, 3, out.Rgb);
+    SetColourSums(out, sum);
     out.Alpha = left.Alpha;
     out.Transparency = left.Transparency;
     if (stops)

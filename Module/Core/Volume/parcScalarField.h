@@ -475,10 +475,6 @@ private:
   static constexpr bool PairedCorners = std::is_integral<T>::value && sizeof(T) <= 2;
   /// Two neighbouring values as the bits of one integer (the first lowest, x86).
   using Pair = std::conditional_t<sizeof(T) == 1, std::uint16_t, std::uint32_t>;
-  /// The corner values c[corner] of the cells at offsets[0 .. 3], lane by lane, as floats;
-  /// held in registers (no store and load again). With x neighbours next to each other
-  /// (Step[0] = 1) each pair of corners (x offsets 0 and 1) is loaded at once and split
-  /// apart four lanes at a time: the same values as one load a corner.
   /// LoadGroupCorners of 8-bit values whose x neighbours are next to each other: the pairs
   /// of corners of rows y = 0 and 1 (z = 0), then of y = 0 and 1 (z = 1), each into the
   /// 16-bit words of one register (row after row, lane after lane), then split apart into
@@ -537,21 +533,23 @@ private:
       c[4 * z + 3] = _mm_cvtepi32_ps(high(odd));
     }
   }
+  /// The corner values c[corner] of the cells at offsets[0 .. 3], lane by lane, as floats;
+  /// held in registers (no store and load again). With x neighbours next to each other
+  /// (Step[0] = 1) each pair of corners (x offsets 0 and 1) is loaded at once and split
+  /// apart four lanes at a time (8-bit values: LoadBytePairs): the same values as one load
+  /// a corner.
   PARC_HOT_INLINE void LoadGroupCorners(
     const std::ptrdiff_t* offsets, const std::ptrdiff_t corner[8], __m128 c[8]) const
   {
     if constexpr (PairedCorners)
     {
-      if constexpr (sizeof(T) == 1)
+      if (this->Step[0] == 1)
       {
-        if (this->Step[0] == 1)
+        if constexpr (sizeof(T) == 1)
         {
           this->LoadBytePairs(offsets, corner, c);
           return;
         }
-      }
-      if (this->Step[0] == 1)
-      {
         constexpr int bits = 8 * sizeof(T);
         constexpr bool sign = std::is_signed<T>::value;
         for (int m = 0; m < 8; m += 2)

@@ -88,14 +88,14 @@ public:
         const __m128 below = _mm_castsi128_ps(_mm_cmpeq_epi32(c, _mm_setzero_si128()));
         // max(f, 0) is 0 for a NaN f, like OnPiece.
         const __m128 onPiece = _mm_max_ps(f, _mm_setzero_ps());
-        const __m128 value = _mm_or_ps(_mm_and_ps(below, left), _mm_andnot_ps(below, onPiece));
+        const __m128 value = Select(below, left, onPiece);
         const unsigned group = (lanes >> first) & 0xFu;
         lanes &= ~(0xFu << first);
         // The group's lanes asked for take their values, the others keep theirs.
         const __m128i asked = _mm_and_si128(_mm_set1_epi32(static_cast<int>(group)), laneBit);
         const __m128 write = _mm_castsi128_ps(_mm_cmpeq_epi32(asked, laneBit));
         const __m128 kept = _mm_loadu_ps(out + first);
-        _mm_storeu_ps(out + first, _mm_or_ps(_mm_and_ps(write, value), _mm_andnot_ps(write, kept)));
+        _mm_storeu_ps(out + first, Select(write, value, kept));
         // At or after the last node (rare): Evaluate's end values.
         unsigned ends =
           group & static_cast<unsigned>(_mm_movemask_ps(_mm_castsi128_ps(_mm_cmpeq_epi32(c, end))));
