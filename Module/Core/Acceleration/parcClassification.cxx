@@ -18,6 +18,66 @@ namespace
 /// largest corner magnitude; the margin is generous on purpose (it costs nothing).
 constexpr double RoundingMargin = 32.0 * FLT_EPSILON;
 
+/// The codes of values in a non-decreasing table of code values (RangePyramid's): the
+/// same answers as a binary search, found in one step for the tables the pyramid makes
+/// (evenly spread values, or consecutive integers), where a guess from the spacing of the
+/// first two values is checked against its neighbours.
+class CodeFinder
+{
+public:
+  CodeFinder(const double* values, int count)
+    : Values(values)
+    , Count(count)
+    , Scale(values[1] > values[0] ? 1.0 / (values[1] - values[0]) : 0.0)
+  {
+  }
+  /// The last code whose value is at most v (0 when every value is above v).
+  int Below(double v) const
+  {
+    const int c = this->Guess(std::floor((v - this->Values[0]) * this->Scale));
+    if (this->Values[c] <= v && (c + 1 == this->Count || this->Values[c + 1] > v))
+    {
+      return c;
+    }
+    const auto it = std::upper_bound(this->Values, this->Values + this->Count, v);
+    return it == this->Values ? 0 : static_cast<int>(it - this->Values) - 1;
+  }
+  /// The first code whose value is at least v (the last when every value is below v).
+  int Above(double v) const
+  {
+    const int c = this->Guess(std::ceil((v - this->Values[0]) * this->Scale));
+    if (this->Values[c] >= v && (c == 0 || this->Values[c - 1] < v))
+    {
+      return c;
+    }
+    const double* end = this->Values + this->Count;
+    const auto it = std::lower_bound(this->Values, end, v);
+    return it == end ? this->Count - 1 : static_cast<int>(it - this->Values);
+  }
+
+private:
+  int Guess(double index) const
+  {
+    return index > 0.0 ? static_cast<int>(std::min(index, this->Count - 1.0)) : 0;
+  }
+  const double* Values;
+  int Count;
+  double Scale;
+};
+
+/// lo[x] = min(lo[x], row[x * step]) and hi[x] likewise, for x < n; written for a constant
+/// step, where it vectorizes.
+template <typename T>
+PARC_HOT_INLINE void AccumulateRange(const T* row, std::ptrdiff_t step, int n, T* lo, T* hi)
+{
+  for (int x = 0; x < n; ++x)
+  {
+    const T v = row[x * step];
+    lo[x] = std::min(lo[x], v);
+    hi[x] = std::max(hi[x], v);
+  }
+}
+
 /// Appends [lo, hi] to sorted closed intervals, merging it with the last one if they meet.
 void AppendInterval(std::vector<double>& los, std::vector<double>& his, double lo, double hi)
 {
@@ -224,8 +284,11 @@ void RangePyramid::Build(const ScalarField& field)
 RangePyramid::Level RangePyramid::FirstLevel() const
 {
   // Node (i, j, k) holds cells 2i, 2i + 1 (where they exist) along x, and so on: the
-  // voxels 2i to 2i + 2. Their range is read from the field in its own type, in parallel
-  // over slices of nodes, and coded once per node.
+  // voxels 2i to 2i + 2. In parallel over slices of nodes, each row of nodes takes the
+  // range of every voxel column x over its 3 x 3 voxels in y and z (whole rows in the
+  // values' own type), then of each node's 3 columns, and codes it once. Float rounding is
+  // monotonic, so the range in the values' type converted to float is the range of the
+  // values converted to float.
   Level first;
   for (int a = 0; a < 3; ++a)
   {
@@ -235,54 +298,66 @@ RangePyramid::Level RangePyramid::FirstLevel() const
   first.Min.resize(n);
   first.Max.resize(n);
   const int* dims = this->Field->GetDimensions();
+  const CodeFinder coder(this->CodeValues, CodeCount);
   this->Field->Dispatch([&](const auto& field) {
+    using T = std::remove_cv_t<std::remove_pointer_t<decltype(field.Row(0, 0))>>;
+    const std::ptrdiff_t step = field.GetXStep();
+    const bool exact = std::is_integral<T>::value && this->ExactCodes;
+    const auto bottom = static_cast<T>(this->CodeValues[0]);
+    const auto top = static_cast<T>(this->CodeValues[CodeCount - 1]);
     vtkSMPTools::For(0, first.Dims[2], [&](vtkIdType k0, vtkIdType k1) {
+      std::vector<T> columnMin(dims[0]), columnMax(dims[0]);
       for (int k = static_cast<int>(k0); k < k1; ++k)
       {
         for (int j = 0; j < first.Dims[1]; ++j)
         {
-          for (int i = 0; i < first.Dims[0]; ++i)
+          const T* start = field.Row(2 * j, 2 * k);
+          for (int x = 0; x < dims[0]; ++x)
           {
-            float lo = field.Value(2 * i, 2 * j, 2 * k), hi = lo;
-            for (int z = 2 * k; z <= std::min(2 * k + 2, dims[2] - 1); ++z)
+            columnMin[x] = columnMax[x] = start[x * step];
+          }
+          for (int z = 2 * k; z <= std::min(2 * k + 2, dims[2] - 1); ++z)
+          {
+            for (int y = 2 * j; y <= std::min(2 * j + 2, dims[1] - 1); ++y)
             {
-              for (int y = 2 * j; y <= std::min(2 * j + 2, dims[1] - 1); ++y)
+              if (step == 1)
               {
-                for (int x = 2 * i; x <= std::min(2 * i + 2, dims[0] - 1); ++x)
-                {
-                  const float v = field.Value(x, y, z);
-                  lo = std::min(lo, v);
-                  hi = std::max(hi, v);
-                }
+                AccumulateRange(field.Row(y, z), 1, dims[0], columnMin.data(), columnMax.data());
+              }
+              else
+              {
+                AccumulateRange(field.Row(y, z), step, dims[0], columnMin.data(), columnMax.data());
               }
             }
-            const std::size_t node = static_cast<std::size_t>(i) +
-              static_cast<std::size_t>(first.Dims[0]) *
-                (j + static_cast<std::size_t>(first.Dims[1]) * k);
-            first.Min[node] = this->CodeBelow(lo);
-            first.Max[node] = this->CodeAbove(hi);
+          }
+          const std::size_t rowStart = static_cast<std::size_t>(first.Dims[0]) *
+            (j + static_cast<std::size_t>(first.Dims[1]) * k);
+          for (int i = 0; i < first.Dims[0]; ++i)
+          {
+            T lo = columnMin[2 * i], hi = columnMax[2 * i];
+            for (int x = 2 * i + 1; x <= std::min(2 * i + 2, dims[0] - 1); ++x)
+            {
+              lo = std::min(lo, columnMin[x]);
+              hi = std::max(hi, columnMax[x]);
+            }
+            if (exact)
+            {
+              // Code c holds bottom + c (the last codes repeat the top, and the code below
+              // the top is the last of them).
+              first.Min[rowStart + i] = static_cast<Code>(lo == top ? CodeCount - 1 : lo - bottom);
+              first.Max[rowStart + i] = static_cast<Code>(hi - bottom);
+            }
+            else
+            {
+              first.Min[rowStart + i] = static_cast<Code>(coder.Below(static_cast<float>(lo)));
+              first.Max[rowStart + i] = static_cast<Code>(coder.Above(static_cast<float>(hi)));
+            }
           }
         }
       }
     });
   });
   return first;
-}
-
-RangePyramid::Code RangePyramid::CodeBelow(double v) const
-{
-  // The last code whose value is at most v (the first code holds the field's minimum).
-  const double* end = this->CodeValues + CodeCount;
-  const auto it = std::upper_bound(this->CodeValues, end, v);
-  return static_cast<Code>(it == this->CodeValues ? 0 : it - this->CodeValues - 1);
-}
-
-RangePyramid::Code RangePyramid::CodeAbove(double v) const
-{
-  // The first code whose value is at least v (the last code holds the field's maximum).
-  const double* end = this->CodeValues + CodeCount;
-  const auto it = std::lower_bound(this->CodeValues, end, v);
-  return static_cast<Code>(it == end ? CodeCount - 1 : it - this->CodeValues);
 }
 
 void RangePyramid::CellRange(int i, int j, int k, float& lo, float& hi) const

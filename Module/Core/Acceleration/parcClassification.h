@@ -163,9 +163,6 @@ private:
   };
   /// Level 1, from the field's voxels.
   Level FirstLevel() const;
-  /// The code of the largest code value at most v, and of the smallest at least v.
-  Code CodeBelow(double v) const;
-  Code CodeAbove(double v) const;
   bool Query(int level, const int node[3], const int c0[3], const int c1[3],
     const ContributionRule& rule) const;
   /// ClassifyLevel (exact: whether one of a node's cells is PC) or, without exact, whether

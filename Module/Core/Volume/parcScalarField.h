@@ -14,6 +14,8 @@
 
 #include "parcMath.h"
 
+#include <vtkSMPTools.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -191,6 +193,10 @@ public:
     view.Data += elements;
     return view;
   }
+  /// The first value of row (j, k), voxels (0 .. nx-1, j, k) being GetXStep() elements
+  /// apart: for loops over whole rows in the values' own type.
+  const T* Row(int j, int k) const { return this->Data + j * this->Step[1] + k * this->Step[2]; }
+  std::ptrdiff_t GetXStep() const { return this->Step[0]; }
   float Value(int i, int j, int k) const
   {
     return static_cast<float>(this->Data[i * this->Step[0] + j * this->Step[1] + k * this->Step[2]]);
@@ -935,23 +941,68 @@ void ScalarField::CopyValues(const T* values, int stride)
 template <typename T>
 std::size_t ScalarField::Scan()
 {
-  // The finite range, then (floating point only) the replacement of non-finite values.
+  // The finite range, in parallel over chunks of values (in their own type for integers:
+  // rounding to float is monotonic, so the range converted is the range of the values
+  // converted), then (floating point only) the replacement of non-finite values.
+  constexpr std::size_t Chunks = 64;
+  struct ChunkRange
+  {
+    double Lo = std::numeric_limits<double>::max();
+    double Hi = std::numeric_limits<double>::lowest();
+    std::size_t NonFinite = 0;
+  };
   const std::size_t n = this->GetNumberOfValues();
   const T* v = static_cast<const T*>(this->Data);
+  const std::ptrdiff_t stride = this->Stride;
+  std::vector<ChunkRange> chunks(Chunks);
+  vtkSMPTools::For(0, static_cast<vtkIdType>(Chunks), [&](vtkIdType c0, vtkIdType c1) {
+    for (vtkIdType c = c0; c < c1; ++c)
+    {
+      const std::size_t first = n * c / Chunks, last = n * (c + 1) / Chunks;
+      ChunkRange& range = chunks[c];
+      if (first == last)
+      {
+        continue;
+      }
+      if constexpr (std::is_integral<T>::value)
+      {
+        T lo = v[first * stride], hi = lo;
+        const auto scan = [&](std::ptrdiff_t step) { // a constant step vectorizes
+          for (std::size_t i = first; i < last; ++i)
+          {
+            lo = std::min(lo, v[i * step]);
+            hi = std::max(hi, v[i * step]);
+          }
+        };
+        stride == 1 ? scan(1) : scan(stride);
+        range.Lo = static_cast<float>(lo);
+        range.Hi = static_cast<float>(hi);
+      }
+      else
+      {
+        for (std::size_t i = first; i < last; ++i)
+        {
+          const double x = static_cast<double>(static_cast<float>(v[i * stride]));
+          if (std::isfinite(x))
+          {
+            range.Lo = std::min(range.Lo, x);
+            range.Hi = std::max(range.Hi, x);
+          }
+          else
+          {
+            ++range.NonFinite;
+          }
+        }
+      }
+    }
+  });
   double lo = std::numeric_limits<double>::max(), hi = std::numeric_limits<double>::lowest();
   std::size_t nonFinite = 0;
-  for (std::size_t i = 0; i < n; ++i)
+  for (const ChunkRange& range : chunks)
   {
-    const double x = static_cast<double>(static_cast<float>(v[i * this->Stride]));
-    if (std::isfinite(x))
-    {
-      lo = std::min(lo, x);
-      hi = std::max(hi, x);
-    }
-    else
-    {
-      ++nonFinite;
-    }
+    lo = std::min(lo, range.Lo);
+    hi = std::max(hi, range.Hi);
+    nonFinite += range.NonFinite;
   }
   if (lo > hi) // no finite value at all
   {
