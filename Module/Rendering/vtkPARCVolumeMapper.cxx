@@ -468,8 +468,9 @@ public:
   /// Casts the ray image; false when aborted.
   bool Cast(vtkPARCVolumeMapper* self, vtkRenderer* ren, const parc::Camera& rays,
     const float* depth, const std::vector<parc::SceneCaster::Member>& members);
-  /// Gives each volume's Auto the times of this frame.
-  void RecordAuto(const std::vector<SetUpWork>& before, bool completed);
+  /// Gives each volume's Auto the times of this frame, and its supercell search when
+  /// searchSizes (Auto chooses the size, and the frame is not interactive).
+  void RecordAuto(const std::vector<SetUpWork>& before, bool completed, bool searchSizes);
 
   vtkVolumeState& At(int port)
   {
@@ -901,6 +902,7 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
   in.FieldComponent = component;
   in.DependentComponents = dependent ? components : 0;
   ++in.FieldVersion;
+  in.Plan.Sizes.Reset(); // another volume: another best size
   return true;
 }
 
@@ -1184,7 +1186,9 @@ void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
   const std::vector<parc::SceneCaster::Member> members = in.RunPasses(this, ren, view);
   in.SetUpShadows(this, ren);
   const bool completed = in.Cast(this, ren, view.Camera, depth, members);
-  in.RecordAuto(before, completed);
+  in.RecordAuto(before, completed,
+    this->AccelerationMode == ACCELERATION_AUTO && this->AutoSupercellSize &&
+      !this->LastInteractive);
 }
 
 //------------------------------------------------------------------------------
@@ -1371,7 +1375,7 @@ bool vtkPARCVolumeMapper::vtkInternals::Cast(vtkPARCVolumeMapper* self, vtkRende
 
 //------------------------------------------------------------------------------
 void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
-  const std::vector<SetUpWork>& before, bool completed)
+  const std::vector<SetUpWork>& before, bool completed, bool searchSizes)
 {
   // Each volume's estimate takes its own projection and its share of the casting, in
   // proportion to its samples.
@@ -1401,6 +1405,13 @@ void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
     {
       volume.Plan.Auto.Record(version, contributing, frame, completed);
     }
+    if (searchSizes && completed && !setUp)
+    {
+      const int* candidate = std::find(
+        AutoCandidates, AutoCandidates + parc::AutoTrials::Count, volume.LastMode);
+      volume.Plan.Sizes.Record(static_cast<int>(candidate - AutoCandidates),
+        volume.Plan.Auto.Settled, frame.Projection + frame.Casting);
+    }
   }
 }
 
@@ -1426,6 +1437,10 @@ int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   const parc::Vec3 centre = in.IndexToFrame.TransformPoint( // the eye is the frame's origin
     { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
   in.Plan.Auto.SetView(camera.Direction, parc::Length(centre));
+  if (self->AutoSupercellSize && in.Plan.Sizes.IsSearching())
+  {
+    return AutoCandidates[in.Plan.Sizes.GetCandidate()]; // the search's frames take its pass
+  }
   // No trial during interaction: a trial of a slow mode would break the frame budget.
   return AutoCandidates[in.Plan.Auto.Choose(
     in.Plan.GetModelVersion(), pc, camera.Width, camera.Height, !self->LastInteractive)];
@@ -1652,7 +1667,7 @@ ClassificationKey vtkPARCVolumeMapper::vtkVolumeState::Key(
     }
   }
   std::copy_n(self->AverageIPScalarRange, 2, key.Average);
-  std::copy_n(self->SupercellSize, 3, key.Size);
+  self->SupercellSizeOf(in, key.Size);
   return key;
 }
 
@@ -1675,8 +1690,8 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
     fields.push_back(&component.Field);
     rules[c + 1].Set(component.Parameters, component.Field.GetRange());
   }
-  const double* requested = this->SupercellSize;
-  double size[3];
+  double requested[3], size[3];
+  this->SupercellSizeOf(in, requested);
   if (!in.Plan.Classify(fields, in.FieldVersion, rules, in.Parameters.Interp, requested, size))
   {
     vtkErrorMacro("Invalid supercell size (" << requested[0] << ", " << requested[1] << ", "
@@ -1692,6 +1707,45 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
       << " allowed: using (" << size[0] << ", " << size[1] << ", " << size[2] << ").");
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCVolumeMapper::SupercellSizeOf(const vtkVolumeState& in, double size[3]) const
+{
+  const double scale = this->AccelerationMode == ACCELERATION_AUTO && this->AutoSupercellSize
+    ? in.Plan.Sizes.GetScale()
+    : 1.0;
+  for (int a = 0; a < 3; ++a)
+  {
+    size[a] = scale * this->SupercellSize[a];
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCVolumeMapper::SetSupercellSize(double x, double y, double z)
+{
+  const double size[3] = { x, y, z };
+  this->SetSupercellSize(size);
+}
+
+void vtkPARCVolumeMapper::SetSupercellSize(const double size[3])
+{
+  if (!std::equal(size, size + 3, this->SupercellSize) || this->AutoSupercellSize)
+  {
+    std::copy_n(size, 3, this->SupercellSize);
+    this->AutoSupercellSize = 0;
+    this->Modified();
+  }
+}
+
+double* vtkPARCVolumeMapper::GetLastSupercellSize()
+{
+  const auto& volumes = this->Internals->Volumes;
+  const bool classified =
+    !volumes.empty() && volumes[0] && volumes[0]->Plan.GetGrid().GetNumberOfSupercells() > 0;
+  std::copy_n(classified ? volumes[0]->Plan.GetGrid().GetSize() : this->SupercellSize, 3,
+    this->LastSupercellSize);
+  return this->LastSupercellSize;
 }
 
 //------------------------------------------------------------------------------
@@ -2075,6 +2129,7 @@ void vtkPARCVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
      << "\n";
   os << indent << "SupercellSize: " << this->SupercellSize[0] << ", " << this->SupercellSize[1]
      << ", " << this->SupercellSize[2] << "\n";
+  os << indent << "AutoSupercellSize: " << this->AutoSupercellSize << "\n";
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
   os << indent << "TerminationOpacity: " << this->TerminationOpacity << "\n";

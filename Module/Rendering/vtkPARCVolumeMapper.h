@@ -280,10 +280,29 @@ public:
    * leave out the samples of empty cells themselves, so samples in empty space cost little
    * and the passes' polygons dominate. In a sweep on this machine (Auto, 400^2, sample
    * distance 0.5) 4 was within 3-14% of the fastest size on the MRI head, the embryo, the
-   * tooth, the iron protein and the poship isosurface, and 2 up to 1.8x slower.
+   * tooth, the iron protein and the poship isosurface, and 2 up to 1.8x slower; on large
+   * volumes (10^8 voxels and more) larger supercells pay, which AutoSupercellSize finds.
+   * Setting a size turns AutoSupercellSize off: a size the user sets is kept.
    */
-  vtkSetVector3Macro(SupercellSize, double);
+  virtual void SetSupercellSize(double x, double y, double z);
+  virtual void SetSupercellSize(const double size[3]);
   vtkGetVector3Macro(SupercellSize, double);
+  ///@}
+
+  ///@{
+  /**
+   * In ACCELERATION_AUTO, whether Auto also chooses the supercell size (default on, off
+   * once SetSupercellSize is called): once it has settled on a pass, it times the frames
+   * of that pass at the supercell size scaled by 1, 2, 4, ... (or 1/2, 1/4 when 2 is
+   * slower), two frames a scale, and keeps the fastest: the paper's polygons against ray
+   * steps, from the projection and casting times it measures (parc::SupercellSearch).
+   * The images are the same at every size. GetLastSupercellSize gives the size the last
+   * render used for the first input.
+   */
+  vtkSetMacro(AutoSupercellSize, vtkTypeBool);
+  vtkGetMacro(AutoSupercellSize, vtkTypeBool);
+  vtkBooleanMacro(AutoSupercellSize, vtkTypeBool);
+  double* GetLastSupercellSize() VTK_SIZEHINT(3);
   ///@}
 
   ///@{
@@ -646,6 +665,11 @@ protected:
   /** Classifies and builds the volume's polygon models when their inputs changed. */
   bool PrepareModels(vtkVolumeState& volume, vtkVolume* prop);
   /**
+   * The supercell size of the volume's next classification: SupercellSize, scaled by
+   * Auto's search (ACCELERATION_AUTO with AutoSupercellSize).
+   */
+  void SupercellSizeOf(const vtkVolumeState& volume, double size[3]) const;
+  /**
    * Classifies the volume's cells for its caster when their inputs changed (composite
    * volumes of one component, linear interpolation), in every acceleration mode: the
    * caster leaves out the samples of cells that cannot contribute.
@@ -666,6 +690,8 @@ protected:
   int ShadowMode = SHADOWS_FROM_RENDERER;
   int ColorRangeType = SCALAR;
   double SupercellSize[3] = { 4.0, 4.0, 4.0 };
+  vtkTypeBool AutoSupercellSize = 1;
+  double LastSupercellSize[3] = { 0.0, 0.0, 0.0 };
   double SampleDistance = 0.0;
   double ImageSampleDistance = 1.0;
   double TerminationOpacity = 0.99;

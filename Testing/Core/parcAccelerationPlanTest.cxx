@@ -5,6 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <vector>
+
 namespace
 {
 /// A rule that keeps the scalars in [lo, 255] (composite, opacity 0 below lo).
@@ -253,4 +256,82 @@ TEST(AutoTrials, AFrameThatSetsUpPredictsTheNextWithoutItsSetUpTime)
   cheapPass.RecordSetUp(2, 100, Frame(0.5, 0.02, samples, fit));
   EXPECT_FALSE(depth.Provisional);
   EXPECT_DOUBLE_EQ(depth.Projection, 0.008);
+}
+
+using parc::SupercellSearch;
+
+namespace
+{
+/// Runs a search until it ends, each frame at scale s taking seconds(s); the scales of the
+/// frames, in order.
+template <class Seconds>
+std::vector<double> RunSearch(SupercellSearch& search, int candidate, const Seconds& seconds)
+{
+  std::vector<double> scales;
+  for (int frame = 0; frame < 100 && !search.IsDone(); ++frame)
+  {
+    scales.push_back(search.GetScale());
+    search.Record(candidate, true, seconds(search.GetScale()));
+  }
+  return scales;
+}
+}
+
+TEST(SupercellSearch, WaitsForAutoToSettleOnAPass)
+{
+  SupercellSearch search;
+  search.Record(AutoTrials::Depth, false, 1.0); // trials still under way
+  search.Record(AutoTrials::None, true, 1.0);   // settled on no pass
+  EXPECT_FALSE(search.IsSearching());
+  EXPECT_EQ(search.GetScale(), 1.0);
+  search.Record(AutoTrials::Color, true, 1.0);
+  EXPECT_TRUE(search.IsSearching());
+  EXPECT_EQ(search.GetCandidate(), AutoTrials::Color);
+}
+
+TEST(SupercellSearch, GrowsWhileFasterAndKeepsTheFastest)
+{
+  // Fastest at 4x the size: 1 -> 2 -> 4 -> 8 (slower) -> back to 4.
+  SupercellSearch search;
+  const auto seconds = [](double s) { return std::fabs(std::log2(s) - 2.0) + 1.0; };
+  const std::vector<double> scales = RunSearch(search, AutoTrials::Depth, seconds);
+  EXPECT_EQ(scales, (std::vector<double>{ 1, 1, 2, 2, 4, 4, 8, 8 }));
+  EXPECT_TRUE(search.IsDone());
+  EXPECT_EQ(search.GetScale(), 4.0);
+}
+
+TEST(SupercellSearch, ShrinksWhenTwiceTheSizeIsSlower)
+{
+  // Fastest at half the size: 1 -> 2 (slower) -> 0.5 -> 0.25 (slower) -> 0.5.
+  SupercellSearch search;
+  const auto seconds = [](double s) { return std::fabs(std::log2(s) + 1.0) + 1.0; };
+  const std::vector<double> scales = RunSearch(search, AutoTrials::Both, seconds);
+  EXPECT_EQ(scales, (std::vector<double>{ 1, 1, 2, 2, 0.5, 0.5, 0.25, 0.25 }));
+  EXPECT_EQ(search.GetScale(), 0.5);
+}
+
+TEST(SupercellSearch, TakesTheLeastFrameOfAScaleAndStopsAtTheLimits)
+{
+  // Ever faster: up to MaxScale; a slow frame among two of a scale does not count.
+  SupercellSearch search;
+  int frame = 0;
+  const auto seconds = [&frame](double s) { return ++frame % 2 ? 10.0 : 1.0 / s; };
+  RunSearch(search, AutoTrials::Depth, seconds);
+  EXPECT_EQ(search.GetScale(), SupercellSearch::MaxScale);
+}
+
+TEST(SupercellSearch, KeepsTheBestWhenAutoLeavesThePassAndStartsAgainAfterAReset)
+{
+  SupercellSearch search;
+  for (int i = 0; i < 4; ++i) // scale 1, then 2 faster
+  {
+    search.Record(AutoTrials::Depth, true, i < 2 ? 2.0 : 1.0);
+  }
+  EXPECT_EQ(search.GetScale(), 4.0);
+  search.Record(AutoTrials::None, true, 0.5);
+  EXPECT_TRUE(search.IsDone());
+  EXPECT_EQ(search.GetScale(), 2.0);
+  search.Reset();
+  EXPECT_EQ(search.GetScale(), 1.0);
+  EXPECT_FALSE(search.IsDone());
 }

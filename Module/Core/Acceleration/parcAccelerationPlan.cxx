@@ -224,6 +224,67 @@ int AutoTrials::Remaining() const
   return remaining;
 }
 
+void SupercellSearch::Record(int candidate, bool settled, double seconds)
+{
+  if (this->State == Done)
+  {
+    return;
+  }
+  const bool pass = candidate == AutoTrials::Depth || candidate == AutoTrials::Color ||
+    candidate == AutoTrials::Both;
+  if (this->State == Waiting)
+  {
+    if (settled && pass)
+    {
+      this->State = Searching;
+      this->Candidate = candidate;
+      this->ScaleFrames = 0;
+      this->BestSeconds = std::numeric_limits<double>::infinity();
+    }
+    else
+    {
+      return;
+    }
+  }
+  if (candidate != this->Candidate)
+  {
+    this->Try(0.0); // Auto left the pass (a view or data change): keep the best so far
+    return;
+  }
+  this->ScaleSeconds = this->ScaleFrames == 0 ? seconds : std::min(this->ScaleSeconds, seconds);
+  if (++this->ScaleFrames < FramesPerScale)
+  {
+    return;
+  }
+  if (this->ScaleSeconds < this->BestSeconds)
+  {
+    this->BestSeconds = this->ScaleSeconds;
+    this->BestScale = this->Scale;
+    this->Try(this->Growing ? 2.0 * this->Scale : 0.5 * this->Scale);
+    return;
+  }
+  // Slower than the best: when the first step up was, try the other way.
+  if (this->Growing && this->BestScale == 1.0)
+  {
+    this->Growing = false;
+    this->Try(0.5 * this->BestScale);
+    return;
+  }
+  this->Try(0.0);
+}
+
+void SupercellSearch::Try(double scale)
+{
+  this->ScaleFrames = 0;
+  if (scale < MinScale || scale > MaxScale)
+  {
+    this->State = Done;
+    this->Scale = this->BestScale;
+    return;
+  }
+  this->Scale = scale;
+}
+
 void AccelerationPlan::SetMergeFaces(bool merge)
 {
   if (merge != this->MergeFaces)

@@ -152,6 +152,52 @@ private:
   std::size_t LastContributing = 0;
 };
 
+/// Auto's choice of the supercell size: the paper's trade-off of polygons against ray
+/// steps (section 3), measured instead of guessed. Once Auto has settled on a pass
+/// (candidate Depth, Color or Both of AutoTrials), the frames of that pass are timed
+/// (projection and casting) at scale 1 of the caller's supercell size, then at twice the
+/// scale, four times and so on while each is faster than the best so far; when twice is
+/// not, at half the scale and below. The search ends at the first scale slower than the
+/// best, which the volume keeps. A scale's time is the least of FramesPerScale
+/// representative frames; a frame that set up (a new scale classifies and builds its
+/// models) is not one. Supercell sizes change the segments, never the samples, so the
+/// search changes times only.
+class SupercellSearch
+{
+public:
+  static constexpr double MinScale = 0.25; ///< the default 4 cells down to 1
+  static constexpr double MaxScale = 8.0;  ///< and up to 32
+  static constexpr int FramesPerScale = 2;
+
+  /// The scale of the supercell size for the next frame.
+  double GetScale() const { return this->Scale; }
+  /// Whether a search is under way: its frames take its pass, GetCandidate().
+  bool IsSearching() const { return this->State == Searching; }
+  bool IsDone() const { return this->State == Done; }
+  int GetCandidate() const { return this->Candidate; }
+  /// A representative frame of AutoTrials candidate `candidate` took `seconds` at
+  /// GetScale(); `settled`: Auto's trials of the modes are over.
+  void Record(int candidate, bool settled, double seconds);
+  /// Forgets everything (new data): the next settled pass searches again from scale 1.
+  void Reset() { *this = SupercellSearch(); }
+
+private:
+  /// Moves on to scale, or ends the search at the best scale when it is out of range.
+  void Try(double scale);
+
+  enum
+  {
+    Waiting,
+    Searching,
+    Done
+  } State = Waiting;
+  int Candidate = -1;
+  double Scale = 1.0, BestScale = 1.0, BestSeconds = 0.0;
+  double ScaleSeconds = 0.0; ///< the least frame of Scale so far
+  int ScaleFrames = 0;       ///< frames of Scale so far
+  bool Growing = true;
+};
+
 class AccelerationPlan
 {
 public:
@@ -228,6 +274,7 @@ public:
   std::size_t GetCellsMemorySize() const { return this->Cells.capacity(); }
 
   AutoTrials Auto; ///< Auto's measurements for this volume
+  SupercellSearch Sizes; ///< Auto's choice of the supercell size for this volume
 
 private:
   struct PassModel
