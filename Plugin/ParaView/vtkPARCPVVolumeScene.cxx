@@ -23,6 +23,7 @@ void CopySettings(vtkPARCVolumeMapper* from, vtkPARCVolumeMapper* to)
 {
   to->SetAccelerationMode(from->GetAccelerationMode());
   to->SetSupercellSize(from->GetSupercellSize());
+  to->SetAutoSupercellSize(from->GetAutoSupercellSize());
   to->SetSampleDistance(from->GetSampleDistance());
   to->SetNumberOfThreads(from->GetNumberOfThreads());
   to->SetShadowMode(from->GetShadowMode());

@@ -83,7 +83,17 @@ void vtkPARCVolumeRepresentation::SetAccelerationMode(int mode)
 
 void vtkPARCVolumeRepresentation::SetSupercellSize(double x, double y, double z)
 {
-  this->GetPARCMapper()->SetSupercellSize(x, y, z);
+  // ParaView sets every property, this one too: the size is where Auto's search starts
+  // unless PARCAutoSupercellSize is off.
+  vtkPARCVolumeMapper* mapper = this->GetPARCMapper();
+  const vtkTypeBool automatic = mapper->GetAutoSupercellSize();
+  mapper->SetSupercellSize(x, y, z);
+  mapper->SetAutoSupercellSize(automatic);
+}
+
+void vtkPARCVolumeRepresentation::SetAutoSupercellSize(bool automatic)
+{
+  this->GetPARCMapper()->SetAutoSupercellSize(automatic);
 }
 
 void vtkPARCVolumeRepresentation::SetSampleDistance(double distance)

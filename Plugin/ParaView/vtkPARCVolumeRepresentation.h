@@ -36,6 +36,7 @@ public:
    */
   void SetAccelerationMode(int mode);
   void SetSupercellSize(double x, double y, double z);
+  void SetAutoSupercellSize(bool automatic);
   void SetSampleDistance(double distance);
   void SetNumberOfThreads(int threads);
   ///@}

@@ -125,10 +125,22 @@ unaccelerated = statistics()
 parc_depth, _ = shot("parc-volume-depth", "PARC Volume", PARCAccelerationMode="Depth Buffer")
 accelerated = statistics()
 parc_color, _ = shot("parc-volume-color", "PARC Volume", PARCAccelerationMode="Color Buffer")
+parc_walk, _ = shot("parc-volume-walk", "PARC Volume", PARCAccelerationMode="Supercell Walk")
+walked = statistics()
+# Auto's search of the supercell size over a few frames (two a size), then a fixed size.
+check(display.PARCAutoSupercellSize == 1, "Auto chooses the supercell size by default")
+display.PARCAccelerationMode = "Auto"
+searched = [shot("parc-volume-auto-search", "PARC Volume")[0] for _ in range(6)]
+display.PARCAutoSupercellSize = 0
+parc_fixed_size, _ = shot("parc-volume-fixed-size", "PARC Volume")
 
-check(parc_auto == parc_none and parc_depth == parc_none and parc_color == parc_none,
-      "PARC Volume gives the same pixels with acceleration None, Depth Buffer, Color Buffer "
-      "and Auto")
+check(parc_auto == parc_none and parc_depth == parc_none and parc_color == parc_none and
+      parc_walk == parc_none and all(s == parc_none for s in searched) and
+      parc_fixed_size == parc_none,
+      "PARC Volume gives the same pixels with acceleration None, Depth Buffer, Color Buffer, "
+      "Supercell Walk and Auto, while Auto searches the supercell size and without it")
+check(walked["AccelerationMode"] == "SupercellWalk",
+      "the Supercell Walk mode reaches the mapper (%s)" % walked["AccelerationMode"])
 check(accelerated["AccelerationMode"] == "DepthBuffer" and
       0 < accelerated["SampleCount"] < unaccelerated["SampleCount"],
       "depth-buffer PARC takes fewer samples (%d) than no acceleration (%d)"
