@@ -1,0 +1,355 @@
+#!/usr/bin/python3
+"""Cost as the volume grows (scripts/benchmark.sh; run under Xvfb with the build's Python
+packages on PYTHONPATH): the MRI head of mricron-data resized (vtkImageResize, trilinear)
+by factors up to 1.5-2 GB, as uint8 and as CT-like int16 (12 v - 1024), rendered unshaded
+and shaded by this mapper (Auto) and vtkFixedPointVolumeRayCastMapper (automatic adjustment
+off) at half a voxel, in a perspective view. For each volume and shading:
+
+- first frame: each mapper new, in a window whose GL context exists (FixedPoint, then this
+  one), and this mapper's set-up per voxel (its first frame less its warm one);
+- warm frames at each image size: both mappers warmed up (this one until Auto has chosen
+  its pass and supercell size), then rounds interleaved (A B A B): minimum and median;
+- the frame after a transfer-function edit against a warm frame (this mapper);
+- this mapper's casting cost (ns per sample per thread), mode and supercell size;
+- memory, each mapper in a process of its own: the resident size 5 frames add (after the
+  window's GL context is made) against the volume's bytes, beside GetMemorySize.
+
+Prints markdown; writes CSV data and PNG plots into OUTDIR. The resized volumes are kept in
+OUTDIR/volumes while the section runs and removed after.
+
+  benchmark_volume_size.py OUTDIR [--quick]
+"""
+import gc
+import json
+import os
+import platform
+import shutil
+import subprocess
+import sys
+import time
+
+import numpy as np
+
+HEAD = "/usr/share/mricron/templates/ch2.nii.gz"
+HEAD_DIMS = (181, 217, 181)
+FACTORS = {"uint8": [1, 2, 3, 4, 6], "int16": [1, 2, 3, 5]}
+QUICK_FACTORS = {"uint8": [1, 2], "int16": [1]}
+IMAGES, QUICK_IMAGES = [600, 1000], [600]
+ROUNDS, QUICK_ROUNDS = 3, 2
+WARM_UP_FRAMES = 20  # enough for Auto's trials and its supercell search
+MEMORY_FRAMES = 5
+CT_SCALE, CT_OFFSET = 12, -1024  # int16 = 12 * uint8 - 1024: a CT-like range
+
+
+def volume_path(outdir, factor, kind):
+    return os.path.join(outdir, "volumes", "head-x%d-%s.npy" % (factor, kind))
+
+
+def make_volume(outdir, factor, kind):
+    """Resizes the head by factor into a .npy of its scalars (x fastest)."""
+    from vtkmodules.vtkIOImage import vtkNIFTIImageReader
+    from vtkmodules.vtkImagingCore import vtkImageResize
+    from vtkmodules.util.numpy_support import vtk_to_numpy
+    reader = vtkNIFTIImageReader()
+    reader.SetFileName(HEAD)
+    resize = vtkImageResize()
+    resize.SetInputConnection(reader.GetOutputPort())
+    resize.SetResizeMethodToMagnificationFactors()
+    resize.SetMagnificationFactors(factor, factor, factor)
+    resize.Update()
+    values = vtk_to_numpy(resize.GetOutput().GetPointData().GetScalars())
+    if kind == "int16":
+        values = values.astype(np.int16) * CT_SCALE + CT_OFFSET
+    np.save(volume_path(outdir, factor, kind), values.astype(kind))
+
+
+def load_image(outdir, factor, kind):
+    """The resized head as vtkImageData (spacing 1/factor: the head's world size), and its
+    scalars (which must outlive the image)."""
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    values = np.load(volume_path(outdir, factor, kind))
+    image = vtkImageData()
+    image.SetDimensions(*[factor * (d - 1) + 1 for d in HEAD_DIMS])
+    image.SetSpacing(*[1.0 / factor] * 3)
+    assert image.GetNumberOfPoints() == values.size
+    image.GetPointData().SetScalars(numpy_to_vtk(values, deep=0))
+    return image, values
+
+
+def scene(image, kind, shade, pixels):
+    """A window showing the volume (no mapper yet), its property and volume prop."""
+    from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
+    from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderWindow,
+                                             vtkRenderer, vtkVolume, vtkVolumeProperty)
+    import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+    import vtkmodules.vtkRenderingVolumeOpenGL2  # noqa: F401
+    scale, offset = (CT_SCALE, CT_OFFSET) if kind == "int16" else (1, 0)
+    opacity, color = vtkPiecewiseFunction(), vtkColorTransferFunction()
+    # parc-render's "mri" preset: skin translucent, bright tissue opaque.
+    for v, a, r, g, b in ((0, 0, 0, 0, 0), (38, 0, 0.55, 0.25, 0.15), (89, 0.04, 0.85, 0.55, 0.45),
+                          (153, 0.12, 0.95, 0.85, 0.75), (255, 0.5, 1, 1, 0.95)):
+        opacity.AddPoint(scale * v + offset, a)
+        color.AddRGBPoint(scale * v + offset, r, g, b)
+    prop = vtkVolumeProperty()
+    prop.SetScalarOpacity(opacity)
+    prop.SetColor(color)
+    prop.SetInterpolationTypeToLinear()
+    prop.SetShade(shade)
+    volume = vtkVolume()
+    volume.SetProperty(prop)
+    renderer = vtkRenderer()
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetMultiSamples(0)
+    window.SetSize(pixels, pixels)
+    window.AddRenderer(renderer)
+    window.Render()  # the GL context, before any mapper
+    renderer.AddVolume(volume)
+    renderer.ResetCamera(image.GetBounds())
+    camera = renderer.GetActiveCamera()
+    camera.Elevation(-80)
+    camera.Azimuth(30)
+    camera.OrthogonalizeViewUp()
+    renderer.ResetCameraClippingRange(image.GetBounds())
+    return window, volume, opacity
+
+
+def new_mapper(name, image):
+    from vtkmodules.vtkRenderingVolume import vtkFixedPointVolumeRayCastMapper
+    from parc import vtkPARCVolumeMapper
+    if name == "parc":
+        mapper = vtkPARCVolumeMapper()
+        mapper.SetAccelerationModeToAuto()
+    else:
+        mapper = vtkFixedPointVolumeRayCastMapper()
+        mapper.SetAutoAdjustSampleDistances(0)
+        mapper.SetLockSampleDistanceToInputSpacing(0)
+    mapper.SetSampleDistance(0.5 * image.GetSpacing()[0])
+    mapper.SetInputData(image)
+    return mapper
+
+
+def timed(window):
+    start = time.perf_counter()
+    window.Render()
+    return time.perf_counter() - start
+
+
+def supercell_size(mapper):
+    """The supercell size of the mapper's last render (builds before AutoSupercellSize:
+    its fixed size)."""
+    if hasattr(mapper, "GetLastSupercellSize"):
+        return tuple(mapper.GetLastSupercellSize())
+    return tuple(mapper.GetSupercellSize())
+
+
+def warm_up(window, mapper):
+    """Renders this mapper until Auto's mode and supercell size have held for 6 frames."""
+    if not mapper.IsA("vtkPARCVolumeMapper"):
+        window.Render()
+        return
+    held, last = 0, None
+    for _ in range(WARM_UP_FRAMES):
+        window.Render()
+        now = (mapper.GetLastAccelerationMode(), supercell_size(mapper))
+        held = held + 1 if now == last else 0
+        last = now
+        if held >= 6:
+            break
+
+
+def min_median(values):
+    values = sorted(values)
+    return values[0], values[len(values) // 2]
+
+
+def measure(outdir, factor, kind, images, rounds):
+    """Times of one volume (both shadings): a JSON list of rows on stdout."""
+    image, values = load_image(outdir, factor, kind)
+    rows = []
+    for shade in (0, 1):
+        window, volume, opacity = scene(image, kind, shade, images[0])
+        row = {"factor": factor, "kind": kind, "shade": shade, "voxels": int(values.size),
+               "bytes": int(values.nbytes)}
+        mappers = {}
+        for name in ("fixed", "parc"):  # first frames, each mapper new
+            mappers[name] = new_mapper(name, image)
+            volume.SetMapper(mappers[name])
+            row["first_" + name] = timed(window)
+        parc = mappers["parc"]
+        for pixels in images:
+            window.SetSize(pixels, pixels)
+            for name in ("parc", "fixed"):
+                volume.SetMapper(mappers[name])
+                warm_up(window, mappers[name])
+            times = {"parc": [], "fixed": []}
+            for _ in range(rounds):
+                for name in ("parc", "fixed"):
+                    volume.SetMapper(mappers[name])
+                    times[name].append(timed(window))
+            for name, t in times.items():
+                row["warm_%s_%d" % (name, pixels)] = min_median(t)
+            if pixels == images[0]:
+                row["mode"] = parc.GetAccelerationModeAsString(parc.GetLastAccelerationMode())
+                row["supercell"] = supercell_size(parc)
+                row["ns_per_sample"] = (1e9 * parc.GetLastCastingTime() * parc.GetLastNumberOfThreads()
+                                        / max(parc.GetLastSampleCount(), 1))
+        window.SetSize(images[0], images[0])
+        volume.SetMapper(parc)
+        warm_up(window, parc)
+        edits, warm = [], []
+        for r in range(rounds):  # an opacity node moved back and forth
+            node = [0.0] * 4
+            opacity.GetNodeValue(2, node)
+            node[1] *= 1.1 if r % 2 == 0 else 1 / 1.1
+            opacity.SetNodeValue(2, node)
+            edits.append(timed(window))
+            warm.append(timed(window))
+        row["edit"] = min_median(edits)[1] / min_median(warm)[1]
+        row["parc_memory_size"] = parc.GetMemorySize()
+        rows.append(row)
+        del mappers, parc, window, volume
+        gc.collect()
+    print(json.dumps(rows))
+
+
+def resident():
+    with open("/proc/self/statm") as f:
+        return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
+
+
+def memory(outdir, factor, kind, name, shade, pixels):
+    """The resident size MEMORY_FRAMES frames of one new mapper add (JSON on stdout)."""
+    image, values = load_image(outdir, factor, kind)
+    window, volume, _ = scene(image, kind, shade, pixels)
+    gc.collect()
+    before = resident()
+    mapper = new_mapper(name, image)
+    volume.SetMapper(mapper)
+    for _ in range(MEMORY_FRAMES):
+        window.Render()
+    result = {"growth": resident() - before}
+    if name == "parc":
+        result["memory_size"] = mapper.GetMemorySize()
+    print(json.dumps(result))
+
+
+def child(*args):
+    """Runs this script in a new process with args; its last stdout line as JSON."""
+    out = subprocess.run([sys.executable, __file__] + [str(a) for a in args], check=True,
+                         stdout=subprocess.PIPE, text=True).stdout
+    return json.loads(out.strip().splitlines()[-1]) if out.strip() else None
+
+
+def label(row):
+    return "x%d %s (%s MiB)" % (row["factor"], row["kind"], format(row["bytes"] / 2**20, ".0f"))
+
+
+def report(outdir, quick):
+    factors = QUICK_FACTORS if quick else FACTORS
+    images = QUICK_IMAGES if quick else IMAGES
+    rounds = QUICK_ROUNDS if quick else ROUNDS
+    os.makedirs(os.path.join(outdir, "volumes"), exist_ok=True)
+    rows = []
+    try:
+        for kind, kind_factors in factors.items():
+            for factor in kind_factors:
+                started = time.time()
+                child("--make", outdir, factor, kind)
+                measured = child("--measure", outdir, factor, kind, ",".join(map(str, images)),
+                                 rounds)
+                for row in measured:
+                    for name in ("fixed", "parc"):
+                        grown = child("--memory", outdir, factor, kind, name, row["shade"], images[0])
+                        row["growth_" + name] = grown["growth"]
+                        if name == "parc":
+                            row["memory_size_" + name] = grown["memory_size"]
+                rows.extend(measured)
+                os.remove(volume_path(outdir, factor, kind))
+                print("(%s: %.0f s)" % (label(measured[0]), time.time() - started),
+                      file=sys.stderr, flush=True)
+    finally:
+        shutil.rmtree(os.path.join(outdir, "volumes"), ignore_errors=True)
+    tables(rows, images)
+    plots(outdir, rows, images)
+
+
+def tables(rows, images):
+    print("| volume | shading | FixedPoint first (s) | PARC first (s) | first: FixedPoint / PARC "
+          "| PARC set-up (ns per voxel) | " +
+          " | ".join("warm %d^2: FixedPoint, PARC median (min) (s) | FixedPoint / PARC" % p
+                     for p in images) + " |")
+    print("|---|---|---|---|---|---|" + "---|---|" * len(images))
+    for r in rows:
+        setup = 1e9 * (r["first_parc"] - r["warm_parc_%d" % images[0]][0]) / r["voxels"]
+        cells = ["%.3f" % r["first_fixed"], "%.3f" % r["first_parc"],
+                 "%.2fx" % (r["first_fixed"] / r["first_parc"]), "%.2f" % setup]
+        for p in images:
+            f, c = r["warm_fixed_%d" % p], r["warm_parc_%d" % p]
+            cells += ["%.3f (%.3f), %.3f (%.3f)" % (f[1], f[0], c[1], c[0]), "%.2fx" % (f[1] / c[1])]
+        print("| %s | %s | %s |" % (label(r), "shaded" if r["shade"] else "unshaded", " | ".join(cells)))
+    print()
+    print("| volume | shading | PARC mode, supercell size | PARC ns per sample per thread "
+          "| edit frame / warm frame | resident growth: FixedPoint, PARC (x volume) "
+          "| PARC GetMemorySize (x volume) | GetMemorySize / growth |")
+    print("|---|---|---|---|---|---|---|---|")
+    for r in rows:
+        v = r["bytes"]
+        print("| %s | %s | %s, %s | %.1f | %.2fx | %.2f, %.2f | %.2f | %.2f |" % (
+            label(r), "shaded" if r["shade"] else "unshaded", r["mode"],
+            "x".join(format(s, "g") for s in r["supercell"]), r["ns_per_sample"], r["edit"],
+            r["growth_fixed"] / v, r["growth_parc"] / v, r["memory_size_parc"] / v,
+            r["memory_size_parc"] / max(r["growth_parc"], 1)))
+    print()
+
+
+def plots(outdir, rows, images):
+    sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+    from benchmark_report import lines
+    series = {"time": [], "memory": []}
+    for r in rows:
+        x = r["voxels"]
+        shading = "shaded" if r["shade"] else "unshaded"
+        for name, title in (("fixed", "FixedPoint"), ("parc", "PARC Auto")):
+            series["time"].append(("%s %s %s warm" % (title, r["kind"], shading), x,
+                                   r["warm_%s_%d" % (name, images[0])][1]))
+            series["time"].append(("%s %s %s first" % (title, r["kind"], shading), x,
+                                    r["first_" + name]))
+            series["memory"].append(("%s %s %s" % (title, r["kind"], shading), x,
+                                     r["growth_" + name] / 2**20))
+        series["memory"].append(("PARC GetMemorySize %s %s" % (r["kind"], shading), x,
+                                 r["memory_size_parc"] / 2**20))
+    for name, (title, ylabel) in {
+            "time": ("Frame time against volume size (%d^2)" % images[0], "seconds"),
+            "memory": ("Memory a render adds against volume size", "MiB")}.items():
+        csv = os.path.join(outdir, "volume-size-%s.csv" % name)
+        with open(csv, "w") as f:
+            f.write("series,x,y\n")
+            for s, x, y in sorted(series[name], key=lambda e: (e[0], e[1])):
+                f.write("%s,%d,%g\n" % (s, x, y))
+        lines(csv, os.path.join(outdir, "volume-size-%s.png" % name), title, "voxels", ylabel,
+              ["--log-x", "--log-y"])
+        print("![%s](volume-size-%s.png)\n" % (title, name))
+
+
+def main(argv):
+    if argv[:1] == ["--make"]:
+        make_volume(argv[1], int(argv[2]), argv[3])
+    elif argv[:1] == ["--measure"]:
+        measure(argv[1], int(argv[2]), argv[3], [int(p) for p in argv[4].split(",")], int(argv[5]))
+    elif argv[:1] == ["--memory"]:
+        memory(argv[1], int(argv[2]), argv[3], argv[4], int(argv[5]), int(argv[6]))
+    elif len(argv) in (1, 2) and (len(argv) == 1 or argv[1] == "--quick"):
+        if not os.path.exists(HEAD):
+            print("(%s not found: skipped)" % HEAD)
+            return
+        print("Machine: %s, %d cores; %s\n" % (platform.processor() or platform.machine(),
+                                               os.cpu_count(), time.strftime("%Y-%m-%d")))
+        report(argv[0], len(argv) == 2)
+    else:
+        sys.exit(__doc__)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
