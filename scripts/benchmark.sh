@@ -190,16 +190,9 @@ growth_section() {
   done
   plot lines "$out/image-size.csv" "$out/image-size.png" "MRI head, shaded: frame time against image size" "pixels" "median frame time (s)" --log-x --log-y
   echo; echo "![time against image size](image-size.png)"
-  echo; echo "### Volume size (the head resampled trilinearly; sample distance 0.5 of the new voxels, image ${size}x${size})"; echo
-  echo "series,x,y" > "$out/volume-size.csv"
-  echo "| voxels | PARC None (s) | PARC Auto (s) | PARC Auto, quantized normals (s) | FixedPoint (s) | FixedPoint / Auto |"
-  echo "|---|---|---|---|---|---|"
-  for f in $factors; do
-    table=$(parc "$head" --tf mri --shade --elevation -80 --azimuth 30 --size "$size" --resample "$f" --versus-fixed-point "$rounds")
-    growth_row "$(awk -v f="$f" 'BEGIN{printf "%gx", f*f*f}')" "$(awk -v f="$f" 'BEGIN{printf "%d", 181*217*181*f*f*f}')" "$table" "$out/volume-size.csv"
-  done
-  plot lines "$out/volume-size.csv" "$out/volume-size.png" "MRI head, shaded: frame time against volume size" "voxels" "median frame time (s)" --log-x --log-y
-  echo; echo "![time against volume size](volume-size.png)"
+  echo; echo "### Cost as the volume grows (the head resized up to 1.5-2 GB, uint8 and CT-like int16)"; echo
+  echo "This mapper in Auto against vtkFixedPointVolumeRayCastMapper at half a voxel, perspective, unshaded and shaded: first frames of new mappers in a window whose GL context exists, warm frames interleaved (A B A B, median and minimum of $rounds rounds), the frame after a transfer-function edit, this mapper's chosen mode and supercell size, its casting cost, and the resident size each mapper adds in a process of its own against GetMemorySize."; echo
+  xrun /usr/bin/python3 "$here/scripts/benchmark_volume_size.py" "$out" $([ "$quick" = 1 ] && echo --quick)
   echo; echo "### Threads (iron protein cloud, ${size}x${size}; one caster thread against $(nproc), medians of 7 interleaved frames: the whole frame, the mapper's casting and its GL passes, which llvmpipe runs on every core at either setting)"; echo
   present "$data/ironProt_68x68x68_uint8.raw" && parc "$data/ironProt_68x68x68_uint8.raw" --tf "$tf/iron-protein-cloud.txt" --size "$size" --sample-distance 0.5 --thread-scaling 7 | grep '^|'
   echo; echo "### The first frame after a transfer-function change against a warm frame (${size}x${size})"

@@ -5,24 +5,23 @@ by factors up to 1.5-2 GB, as uint8 and as CT-like int16 (12 v - 1024), rendered
 and shaded by this mapper (Auto) and vtkFixedPointVolumeRayCastMapper (automatic adjustment
 off) at half a voxel, in a perspective view. For each volume and shading:
 
-- first frame: each mapper new, in a window whose GL context exists (FixedPoint, then this
-  one), and this mapper's set-up per voxel (its first frame less its warm one);
+- first frame: each mapper new, in a process of its own and a window whose GL context
+  exists, and this mapper's set-up per voxel (its first frame less its warm one);
 - warm frames at each image size: both mappers warmed up (this one until Auto has chosen
   its pass and supercell size), then rounds interleaved (A B A B): minimum and median;
 - the frame after a transfer-function edit against a warm frame (this mapper);
 - this mapper's casting cost (ns per sample per thread), mode and supercell size;
-- memory, each mapper in a process of its own: the resident size 5 frames add (after the
+- memory, in the first frame's process: the resident size 5 frames add (after the
   window's GL context is made) against the volume's bytes, beside GetMemorySize.
 
 Prints markdown; writes CSV data and PNG plots into OUTDIR. The resized volumes are kept in
 OUTDIR/volumes while the section runs and removed after.
 
-  benchmark_volume_size.py OUTDIR [--quick]
+  benchmark_volume_size.py OUTDIR [--quick] [--only=uint8:3,4;int16:3]
 """
 import gc
 import json
 import os
-import platform
 import shutil
 import subprocess
 import sys
@@ -172,11 +171,7 @@ def measure(outdir, factor, kind, images, rounds):
         window, volume, opacity = scene(image, kind, shade, images[0])
         row = {"factor": factor, "kind": kind, "shade": shade, "voxels": int(values.size),
                "bytes": int(values.nbytes)}
-        mappers = {}
-        for name in ("fixed", "parc"):  # first frames, each mapper new
-            mappers[name] = new_mapper(name, image)
-            volume.SetMapper(mappers[name])
-            row["first_" + name] = timed(window)
+        mappers = {name: new_mapper(name, image) for name in ("fixed", "parc")}
         parc = mappers["parc"]
         for pixels in images:
             window.SetSize(pixels, pixels)
@@ -219,17 +214,19 @@ def resident():
         return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
 
 
-def memory(outdir, factor, kind, name, shade, pixels):
-    """The resident size MEMORY_FRAMES frames of one new mapper add (JSON on stdout)."""
+def first(outdir, factor, kind, name, shade, pixels):
+    """A new mapper in a new process: its first frame and the resident size MEMORY_FRAMES
+    frames add (JSON on stdout)."""
     image, values = load_image(outdir, factor, kind)
     window, volume, _ = scene(image, kind, shade, pixels)
     gc.collect()
     before = resident()
     mapper = new_mapper(name, image)
     volume.SetMapper(mapper)
-    for _ in range(MEMORY_FRAMES):
+    result = {"first": timed(window)}
+    for _ in range(MEMORY_FRAMES - 1):
         window.Render()
-    result = {"growth": resident() - before}
+    result["growth"] = resident() - before
     if name == "parc":
         result["memory_size"] = mapper.GetMemorySize()
     print(json.dumps(result))
@@ -246,8 +243,8 @@ def label(row):
     return "x%d %s (%s MiB)" % (row["factor"], row["kind"], format(row["bytes"] / 2**20, ".0f"))
 
 
-def report(outdir, quick):
-    factors = QUICK_FACTORS if quick else FACTORS
+def report(outdir, quick, factors=None):
+    factors = factors or (QUICK_FACTORS if quick else FACTORS)
     images = QUICK_IMAGES if quick else IMAGES
     rounds = QUICK_ROUNDS if quick else ROUNDS
     os.makedirs(os.path.join(outdir, "volumes"), exist_ok=True)
@@ -261,10 +258,11 @@ def report(outdir, quick):
                                  rounds)
                 for row in measured:
                     for name in ("fixed", "parc"):
-                        grown = child("--memory", outdir, factor, kind, name, row["shade"], images[0])
-                        row["growth_" + name] = grown["growth"]
+                        fresh = child("--first", outdir, factor, kind, name, row["shade"], images[0])
+                        row["first_" + name] = fresh["first"]
+                        row["growth_" + name] = fresh["growth"]
                         if name == "parc":
-                            row["memory_size_" + name] = grown["memory_size"]
+                            row["memory_size_" + name] = fresh["memory_size"]
                 rows.extend(measured)
                 os.remove(volume_path(outdir, factor, kind))
                 print("(%s: %.0f s)" % (label(measured[0]), time.time() - started),
@@ -338,15 +336,19 @@ def main(argv):
         make_volume(argv[1], int(argv[2]), argv[3])
     elif argv[:1] == ["--measure"]:
         measure(argv[1], int(argv[2]), argv[3], [int(p) for p in argv[4].split(",")], int(argv[5]))
-    elif argv[:1] == ["--memory"]:
-        memory(argv[1], int(argv[2]), argv[3], argv[4], int(argv[5]), int(argv[6]))
-    elif len(argv) in (1, 2) and (len(argv) == 1 or argv[1] == "--quick"):
+    elif argv[:1] == ["--first"]:
+        first(argv[1], int(argv[2]), argv[3], argv[4], int(argv[5]), int(argv[6]))
+    elif argv and not argv[0].startswith("--") and set(argv[1:]) <= {"--quick"} | set(
+            a for a in argv[1:] if a.startswith("--only=")):
         if not os.path.exists(HEAD):
             print("(%s not found: skipped)" % HEAD)
             return
-        print("Machine: %s, %d cores; %s\n" % (platform.processor() or platform.machine(),
-                                               os.cpu_count(), time.strftime("%Y-%m-%d")))
-        report(argv[0], len(argv) == 2)
+        only = [a[len("--only="):] for a in argv[1:] if a.startswith("--only=")]
+        factors = None
+        if only:  # --only=uint8:3,4;int16:3
+            factors = {kind: [int(f) for f in fs.split(",")]
+                       for kind, fs in (part.split(":") for part in only[0].split(";"))}
+        report(argv[0], "--quick" in argv, factors)
     else:
         sys.exit(__doc__)
 

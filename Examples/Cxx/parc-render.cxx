@@ -66,7 +66,8 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
   --sample-distance D   world units (default: half the smallest spacing)
   --acceleration MODE   none, depth, color, both, walk (the supercells walked on the CPU,
                         no GL pass), auto (default)
-  --supercell M,N,P     supercell size in cells (default 4,4,4, the mapper's)
+  --supercell M,N,P     supercell size in cells (default: the mapper's 4,4,4, scaled by
+                        Auto's search in auto)
   --compare-acceleration  also render with every acceleration mode, side by side: a table
                         of samples, cells, polygons, times, speedup and exactness
   --sweep-supercells S1,S2,...  also render with cubic supercells of these sizes (table)
@@ -141,6 +142,7 @@ struct Options
   int MultiSamples = 0;
   int EditCost = 0, ThreadScaling = 0, AutoTrials = 0;
   double Supercell[3] = { 4, 4, 4 };
+  bool SupercellSet = false; ///< else the mapper's, which Auto scales
   std::vector<double> Sweep;
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
   int Width = 300, Height = 300, Repeat = 1;
@@ -238,7 +240,7 @@ Options Parse(int argc, char* argv[])
     else if (a == "--threads") { o.Threads = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--multisamples") { o.MultiSamples = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--memory") { o.Memory = true; }
-    else if (a == "--supercell") { ToTriple(a, value(), o.Supercell); }
+    else if (a == "--supercell") { ToTriple(a, value(), o.Supercell); o.SupercellSet = true; }
     else if (a == "--compare-acceleration") { o.CompareAcceleration = true; }
     else if (a == "--sweep-supercells")
     {
@@ -974,7 +976,10 @@ int main(int argc, char* argv[])
   mapper->SetInputData(image);
   mapper->SetBlendMode(blend);
   mapper->SetAccelerationMode(acceleration);
-  mapper->SetSupercellSize(o.Supercell);
+  if (o.SupercellSet)
+  {
+    mapper->SetSupercellSize(o.Supercell);
+  }
   mapper->SetSampleDistance(o.SampleDistance);
   mapper->SetShadingModel(o.QuantizedNormals ? vtkPARCVolumeMapper::SHADING_QUANTIZED_NORMALS
                                              : vtkPARCVolumeMapper::SHADING_EXACT);
@@ -1172,6 +1177,9 @@ int main(int argc, char* argv[])
               << ",\n  \"rays\": " << mapper->GetLastRayCount()
               << ",\n  \"casting_time\": " << casting
               << ",\n  \"projection_time\": " << mapper->GetLastProjectionTime()
+              << ",\n  \"supercell_size\": [" << mapper->GetLastSupercellSize()[0] << ", "
+              << mapper->GetLastSupercellSize()[1] << ", " << mapper->GetLastSupercellSize()[2]
+              << "]"
               << ",\n  \"render_time\": " << total << ",\n  \"wall_time\": " << wall;
     if (o.Compare && fixedSupports)
     {

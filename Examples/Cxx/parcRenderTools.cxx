@@ -88,6 +88,7 @@ vtkSmartPointer<vtkPARCVolumeMapper> CopyMapper(vtkPARCVolumeMapper* parc, int m
   m->SetBlendMode(parc->GetBlendMode());
   m->SetSampleDistance(parc->GetLastSampleDistance());
   m->SetSupercellSize(parc->GetSupercellSize());
+  m->SetAutoSupercellSize(parc->GetAutoSupercellSize());
   m->SetShadingModel(parc->GetShadingModel());
   m->SetAccelerationMode(mode);
   return m;

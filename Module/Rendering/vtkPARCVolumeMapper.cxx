@@ -912,7 +912,12 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
   in.FieldComponent = component;
   in.DependentComponents = dependent ? components : 0;
   ++in.FieldVersion;
-  in.Plan.Sizes.Reset(); // another volume: another best size
+  int cells[3]; // another volume: another best size
+  for (int a = 0; a < 3; ++a)
+  {
+    cells[a] = in.Field.GetDimensions()[a] - 1;
+  }
+  in.Plan.Sizes.Begin(cells, this->SupercellSize);
   return true;
 }
 

@@ -335,3 +335,20 @@ TEST(SupercellSearch, KeepsTheBestWhenAutoLeavesThePassAndStartsAgainAfterAReset
   EXPECT_EQ(search.GetScale(), 1.0);
   EXPECT_FALSE(search.IsDone());
 }
+
+TEST(SupercellSearch, ALargeVolumeStartsAtALargerScale)
+{
+  const double size[3] = { 4, 4, 4 };
+  SupercellSearch search;
+  const int small[3] = { 180, 216, 180 }; // 109,350 supercells of 4
+  search.Begin(small, size);
+  EXPECT_EQ(search.GetScale(), 1.0);
+  const int large[3] = { 720, 864, 720 }; // 7.0 million of 4, 875,000 of 8
+  search.Begin(large, size);
+  EXPECT_EQ(search.GetScale(), 2.0);
+  // Twice that scale slower: the search tries half of it next, not half of 1.
+  const auto seconds = [](double s) { return s == 2.0 ? 1.0 : 2.0; };
+  const std::vector<double> scales = RunSearch(search, AutoTrials::Depth, seconds);
+  EXPECT_EQ(scales, (std::vector<double>{ 2, 2, 4, 4, 1, 1 }));
+  EXPECT_EQ(search.GetScale(), 2.0);
+}

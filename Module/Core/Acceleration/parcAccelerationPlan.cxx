@@ -224,6 +224,24 @@ int AutoTrials::Remaining() const
   return remaining;
 }
 
+void SupercellSearch::Begin(const int cells[3], const double size[3])
+{
+  this->Reset();
+  const auto count = [&](double scale) {
+    double n = 1.0;
+    for (int a = 0; a < 3; ++a)
+    {
+      n *= std::ceil(std::max(cells[a], 1) / std::max(scale * size[a], 1e-9));
+    }
+    return n;
+  };
+  while (count(this->StartScale) > StartSupercells && 2.0 * this->StartScale <= MaxScale)
+  {
+    this->StartScale *= 2.0;
+  }
+  this->Scale = this->BestScale = this->StartScale;
+}
+
 void SupercellSearch::Record(int candidate, bool settled, double seconds)
 {
   if (this->State == Done)
@@ -264,7 +282,7 @@ void SupercellSearch::Record(int candidate, bool settled, double seconds)
     return;
   }
   // Slower than the best: when the first step up was, try the other way.
-  if (this->Growing && this->BestScale == 1.0)
+  if (this->Growing && this->BestScale == this->StartScale)
   {
     this->Growing = false;
     this->Try(0.5 * this->BestScale);

@@ -161,13 +161,22 @@ private:
 /// best, which the volume keeps. A scale's time is the least of FramesPerScale
 /// representative frames; a frame that set up (a new scale classifies and builds its
 /// models) is not one. Supercell sizes change the segments, never the samples, so the
-/// search changes times only.
+/// search changes times only. A large volume starts at a larger scale (Begin).
 class SupercellSearch
 {
 public:
   static constexpr double MinScale = 0.25; ///< the default 4 cells down to 1
   static constexpr double MaxScale = 8.0;  ///< and up to 32
   static constexpr int FramesPerScale = 2;
+  /// The most supercells of the scale a search starts from.
+  static constexpr double StartSupercells = 1 << 20;
+
+  /// Starts from the smallest power-of-two scale (at least 1) at which a field of `cells`
+  /// cells per axis holds at most StartSupercells supercells of `size` times the scale:
+  /// the first passes of a large volume then draw tens of thousands of polygons, not
+  /// millions (each costs pass time and, on a software GL, about a kilobyte of the
+  /// driver's memory).
+  void Begin(const int cells[3], const double size[3]);
 
   /// The scale of the supercell size for the next frame.
   double GetScale() const { return this->Scale; }
@@ -178,7 +187,7 @@ public:
   /// A representative frame of AutoTrials candidate `candidate` took `seconds` at
   /// GetScale(); `settled`: Auto's trials of the modes are over.
   void Record(int candidate, bool settled, double seconds);
-  /// Forgets everything (new data): the next settled pass searches again from scale 1.
+  /// Forgets everything: the next settled pass searches again from scale 1 (or Begin's).
   void Reset() { *this = SupercellSearch(); }
 
 private:
@@ -192,6 +201,7 @@ private:
     Done
   } State = Waiting;
   int Candidate = -1;
+  double StartScale = 1.0;
   double Scale = 1.0, BestScale = 1.0, BestSeconds = 0.0;
   double ScaleSeconds = 0.0; ///< the least frame of Scale so far
   int ScaleFrames = 0;       ///< frames of Scale so far

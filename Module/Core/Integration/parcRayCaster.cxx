@@ -4,7 +4,6 @@
 #include <vtkSMPTools.h>
 
 #include <algorithm>
-#include <cstdlib>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -19,7 +18,7 @@ namespace parc
 
 namespace
 {
-static const int TileSize = getenv("PARC_TILE") ? atoi(getenv("PARC_TILE")) : 16; // EXPERIMENT
+constexpr int TileSize = 16;        ///< ray-image pixels per tile edge
 constexpr int TileRowsPerBand = 4;  ///< tile rows cast between two progress reports
 /// Lattice samples taken together along a ray; a ray that stops early has taken at most
 /// this many - 1 in vain.
