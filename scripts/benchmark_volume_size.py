@@ -17,7 +17,7 @@ off) at half a voxel, in a perspective view. For each volume and shading:
 Prints markdown; writes CSV data and PNG plots into OUTDIR. The resized volumes are kept in
 OUTDIR/volumes while the section runs and removed after.
 
-  benchmark_volume_size.py OUTDIR [--quick] [--only=uint8:3,4;int16:3]
+  benchmark_volume_size.py OUTDIR [--quick] [--only=uint8:3,4;int16:3] [--images=600,1000]
 """
 import gc
 import json
@@ -243,9 +243,9 @@ def label(row):
     return "x%d %s (%s MiB)" % (row["factor"], row["kind"], format(row["bytes"] / 2**20, ".0f"))
 
 
-def report(outdir, quick, factors=None):
+def report(outdir, quick, factors=None, images=None):
     factors = factors or (QUICK_FACTORS if quick else FACTORS)
-    images = QUICK_IMAGES if quick else IMAGES
+    images = images or (QUICK_IMAGES if quick else IMAGES)
     rounds = QUICK_ROUNDS if quick else ROUNDS
     os.makedirs(os.path.join(outdir, "volumes"), exist_ok=True)
     rows = []
@@ -338,17 +338,18 @@ def main(argv):
         measure(argv[1], int(argv[2]), argv[3], [int(p) for p in argv[4].split(",")], int(argv[5]))
     elif argv[:1] == ["--first"]:
         first(argv[1], int(argv[2]), argv[3], argv[4], int(argv[5]), int(argv[6]))
-    elif argv and not argv[0].startswith("--") and set(argv[1:]) <= {"--quick"} | set(
-            a for a in argv[1:] if a.startswith("--only=")):
+    elif argv and not argv[0].startswith("--") and all(
+            a == "--quick" or a.startswith(("--only=", "--images=")) for a in argv[1:]):
         if not os.path.exists(HEAD):
             print("(%s not found: skipped)" % HEAD)
             return
-        only = [a[len("--only="):] for a in argv[1:] if a.startswith("--only=")]
+        options = dict(a[2:].split("=", 1) for a in argv[1:] if "=" in a)
         factors = None
-        if only:  # --only=uint8:3,4;int16:3
+        if "only" in options:  # --only=uint8:3,4;int16:3
             factors = {kind: [int(f) for f in fs.split(",")]
-                       for kind, fs in (part.split(":") for part in only[0].split(";"))}
-        report(argv[0], "--quick" in argv, factors)
+                       for kind, fs in (part.split(":") for part in options["only"].split(";"))}
+        images = [int(p) for p in options["images"].split(",")] if "images" in options else None
+        report(argv[0], "--quick" in argv, factors, images)
     else:
         sys.exit(__doc__)
 

@@ -355,6 +355,16 @@ public:
     parc::LightBufferSource Source;
   };
   std::vector<LightPasses> LightBuffers;
+  /// Bytes held by the lights' buffers.
+  std::size_t LightBufferMemory() const
+  {
+    std::size_t bytes = 0;
+    for (const LightPasses& passes : this->LightBuffers)
+    {
+      bytes += passes.Source.GetMemorySize() + passes.Key.capacity() * sizeof(double);
+    }
+    return bytes;
+  }
   vtkIdType PolygonCount = 0;
   int PlaneCount = 0;
   int PassCount = 0;
@@ -1365,7 +1375,13 @@ bool vtkPARCVolumeMapper::vtkInternals::Cast(vtkPARCVolumeMapper* self, vtkRende
         rays, depth, *members[0].Source, this->Image.data(), volume.Stats, progress);
       return;
     }
-    this->Scene.SetMembers(members, self->TerminationOpacity);
+    if (!this->Scene.SetMembers(members, self->TerminationOpacity))
+    {
+      vtkErrorWithObjectMacro(self, "" << members.size() << " volumes in one scene; at most "
+                                       << parc::MaxSceneVolumes << " render together.");
+      std::fill(this->Image.begin(), this->Image.end(), 0.f);
+      return;
+    }
     completed = this->Scene.CastImage(rays, depth, this->Image.data(), this->MemberStats, progress);
     for (std::size_t v = 0; v < members.size(); ++v)
     {
@@ -1840,6 +1856,8 @@ void vtkPARCVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
     if (volume)
     {
       volume->Rasterizer->ReleaseGraphicsResources(window);
+      volume->LightRasterizer->ReleaseGraphicsResources(window);
+      volume->LightBuffers.clear(); // drawn in the window's context: remade when needed
     }
   }
 }
@@ -2105,7 +2123,9 @@ vtkPARCVolumeMapper::vtkVolumeState::Memory() const
     { "contributing cells", this->Plan.GetCellsMemorySize() },
     { "depth buffer", this->DepthSource.GetMemorySize() },
     { "bit-plane buffer", this->PlaneSource.GetMemorySize() },
-    { "OpenGL models and targets", this->Rasterizer->GetMemorySize() } };
+    { "OpenGL models and targets",
+      this->Rasterizer->GetMemorySize() + this->LightRasterizer->GetMemorySize() },
+    { "light buffers", this->LightBufferMemory() } };
 }
 
 std::vector<std::pair<const char*, std::size_t>> vtkPARCVolumeMapper::vtkInternals::Memory() const

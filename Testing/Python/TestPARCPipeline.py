@@ -11,8 +11,9 @@ from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.util.vtkConstants import VTK_DOUBLE
-from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderWindow,
+from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkLight, vtkRenderWindow,
                                          vtkRenderer, vtkVolume, vtkVolumeProperty)
+from parctesthelpers import ray_image
 
 
 def make_scene(size=120):
@@ -170,6 +171,34 @@ class TestPARCPipeline(unittest.TestCase):
         self.assertEqual(mapper.GetAutoTrialsRemaining(), 0)
         self.assertIn(vtkPARCVolumeMapper.GetAccelerationModeAsString(
             mapper.GetLastAccelerationMode()), order)
+
+    def test_light_passes_are_counted_and_released(self):
+        # A shadow-casting light: its PARC buffers count in GetMemorySize, and releasing the
+        # window's graphics resources drops them with the light's GL models, so that the
+        # next render draws the light passes again, in the window's new context.
+        mapper, window = make_scene()
+        renderer = window.GetRenderers().GetFirstRenderer()
+        window.Render()
+        unshadowed = mapper.GetMemorySize()
+        light = vtkLight()
+        light.SetPosition(60, 40, 80)
+        light.SetFocalPoint(0, 0, 0)
+        light.SetPositional(True)
+        light.SetConeAngle(180)
+        light.SetShadowAttenuation(1.0)
+        renderer.AddLight(light)
+        renderer.UseShadowsOn()
+        window.Render()
+        self.assertGreater(mapper.GetLastLightFrustumCount(), 0)
+        self.assertGreater(mapper.GetLastShadowRayCount(), 0)
+        shadowed = ray_image(mapper)
+        self.assertGreater(mapper.GetMemorySize(), unshadowed, "the light buffers count")
+        window.Render()
+        self.assertEqual(mapper.GetLastLightFrustumCount(), 0, "the light buffers are cached")
+        mapper.ReleaseGraphicsResources(window)
+        window.Render()
+        self.assertGreater(mapper.GetLastLightFrustumCount(), 0, "released, then drawn again")
+        self.assertTrue((ray_image(mapper) == shadowed).all())
 
     def test_progress_and_abort(self):
         mapper, window = make_scene(size=256)
