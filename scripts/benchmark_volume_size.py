@@ -18,6 +18,7 @@ Prints markdown; writes CSV data and PNG plots into OUTDIR. The resized volumes 
 OUTDIR/volumes while the section runs and removed after.
 
   benchmark_volume_size.py OUTDIR [--quick] [--only=uint8:3,4;int16:3] [--images=600,1000]
+  benchmark_volume_size.py OUTDIR --from=OUTDIR/volume-size.json   (the report of a saved run)
 """
 import gc
 import json
@@ -269,6 +270,8 @@ def report(outdir, quick, factors=None, images=None):
                       file=sys.stderr, flush=True)
     finally:
         shutil.rmtree(os.path.join(outdir, "volumes"), ignore_errors=True)
+    with open(os.path.join(outdir, "volume-size.json"), "w") as f:
+        json.dump({"images": images, "rows": rows}, f)
     tables(rows, images)
     plots(outdir, rows, images)
 
@@ -303,32 +306,55 @@ def tables(rows, images):
 
 
 def plots(outdir, rows, images):
+    """Time against volume size per scalar type (warm frames solid, first frames dashed) and
+    the memory a render adds (int16 dashed), one colour per mapper and shading; CSV beside."""
     sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-    from benchmark_report import lines
-    series = {"time": [], "memory": []}
-    for r in rows:
-        x = r["voxels"]
-        shading = "shaded" if r["shade"] else "unshaded"
-        for name, title in (("fixed", "FixedPoint"), ("parc", "PARC Auto")):
-            series["time"].append(("%s %s %s warm" % (title, r["kind"], shading), x,
-                                   r["warm_%s_%d" % (name, images[0])][1]))
-            series["time"].append(("%s %s %s first" % (title, r["kind"], shading), x,
-                                    r["first_" + name]))
-            series["memory"].append(("%s %s %s" % (title, r["kind"], shading), x,
-                                     r["growth_" + name] / 2**20))
-        series["memory"].append(("PARC GetMemorySize %s %s" % (r["kind"], shading), x,
-                                 r["memory_size_parc"] / 2**20))
-    for name, (title, ylabel) in {
-            "time": ("Frame time against volume size (%d^2)" % images[0], "seconds"),
-            "memory": ("Memory a render adds against volume size", "MiB")}.items():
-        csv = os.path.join(outdir, "volume-size-%s.csv" % name)
-        with open(csv, "w") as f:
-            f.write("series,x,y\n")
-            for s, x, y in sorted(series[name], key=lambda e: (e[0], e[1])):
-                f.write("%s,%d,%g\n" % (s, x, y))
-        lines(csv, os.path.join(outdir, "volume-size-%s.png" % name), title, "voxels", ylabel,
-              ["--log-x", "--log-y"])
-        print("![%s](volume-size-%s.png)\n" % (title, name))
+    from benchmark_report import PALETTE, draw
+    mappers = (("fixed", "FixedPoint"), ("parc", "PARC Auto"))
+    kinds = sorted(set(r["kind"] for r in rows), reverse=True)  # uint8 first
+    csv_rows = []
+
+    def line(name, select, value, colour, dashed):
+        chosen = sorted((r for r in rows if select(r)), key=lambda r: r["voxels"])
+        xs = [r["voxels"] for r in chosen]
+        ys = [value(r) for r in chosen]
+        csv_rows.extend((name, x, y) for x, y in zip(xs, ys))
+        return (name, xs, ys, colour, dashed)
+
+    for kind in kinds:
+        series = []
+        for i, (shade, shading) in enumerate(((0, "unshaded"), (1, "shaded"))):
+            for j, (key, title) in enumerate(mappers):
+                colour = PALETTE[2 * i + j]
+                select = lambda r, shade=shade: r["kind"] == kind and r["shade"] == shade
+                series.append(line("%s %s (dashed: first frame)" % (title, shading), select,
+                                   lambda r, key=key: r["warm_%s_%d" % (key, images[0])][1], colour,
+                                   False))
+                series.append(line("%s %s first frame" % (title, shading), select,
+                                   lambda r, key=key: r["first_" + key], colour, True))
+        name = "volume-size-time-%s.png" % kind
+        title = "%s: warm frame (median) and first frame against volume size, %d^2" % (kind, images[0])
+        draw(series, os.path.join(outdir, name), title, "voxels", "seconds", True, True)
+        print("![%s](%s)\n" % (title, name))
+    series = []
+    for i, (shade, shading) in enumerate(((0, "unshaded"), (1, "shaded"))):
+        for j, (key, title) in enumerate(mappers):
+            for kind in kinds:
+                series.append(line("%s %s%s" % (title, shading, "" if kind == kinds[0] else " " + kind),
+                                   lambda r, k=kind, s=shade: r["kind"] == k and r["shade"] == s,
+                                   lambda r, key=key: r["growth_" + key] / 2**20,
+                                   PALETTE[2 * i + j], kind != kinds[0]))
+    for kind in kinds:
+        series.append(line("PARC GetMemorySize", lambda r, k=kind: r["kind"] == k and r["shade"] == 0,
+                           lambda r: r["memory_size_parc"] / 2**20, PALETTE[4], kind != kinds[0]))
+    title = "Memory a render adds against volume size (%s solid, %s dashed)" % (
+        kinds[0], ", ".join(kinds[1:]) or "-")
+    draw(series, os.path.join(outdir, "volume-size-memory.png"), title, "voxels", "MiB", True, True)
+    print("![%s](volume-size-memory.png)\n" % title)
+    with open(os.path.join(outdir, "volume-size.csv"), "w") as f:
+        f.write("series,x,y\n")
+        for name, x, y in csv_rows:
+            f.write("%s,%d,%g\n" % (name, x, y))
 
 
 def main(argv):
@@ -338,6 +364,11 @@ def main(argv):
         measure(argv[1], int(argv[2]), argv[3], [int(p) for p in argv[4].split(",")], int(argv[5]))
     elif argv[:1] == ["--first"]:
         first(argv[1], int(argv[2]), argv[3], argv[4], int(argv[5]), int(argv[6]))
+    elif len(argv) == 2 and argv[1].startswith("--from="):  # the report of a saved run
+        with open(argv[1][len("--from="):]) as f:
+            saved = json.load(f)
+        tables(saved["rows"], saved["images"])
+        plots(argv[0], saved["rows"], saved["images"])
     elif argv and not argv[0].startswith("--") and all(
             a == "--quick" or a.startswith(("--only=", "--images=")) for a in argv[1:]):
         if not os.path.exists(HEAD):
