@@ -15,15 +15,18 @@
 #   in pvpython connected to a pvserver on 2 ranks, then loads the plugin in the GUI.
 #   --benchmark: then times PARC beside ParaView's own volume mapper on 1 and 2 ranks
 #   (out/paraview-benchmark.md).
+#   --benchmark-large: then renders the MRI head resized to 1.5 GB (uint8) with "PARC
+#   Volume" on 1 and 2 ranks: read, first and warm frame times and each rank's peak
+#   memory, and the 2-rank image against the 1-rank one (out/paraview-large.md).
 # Exits 77, saying why, when ParaView cannot be installed beside the VTK stack (no package,
 # or installing it would remove a package); any failure after a working install exits 1.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 benchmark=0
-if [ "${1:-}" = "--benchmark" ]; then
-  benchmark=1
-  shift
-fi
+case "${1:-}" in
+  --benchmark) benchmark=1; shift ;;
+  --benchmark-large) benchmark=2; shift ;;
+esac
 build=${1:-"$here/build-paraview"}
 prefix="$build/prefix"
 lib=/usr/lib/x86_64-linux-gnu
@@ -162,6 +165,38 @@ gui() { # the GUI runs a script and exits; the script writes its result to a fil
 }
 echo "== the GUI (paraview --script)"
 checked gui gui
+
+if [ "$benchmark" = 2 ]; then
+  large="$build/large"
+  mkdir -p "$large"
+  raw="$large/head-x6_1081x1297x1081_uint8.raw"
+  if [ ! -f "$raw" ]; then
+    echo "== resizing the MRI head by 6 (1.5 GB)"
+    /usr/bin/python3 "$here/scripts/benchmark_volume_size.py" --make "$large" 6 uint8
+    /usr/bin/python3 -c "import numpy, sys; numpy.load(sys.argv[1], mmap_mode='r').tofile(sys.argv[2])" \
+      "$large/volumes/head-x6-uint8.npy" "$raw"
+    rm -rf "$large/volumes"
+  fi
+  report="$here/out/paraview-large.md"
+  mkdir -p "$here/out"
+  {
+    echo "### The MRI head resized by 6 ($(du -m "$raw" | cut -f1) MiB, uint8) in pvbatch"
+    echo
+    echo "| ranks | threads a rank | MiB | read (s) | first frame (s) | warm min (s) | warm median (s) | Auto | samples |"
+    echo "|---|---|---|---|---|---|---|---|---|"
+  } >"$report"
+  for ranks in 1 2; do
+    echo "== large volume, $ranks rank(s)"
+    xrun "${mpi[@]}" "$ranks" /usr/bin/time -f "rank peak resident: %M KiB" pvbatch \
+      "$here/Plugin/Testing/BenchmarkPARCPluginLarge.py" "$plugin" "$raw" 1081 1297 1081 \
+      "$large/ranks-$ranks.png" 2>"$large/ranks-$ranks.err" | grep '^|' | tee -a "$report"
+    grep 'rank peak resident' "$large/ranks-$ranks.err" | sed "s/^/$ranks rank(s): /" >>"$large/peaks.txt"
+  done
+  { echo; sed 's/^/- /' "$large/peaks.txt"; rm -f "$large/peaks.txt"; echo
+    /usr/bin/python3 "$here/scripts/compare_png.py" "$large/ranks-1.png" "$large/ranks-2.png"
+  } | tee -a "$report"
+  echo "== written: $report"
+fi
 
 if [ "$benchmark" = 1 ]; then
   mkdir -p "$here/out"
