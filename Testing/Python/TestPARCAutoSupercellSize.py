@@ -6,11 +6,9 @@ import unittest
 
 import numpy as np
 from parc import vtkPARCVolumeMapper
-from parctesthelpers import ray_image
+from parctesthelpers import offscreen_window, ray_image
 from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
-from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderer,
-                                         vtkRenderWindow, vtkVolume, vtkVolumeProperty)
-import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the render window's implementation)
+from vtkmodules.vtkRenderingCore import vtkColorTransferFunction, vtkVolumeProperty
 
 FRAMES = 30  # more than any search takes: 2 frames a scale, one more to set each scale up
 
@@ -30,17 +28,9 @@ def make_scene():
     color.AddRGBPoint(0, 1.0, 0.8, 0.6)
     prop.SetColor(color)
     prop.ShadeOn()
-    volume = vtkVolume()
-    volume.SetMapper(mapper)
-    volume.SetProperty(prop)
-    renderer = vtkRenderer()
-    renderer.AddVolume(volume)
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
+    window = offscreen_window(mapper, prop, 200)
     window.SetMultiSamples(0)
-    window.SetSize(200, 200)
-    window.AddRenderer(renderer)
-    renderer.ResetCamera()
+    renderer = window.GetRenderers().GetFirstRenderer()
     renderer.GetActiveCamera().Azimuth(25)
     renderer.GetActiveCamera().Elevation(15)
     renderer.ResetCameraClippingRange()

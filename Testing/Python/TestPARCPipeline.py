@@ -11,9 +11,8 @@ from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.util.vtkConstants import VTK_DOUBLE
-from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkLight, vtkRenderWindow,
-                                         vtkRenderer, vtkVolume, vtkVolumeProperty)
-from parctesthelpers import ray_image
+from vtkmodules.vtkRenderingCore import vtkColorTransferFunction, vtkLight, vtkVolumeProperty
+from parctesthelpers import offscreen_window, ray_image
 
 
 def make_scene(size=120):
@@ -31,17 +30,7 @@ def make_scene(size=120):
     prop.SetScalarOpacity(opacity)
     prop.SetColor(color)
     prop.ShadeOn()
-    volume = vtkVolume()
-    volume.SetMapper(mapper)
-    volume.SetProperty(prop)
-    renderer = vtkRenderer()
-    renderer.AddVolume(volume)
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetSize(size, size)
-    window.AddRenderer(renderer)
-    renderer.ResetCamera()
-    return mapper, window
+    return mapper, offscreen_window(mapper, prop, size)
 
 
 class TestPARCPipeline(unittest.TestCase):

@@ -1,6 +1,8 @@
 """Helpers shared by the Python tests."""
 from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.util.numpy_support import vtk_to_numpy
+from vtkmodules.vtkRenderingCore import vtkRenderWindow, vtkRenderer, vtkVolume
+import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the render window's implementation)
 
 
 def ray_image(mapper):
@@ -8,3 +10,19 @@ def ray_image(mapper):
     image = vtkImageData()
     mapper.GetLastRayCastImage(image)
     return vtk_to_numpy(image.GetPointData().GetScalars()).copy()
+
+
+def offscreen_window(mapper, prop, size):
+    """An offscreen window of size x size pixels showing mapper's input with prop, the
+    camera reset to it."""
+    volume = vtkVolume()
+    volume.SetMapper(mapper)
+    volume.SetProperty(prop)
+    renderer = vtkRenderer()
+    renderer.AddVolume(volume)
+    window = vtkRenderWindow()
+    window.SetOffScreenRendering(1)
+    window.SetSize(size, size)
+    window.AddRenderer(renderer)
+    renderer.ResetCamera()
+    return window
