@@ -168,7 +168,7 @@ checked gui gui
 
 if [ "$benchmark" = 2 ]; then
   large="$build/large"
-  mkdir -p "$large"
+  mkdir -p "$large/volumes"
   raw="$large/head-x6_1081x1297x1081_uint8.raw"
   if [ ! -f "$raw" ]; then
     echo "== resizing the MRI head by 6 (1.5 GB)"
