@@ -6,8 +6,9 @@
 #
 # Usage: scripts/benchmark.sh [--quick]
 #   Writes out/benchmark/index.md (and shows it as it goes), its PNG plots and CSV data.
-#   --quick: smaller images, fewer rounds and scenes (under 5 minutes); the full run takes
-#   about 75 (60 of them the large volumes of section 3). Data sets from ../shared/data are skipped, and said so, when absent.
+#   --quick: smaller images, fewer rounds and scenes (about 10 minutes); the full run takes
+#   about 75 (60 of them the large volumes of section 3). Data sets from ../shared/data are
+#   skipped, and said so, when absent.
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
 quick=0
