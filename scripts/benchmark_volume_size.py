@@ -203,7 +203,6 @@ def measure(outdir, factor, kind, images, rounds):
             edits.append(timed(window))
             warm.append(timed(window))
         row["edit"] = min_median(edits)[1] / min_median(warm)[1]
-        row["parc_memory_size"] = parc.GetMemorySize()
         rows.append(row)
         del mappers, parc, window, volume
         gc.collect()

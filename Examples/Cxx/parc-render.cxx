@@ -1164,6 +1164,7 @@ int main(int argc, char* argv[])
   }
   if (o.Json)
   {
+    const double* supercell = mapper->GetLastSupercellSize();
     std::cout << "{\n  \"volume\": \"" << o.Volume << "\",\n  \"image\": [" << o.Width << ", "
               << o.Height << "],\n  \"blend\": \"" << o.Blend << "\",\n  \"acceleration\": \""
               << accel << "\",\n  \"sample_distance\": " << mapper->GetLastSampleDistance()
@@ -1177,9 +1178,8 @@ int main(int argc, char* argv[])
               << ",\n  \"rays\": " << mapper->GetLastRayCount()
               << ",\n  \"casting_time\": " << casting
               << ",\n  \"projection_time\": " << mapper->GetLastProjectionTime()
-              << ",\n  \"supercell_size\": [" << mapper->GetLastSupercellSize()[0] << ", "
-              << mapper->GetLastSupercellSize()[1] << ", " << mapper->GetLastSupercellSize()[2]
-              << "]"
+              << ",\n  \"supercell_size\": [" << supercell[0] << ", " << supercell[1] << ", "
+              << supercell[2] << "]"
               << ",\n  \"render_time\": " << total << ",\n  \"wall_time\": " << wall;
     if (o.Compare && fixedSupports)
     {

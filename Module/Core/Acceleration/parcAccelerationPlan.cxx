@@ -252,17 +252,14 @@ void SupercellSearch::Record(int candidate, bool settled, double seconds)
     candidate == AutoTrials::Both;
   if (this->State == Waiting)
   {
-    if (settled && pass)
-    {
-      this->State = Searching;
-      this->Candidate = candidate;
-      this->ScaleFrames = 0;
-      this->BestSeconds = std::numeric_limits<double>::infinity();
-    }
-    else
+    if (!settled || !pass)
     {
       return;
     }
+    this->State = Searching;
+    this->Candidate = candidate;
+    this->ScaleFrames = 0;
+    this->BestSeconds = std::numeric_limits<double>::infinity();
   }
   if (candidate != this->Candidate)
   {
