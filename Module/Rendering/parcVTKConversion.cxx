@@ -4,8 +4,11 @@
 #include "vtkContourValues.h"
 #include "vtkDataArray.h"
 #include "vtkDataSetAttributes.h"
+#include "vtkFieldData.h"
 #include "vtkImageData.h"
+#include "vtkIntArray.h"
 #include "vtkMatrix4x4.h"
+#include "vtkNew.h"
 #include "vtkPiecewiseFunction.h"
 #include "vtkUnsignedCharArray.h"
 #include "vtkVolumeMapper.h"
@@ -356,6 +359,27 @@ std::string ConvertLabels(vtkVolumeProperty* property, const double range[2],
   return fixes;
 }
 
+bool OwnedExtent(vtkImageData* image, int extent[6])
+{
+  vtkIntArray* owned = vtkIntArray::SafeDownCast(
+    image->GetFieldData()->GetAbstractArray(OwnedExtentArrayName));
+  if (!owned || owned->GetNumberOfValues() != 6)
+  {
+    return false;
+  }
+  std::copy_n(owned->GetPointer(0), 6, extent);
+  return true;
+}
+
+void SetOwnedExtent(vtkImageData* image, const int extent[6])
+{
+  vtkNew<vtkIntArray> owned;
+  owned->SetName(OwnedExtentArrayName);
+  owned->SetNumberOfValues(6);
+  std::copy_n(extent, 6, owned->GetPointer(0));
+  image->GetFieldData()->AddArray(owned); // replaces an array of that name
+}
+
 void OwnedCellBox(vtkImageData* image, double cellOffset, Vec3& lo, Vec3& hi)
 {
   constexpr double Infinity = std::numeric_limits<double>::infinity();
@@ -367,6 +391,16 @@ void OwnedCellBox(vtkImageData* image, double cellOffset, Vec3& lo, Vec3& hi)
   const vtkIdType count = vtkIdType{ cells[0] } * cells[1] * cells[2];
   if (!ghosts || ghosts->GetNumberOfTuples() != count || !image->HasAnyGhostCells())
   {
+    int owned[6];
+    if (OwnedExtent(image, owned))
+    {
+      const int* extent = image->GetExtent();
+      for (int a = 0; a < 3; ++a)
+      {
+        lo[a] = owned[2 * a] - extent[2 * a] - cellOffset;
+        hi[a] = owned[2 * a + 1] - extent[2 * a] - cellOffset;
+      }
+    }
     return;
   }
   const unsigned char* flags = ghosts->GetPointer(0);

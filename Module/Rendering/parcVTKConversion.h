@@ -57,11 +57,19 @@ std::string ConvertProperty(
 std::string ConvertLabels(vtkVolumeProperty* property, const double range[2],
   const CastParameters& p, std::vector<LabelFunctions>& out);
 
+/// The name of the field-data array that holds the point extent a piece owns
+/// (vtkPARCVolumeMapper::SetOwnedExtent).
+constexpr const char* OwnedExtentArrayName = "vtkPARCOwnedExtent";
+/// The point extent image's field data names as owned (OwnedExtentArrayName); false when
+/// it names none. SetOwnedExtent names one.
+bool OwnedExtent(vtkImageData* image, int extent[6]);
+void SetOwnedExtent(vtkImageData* image, const int extent[6]);
 /// The box of voxel-index coordinates (0 at the extent's start, minus cellOffset as for a
 /// field of cell scalars) covered by the cells of image that are not ghost cells (no
-/// DUPLICATECELL in its cell ghost array): the cells a piece of a distributed volume owns,
-/// when it also holds its neighbours' cells at its border. Infinite (the whole field)
-/// when image has no ghost cells; empty (lo > hi) when every cell is a ghost.
+/// DUPLICATECELL in its cell ghost array) or, without ghost cells, by the cells of its
+/// owned extent (OwnedExtent): the cells a piece of a distributed volume owns, when it
+/// also holds its neighbours' cells at its border. Infinite (the whole field) when image
+/// has neither; empty (lo > hi) when every cell is a ghost.
 void OwnedCellBox(vtkImageData* image, double cellOffset, Vec3& lo, Vec3& hi);
 Matrix4 ToMatrix4(vtkMatrix4x4* m);
 /// The matrix from 0-based voxel indices of the image to its physical coordinates.

@@ -534,6 +534,18 @@ vtkPARCVolumeMapper::~vtkPARCVolumeMapper()
 }
 
 //------------------------------------------------------------------------------
+void vtkPARCVolumeMapper::SetOwnedExtent(vtkImageData* image, const int extent[6])
+{
+  parc::vtk::SetOwnedExtent(image, extent);
+}
+
+//------------------------------------------------------------------------------
+bool vtkPARCVolumeMapper::GetOwnedExtent(vtkImageData* image, int extent[6])
+{
+  return parc::vtk::OwnedExtent(image, extent);
+}
+
+//------------------------------------------------------------------------------
 const char* vtkPARCVolumeMapper::GetAccelerationModeAsString(int mode)
 {
   switch (mode)

@@ -75,7 +75,9 @@
  *   whole volume's up to float rounding when the pieces hold one ghost layer for point
  *   scalars and two for cell scalars (their gradients reach one cell further), no ray
  *   terminates early, and the colour tables do not follow each piece's own data range
- *   (ColorRangeType NATIVE).
+ *   (ColorRangeType NATIVE). A piece may instead hold its border layers as ordinary cells
+ *   and name the point extent it owns (SetOwnedExtent): the same rays, with no ghost array
+ *   the size of the piece (ParaView's "PARC Volume" reads pieces this way).
  * - Transfer-function nodes with NaN are left out, opacities and colours are clamped to
  *   [0, 1] (one warning per property change); a scalar array shorter than the image, an
  *   unusable SampleDistance or ImageSampleDistance, and an isosurface without a finite iso
@@ -270,6 +272,20 @@ public:
    */
   vtkSetClampMacro(ColorRangeType, int, SCALAR, NATIVE);
   vtkGetMacro(ColorRangeType, int);
+  ///@}
+
+  ///@{
+  /**
+   * The point extent (in image's own extent coordinates) of the cells a piece of a
+   * distributed volume owns, when image holds its neighbours' cells at its border as
+   * ordinary cells: rays are cut to the owned cells as they are by a cell ghost array, and
+   * interpolation and gradients read the border. Stored in image's field data (an int
+   * array of 6 values named "vtkPARCOwnedExtent", kept through shallow copies); a cell
+   * ghost array takes precedence. GetOwnedExtent returns false, leaving extent unchanged,
+   * when image names none (it owns all its cells).
+   */
+  static void SetOwnedExtent(vtkImageData* image, const int extent[6]);
+  static bool GetOwnedExtent(vtkImageData* image, int extent[6]);
   ///@}
 
   ///@{

@@ -1,10 +1,13 @@
 #include "vtkPARCVolumeRepresentation.h"
 
 #include "vtkDataObject.h"
+#include "vtkExtentTranslator.h"
 #include "vtkImageData.h"
 #include "vtkInformation.h"
 #include "vtkInformationVector.h"
+#include "vtkNew.h"
 #include "vtkObjectFactory.h"
+#include "vtkOutlineSource.h"
 #include "vtkPARCPVVolumeMapper.h"
 #include "vtkPARCPVVolumeScene.h"
 #include "vtkPVRenderView.h"
@@ -113,7 +116,7 @@ void vtkPARCVolumeRepresentation::SetShadows(bool shadows)
   if (this->GetPARCMapper()->GetShadowMode() != mode)
   {
     this->GetPARCMapper()->SetShadowMode(mode);
-    this->MarkModified(); // the pieces' ghost layers change (RequestUpdateExtent)
+    this->MarkModified(); // the pieces' border layers change (RequestUpdateExtent)
   }
 }
 
@@ -163,24 +166,42 @@ int vtkPARCVolumeRepresentation::RequestUpdateExtent(
   {
     return 0;
   }
-  vtkInformation* array = this->GetInputArrayInformation(0);
-  const bool cells = array && array->Has(vtkDataObject::FIELD_ASSOCIATION()) &&
-    array->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_CELLS;
-  const bool shadows = this->GetPARCMapper()->GetShadowMode() == vtkPARCVolumeMapper::SHADOWS_ON;
-  const auto key = vtkStreamingDemandDrivenPipeline::UPDATE_NUMBER_OF_GHOST_LEVELS();
-  for (int i = 0; i < inputVector[0]->GetNumberOfInformationObjects(); ++i)
+  using Pipeline = vtkStreamingDemandDrivenPipeline;
+  this->ReadsOwnedPiece = false;
+  vtkInformation* in = inputVector[0]->GetNumberOfInformationObjects() == 1
+    ? inputVector[0]->GetInformationObject(0)
+    : nullptr;
+  if (!in || !in->Has(Pipeline::WHOLE_EXTENT()) || !in->Has(Pipeline::UPDATE_NUMBER_OF_PIECES()) ||
+    in->Get(Pipeline::UPDATE_NUMBER_OF_PIECES()) <= 1)
   {
-    vtkInformation* in = inputVector[0]->GetInformationObject(i);
-    int levels = cells ? 2 : 1;
-    int whole[6];
-    if (shadows && in->Has(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT()))
-    {
-      // Shadow rays leave the piece: the ghost layers hold the whole volume.
-      in->Get(vtkStreamingDemandDrivenPipeline::WHOLE_EXTENT(), whole);
-      levels = std::max({ levels, whole[1] - whole[0], whole[3] - whole[2], whole[5] - whole[4] });
-    }
-    in->Set(key, std::max(levels, in->Has(key) ? in->Get(key) : 0));
+    return 1; // the whole volume in one piece
   }
+  int whole[6], read[6] = { 0, -1, 0, -1, 0, -1 };
+  in->Get(Pipeline::WHOLE_EXTENT(), whole);
+  vtkNew<vtkExtentTranslator> translator;
+  if (translator->PieceToExtentThreadSafe(in->Get(Pipeline::UPDATE_PIECE_NUMBER()),
+        in->Get(Pipeline::UPDATE_NUMBER_OF_PIECES()), 0, whole, this->OwnedExtent,
+        vtkExtentTranslator::BLOCK_MODE, 0))
+  {
+    vtkInformation* array = this->GetInputArrayInformation(0);
+    const bool cells = array && array->Has(vtkDataObject::FIELD_ASSOCIATION()) &&
+      array->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_CELLS;
+    // Shadow rays leave the piece: with shadows every rank reads the whole volume.
+    const bool shadows =
+      this->GetPARCMapper()->GetShadowMode() == vtkPARCVolumeMapper::SHADOWS_ON;
+    const int layers = cells ? 2 : 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      read[2 * a] = shadows ? whole[2 * a] : std::max(whole[2 * a], this->OwnedExtent[2 * a] - layers);
+      read[2 * a + 1] =
+        shadows ? whole[2 * a + 1] : std::min(whole[2 * a + 1], this->OwnedExtent[2 * a + 1] + layers);
+    }
+  }
+  in->Set(Pipeline::UPDATE_EXTENT(), read, 6);
+  in->Set(Pipeline::UPDATE_PIECE_NUMBER(), 0);
+  in->Set(Pipeline::UPDATE_NUMBER_OF_PIECES(), 1);
+  in->Set(Pipeline::UPDATE_NUMBER_OF_GHOST_LEVELS(), 0);
+  this->ReadsOwnedPiece = true;
   return 1;
 }
 
@@ -191,10 +212,23 @@ int vtkPARCVolumeRepresentation::RequestData(
   vtkImageData* input = inputVector[0]->GetNumberOfInformationObjects() == 1
     ? vtkImageData::GetData(inputVector[0], 0)
     : nullptr;
-  if (input && input->HasAnyGhostCells())
+  const bool ghosts = input && input->HasAnyGhostCells();
+  const bool owned = input && !ghosts && this->ReadsOwnedPiece;
+  int ownedExtent[6];
+  if (ghosts || owned)
   {
     piece.TakeReference(input->NewInstance()); // a vtkUniformGrid stays one
     piece->ShallowCopy(input);
+  }
+  if (owned)
+  {
+    const int* extent = input->GetExtent();
+    for (int a = 0; a < 3; ++a) // the part of the owned extent the source gave
+    {
+      ownedExtent[2 * a] = std::max(extent[2 * a], this->OwnedExtent[2 * a]);
+      ownedExtent[2 * a + 1] = std::min(extent[2 * a + 1], this->OwnedExtent[2 * a + 1]);
+    }
+    vtkPARCVolumeMapper::SetOwnedExtent(piece, ownedExtent);
   }
   if (!this->Superclass::RequestData(request, inputVector, outputVector))
   {
@@ -208,6 +242,15 @@ int vtkPARCVolumeRepresentation::RequestData(
     }
     this->Cache = piece;
     this->VolumeMapper->SetInputData(piece);
+  }
+  if (owned) // the ranks' images are ordered by the bounds of the cells they own
+  {
+    vtkNew<vtkImageData> box;
+    box->CopyStructure(input);
+    box->SetExtent(ownedExtent);
+    this->OutlineSource->SetBounds(box->GetBounds());
+    this->OutlineSource->GetBounds(this->DataBounds);
+    this->OutlineSource->Update();
   }
   return 1;
 }

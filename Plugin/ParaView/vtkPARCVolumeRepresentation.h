@@ -87,17 +87,21 @@ protected:
   ///@}
 
   /**
-   * Asks for the ghost cells the mapper needs at a piece's border when the volume is
-   * split across ranks: one layer for point scalars, two for cell scalars (their
-   * gradients at the border reach one cell further); with shadows, the whole volume, as
-   * shadow rays cross the other pieces (every rank then holds the whole volume).
+   * When the volume is split across ranks, asks for the rank's piece (OwnedExtent: the
+   * pipeline's block split) with the layers of cells the mapper needs at its border, as
+   * ordinary cells: one layer for point scalars, two for cell scalars (their gradients at
+   * the border reach one cell further); with shadows, the whole volume, as shadow rays
+   * cross the other pieces. Asking for ghost levels instead would make the source build
+   * a ghost array the size of the piece, and ParaView crop and scan it, tens of seconds
+   * for a volume of a few hundred MB.
    */
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
   /**
-   * The superclass crops a piece's ghost cells away (ParaView's own volume mappers do not
-   * read them) and keeps the cropped bounds for ordering the ranks' images; the PARC mapper
-   * is given the piece with its ghost cells instead, and casts in the piece's own cells.
+   * The PARC mapper is given the piece with its border layers, and the extent it owns
+   * (vtkPARCVolumeMapper::SetOwnedExtent), and casts in the piece's own cells; the ranks'
+   * images are ordered by the bounds of those cells. A piece with ghost cells from
+   * upstream keeps them (the superclass crops them away for its bounds).
    */
   int RequestData(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
@@ -105,6 +109,11 @@ protected:
   ~vtkPARCVolumeRepresentation() override;
 
 private:
+  /** The point extent of the rank's piece, when ReadsOwnedPiece. */
+  int OwnedExtent[6] = { 0, -1, 0, -1, 0, -1 };
+  /** Whether RequestUpdateExtent asked for the piece with its border layers. */
+  bool ReadsOwnedPiece = false;
+
   /** The mapper, as the member of the view's scene it is. */
   vtkPARCPVVolumeMapper* GetSceneMemberMapper();
 

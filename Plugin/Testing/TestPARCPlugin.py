@@ -156,6 +156,15 @@ if one_rank_dir:
           "the %d ranks take %d samples without acceleration, at least 1 rank's %d"
           % (ranks, unaccelerated["SampleCount"], one_rank_samples))
 
+# The ranks read their pieces with the border layers the mapper needs as ordinary cells: no
+# ghost array the size of a piece is generated, cropped and scanned (tens of seconds for a
+# volume of a few hundred MB).
+represented = display.GetRepresentedDataInformation()
+ghost_arrays = [attributes.GetArrayInformation("vtkGhostType") for attributes in
+                (represented.GetPointDataInformation(), represented.GetCellDataInformation())]
+check(all(array is None for array in ghost_arrays),
+      "the pieces carry no ghost array on %d rank(s)" % ranks)
+
 
 def lit_pixels(image):
     """The pixels brighter than 16 grey levels in some channel."""

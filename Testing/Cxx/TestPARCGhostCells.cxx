@@ -5,9 +5,10 @@
 // float ray-cast images, composited front to back, match the whole volume's to the float
 // rounding of their sample points (point and cell scalars, shaded; the colour table over
 // the colour function's own range, ColorRangeType NATIVE, as the pieces' data ranges
-// differ), and each piece's image is bit-identical with and without acceleration. With
-// shadows, pieces holding the whole volume in their ghost layers cast the whole volume's
-// shadows.
+// differ), and each piece's image is bit-identical with and without acceleration. A piece
+// that names its owned extent (vtkPARCVolumeMapper::SetOwnedExtent) instead of holding a
+// ghost array draws the same float image bit for bit. With shadows, pieces holding the
+// whole volume in their ghost layers cast the whole volume's shadows.
 #include "parcTestScene.h"
 
 #include <vtkCellData.h>
@@ -34,9 +35,17 @@ constexpr double CompositeTolerance = 3e-5;
 /// Ghost layers that give each piece the whole volume.
 constexpr int WholeVolumeLayers = 1000;
 
+/// How a piece tells the cells it owns from its border layers.
+enum class Border
+{
+  GhostArray,
+  OwnedExtent
+};
+
 /// The part of image between point z indices z0 and z1 (its own extent), plus layers of
-/// ghost cells on each side that has a neighbour.
-vtkSmartPointer<vtkImageData> Piece(vtkImageData* image, int z0, int z1, int layers)
+/// its neighbours' cells on each side that has a neighbour, marked as border.
+vtkSmartPointer<vtkImageData> Piece(
+  vtkImageData* image, int z0, int z1, int layers, Border border = Border::GhostArray)
 {
   int whole[6];
   image->GetExtent(whole);
@@ -49,7 +58,14 @@ vtkSmartPointer<vtkImageData> Piece(vtkImageData* image, int z0, int z1, int lay
   clip->Update();
   auto piece = vtkSmartPointer<vtkImageData>::New();
   piece->DeepCopy(clip->GetOutput());
-  piece->GenerateGhostArray(owned);
+  if (border == Border::GhostArray)
+  {
+    piece->GenerateGhostArray(owned);
+  }
+  else
+  {
+    vtkPARCVolumeMapper::SetOwnedExtent(piece, owned);
+  }
   return piece;
 }
 
@@ -93,6 +109,15 @@ bool CheckSplit(vtkRenderWindow* window, vtkRenderer* renderer, vtkPARCVolumeMap
   const std::vector<float> highImage =
     Render(window, mapper, high, vtkPARCVolumeMapper::ACCELERATION_NONE);
   bool ok = true;
+  if (Render(window, mapper, Piece(whole, 0, SplitZ, layers, Border::OwnedExtent),
+        vtkPARCVolumeMapper::ACCELERATION_NONE) != lowImage ||
+    Render(window, mapper, Piece(whole, SplitZ, last, layers, Border::OwnedExtent),
+      vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER) != highImage)
+  {
+    std::cerr << name << ": a piece that names its owned extent draws another image than "
+              << "the piece with a ghost array\n";
+    ok = false;
+  }
   for (int mode : { vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER,
          vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER })
   {
