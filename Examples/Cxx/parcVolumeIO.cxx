@@ -1,13 +1,17 @@
 #include "parcVolumeIO.h"
 
+#include <vtkCallbackCommand.h>
 #include <vtkColorTransferFunction.h>
 #include <vtkContourValues.h>
+#include <vtkDataArray.h>
+#include <vtkExecutive.h>
 #include <vtkImageData.h>
 #include <vtkImageReader2.h>
 #include <vtkMetaImageReader.h>
 #include <vtkNIFTIImageReader.h>
 #include <vtkNew.h>
 #include <vtkNrrdReader.h>
+#include <vtkOutputWindow.h>
 #include <vtkPiecewiseFunction.h>
 #include <vtkAlgorithm.h>
 #include <vtkPointData.h>
@@ -54,6 +58,9 @@ long long FileSize(const std::string& path)
   return stat(path.c_str(), &st) == 0 ? static_cast<long long>(st.st_size) : -1;
 }
 
+bool TakeVolume(
+  vtkAlgorithm* reader, const std::string& path, vtkImageData* out, std::string& error);
+
 bool ReadRaw(const std::string& path, vtkImageData* out, std::string& error)
 {
   static const std::regex pattern(
@@ -99,9 +106,7 @@ bool ReadRaw(const std::string& path, vtkImageData* out, std::string& error)
   {
     reader->SetDataByteOrderToLittleEndian();
   }
-  reader->Update();
-  out->ShallowCopy(reader->GetOutput());
-  return true;
+  return TakeVolume(reader, path, out, error);
 }
 
 template <class Reader>
@@ -110,6 +115,70 @@ vtkSmartPointer<vtkAlgorithm> MakeReader(const std::string& path)
   auto reader = vtkSmartPointer<Reader>::New();
   reader->SetFileName(path.c_str());
   return reader;
+}
+
+/// Updates reader and returns the first error it or its executive reported (a truncated
+/// file, a missing data file), or the first warning that names an error (VTK's legacy
+/// reader only warns "Error reading binary data!" on a short file), or an empty string.
+std::string UpdateAndCatchErrors(vtkAlgorithm* reader)
+{
+  std::string first;
+  vtkNew<vtkCallbackCommand> onError;
+  onError->SetClientData(&first);
+  onError->SetCallback([](vtkObject*, unsigned long event, void* client, void* data) {
+    auto* message = static_cast<std::string*>(client);
+    const std::string text = data ? static_cast<const char*>(data) : "an unnamed error";
+    if (message->empty() &&
+      (event == vtkCommand::ErrorEvent || text.find("rror") != std::string::npos))
+    {
+      *message = text;
+    }
+  });
+  vtkOutputWindow* messages = vtkOutputWindow::GetInstance(); // generic warnings and errors
+  const unsigned long tags[] = { reader->AddObserver(vtkCommand::ErrorEvent, onError),
+    reader->GetExecutive()->AddObserver(vtkCommand::ErrorEvent, onError),
+    messages->AddObserver(vtkCommand::ErrorEvent, onError),
+    messages->AddObserver(vtkCommand::WarningEvent, onError) };
+  reader->Update();
+  reader->RemoveObserver(tags[0]);
+  reader->GetExecutive()->RemoveObserver(tags[1]);
+  messages->RemoveObserver(tags[2]);
+  messages->RemoveObserver(tags[3]);
+  // VTK's messages are "ERROR: In file, line n\nclass (address): text" and "Generic
+  // Warning: In file, line n\ntext": keep the text's first line.
+  std::string text = first.substr(first.rfind(", line ", first.find('\n')) == std::string::npos
+      ? 0
+      : first.find('\n') + 1);
+  const std::size_t from = text.find("): ");
+  text = from == std::string::npos ? text : text.substr(from + 3);
+  const std::string line = text.substr(0, text.find('\n'));
+  const std::size_t end = line.find_last_not_of(' ');
+  return line.substr(0, end == std::string::npos ? 0 : end + 1);
+}
+
+/// Copies the image reader produced into out; false with error naming path when reading
+/// reported an error, or the image holds no point scalars for each of its points (the
+/// header promises more than the file holds).
+bool TakeVolume(vtkAlgorithm* reader, const std::string& path, vtkImageData* out,
+  std::string& error)
+{
+  const std::string failure = UpdateAndCatchErrors(reader);
+  if (!failure.empty())
+  {
+    error = "could not read " + path + ": " + failure;
+    return false;
+  }
+  vtkImageData* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
+  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  if (!scalars || image->GetNumberOfPoints() == 0 ||
+    scalars->GetNumberOfTuples() != image->GetNumberOfPoints())
+  {
+    error = "could not read a volume with scalars from " + path +
+      (scalars ? " (its header names more points than it holds scalars for)" : "");
+    return false;
+  }
+  out->ShallowCopy(image);
+  return true;
 }
 }
 
@@ -147,16 +216,7 @@ bool ReadVolume(const std::string& path, vtkImageData* out, std::string& error)
   }
   else if (EndsWith(path, ".vtk"))
   {
-    vtkNew<vtkStructuredPointsReader> r;
-    r->SetFileName(path.c_str());
-    r->Update();
-    if (!r->GetOutput() || r->GetOutput()->GetNumberOfPoints() == 0)
-    {
-      error = "could not read a structured-points volume from " + path;
-      return false;
-    }
-    out->ShallowCopy(r->GetOutput());
-    return true;
+    reader = MakeReader<vtkStructuredPointsReader>(path);
   }
   else
   {
@@ -164,15 +224,7 @@ bool ReadVolume(const std::string& path, vtkImageData* out, std::string& error)
       " (use .vti, .mha, .mhd, .nii, .nii.gz, .nrrd, .nhdr, .vtk, .slc or _XxYxZ_TYPE.raw)";
     return false;
   }
-  reader->Update();
-  vtkImageData* image = vtkImageData::SafeDownCast(reader->GetOutputDataObject(0));
-  if (!image || image->GetNumberOfPoints() == 0 || !image->GetPointData()->GetScalars())
-  {
-    error = "could not read a volume with scalars from " + path;
-    return false;
-  }
-  out->ShallowCopy(image);
-  return true;
+  return TakeVolume(reader, path, out, error);
 }
 
 namespace
