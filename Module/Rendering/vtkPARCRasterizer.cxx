@@ -354,6 +354,13 @@ public:
       return false;
     }
     vtkOpenGLState* state = this->Context->GetState();
+    // The pass starts from the state the context really has: VTK's cache of it can be
+    // wrong (a window's first frame after another window's showed blending on while it
+    // was off). An error other code left pending is not this pass's failure.
+    state->Reset();
+    while (glGetError() != GL_NO_ERROR)
+    {
+    }
     ScopedPassState saved(state);
     SetCommonPassState(state);
     if (!body(state))

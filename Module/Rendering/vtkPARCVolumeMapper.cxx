@@ -2,6 +2,7 @@
 
 #include "parcAccelerationPlan.h"
 #include "parcBufferSources.h"
+#include "parcEndOfRenderDraw.h"
 #include "parcLightFrusta.h"
 #include "parcPolygonModel.h"
 #include "parcRayCaster.h"
@@ -454,6 +455,13 @@ public:
   double PreviousRendererTime = 0.0; ///< the renderer's whole last render
   double PreviousImageStep = 1.0, PreviousSampleDistance = 0.0;
   bool JitteringWarned = false, RenderModeWarned = false, WindowWarned = false;
+  /// The renders asked for inside VTK's dual depth peeling, drawn when the renderer ends.
+  parc::vtk::EndOfRenderDraw EndOfRender;
+
+  explicit vtkInternals(vtkPARCVolumeMapper* self)
+    : EndOfRender([self](vtkRenderer* ren, vtkVolume* vol) { self->Render(ren, vol); })
+  {
+  }
 
   /// Bytes held per structure (see GetMemorySize).
   std::vector<std::pair<const char*, std::size_t>> Memory() const;
@@ -521,7 +529,7 @@ vtkStandardNewMacro(vtkPARCVolumeMapper);
 
 //------------------------------------------------------------------------------
 vtkPARCVolumeMapper::vtkPARCVolumeMapper()
-  : Internals(new vtkInternals)
+  : Internals(new vtkInternals(this))
 {
   this->SetNumberOfInputPorts(MaxInputPorts);
   this->Internals->DisplayHelper->PreMultipliedColorsOn();
@@ -604,6 +612,11 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // view, the depth of other geometry, each volume's PARC passes, one cast of all volumes
   // and Auto's bookkeeping (CastImage); last the image over the viewport.
   vtkInternals& in = *this->Internals;
+  if (parc::vtk::InsideDualDepthPeeling(vol))
+  {
+    in.EndOfRender.Request(ren, vol); // drawn after the peels, over what they drew
+    return;
+  }
   const double renderStart = vtkTimerLog::GetUniversalTime();
   this->SetAbortExecute(0); // like an algorithm's execution, each render starts un-aborted
   in.Stats = parc::CastStatistics();

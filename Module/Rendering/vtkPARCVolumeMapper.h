@@ -68,6 +68,15 @@
  *   physical coordinates along its axes (origin and spacing; a direction matrix is not
  *   applied to them). A clipped or cropped ray is a shorter ray: no sample outside is taken,
  *   in every acceleration mode alike.
+ * - Depth peeling: with the renderer's UseDepthPeelingForVolumes (ParaView's default), VTK's
+ *   dual depth peeling renders volumes inside its peels through shader code only
+ *   vtkGPUVolumeRayCastMapper provides; this mapper then draws its image when the renderer
+ *   has finished, over the peeled translucent geometry, as VTK draws volumes when they are
+ *   not peeled (the same pixels as with UseDepthPeelingForVolumes off). Translucent
+ *   geometry in front of the volume is therefore not blended over it.
+ * - Several windows: a mapper may move between windows; each PARC pass starts from the
+ *   state its context really has, and a GL error other code left pending does not switch
+ *   the passes off.
  * - Ghost cells (a piece of a distributed volume, as ParaView splits one across MPI ranks):
  *   when the image's cell ghost array marks cells as DUPLICATECELL, rays are cut to the box
  *   of the other cells, the piece's own, while interpolation and gradients at its border
