@@ -114,25 +114,30 @@ int ClampColors(std::vector<float>& rgb)
   return changed;
 }
 
-/// The colour table of a gray function (when gray is given) or an RGB one over range.
+/// The colour table of a gray function (when gray is given) or an RGB one over range: each
+/// entry is the function's own value (GetValue, GetColor) at its scalar, so every setting
+/// that changes them holds (clamping, midpoints and sharpness, colour spaces, below- and
+/// above-range colours). Not GetTable: VTK 9.1's gives black at a colour function's first
+/// node when the table starts below it.
 void ConvertColor(vtkPiecewiseFunction* gray, vtkColorTransferFunction* color,
   const double range[2], ColorTable& out, std::string& fixes)
 {
   std::vector<float> rgb(3 * ColorTableSize);
   const double lo = range[0];
   const double hi = range[1] > range[0] ? range[1] : range[0] + 1.0;
-  if (gray)
+  for (int i = 0; i < ColorTableSize; ++i)
   {
-    std::vector<float> values(ColorTableSize);
-    gray->GetTable(lo, hi, ColorTableSize, values.data());
-    for (int i = 0; i < ColorTableSize; ++i)
+    const double s = i + 1 < ColorTableSize ? lo + (hi - lo) * i / (ColorTableSize - 1) : hi;
+    double value[3];
+    if (gray)
     {
-      rgb[3 * i] = rgb[3 * i + 1] = rgb[3 * i + 2] = values[i];
+      value[0] = value[1] = value[2] = gray->GetValue(s);
     }
-  }
-  else
-  {
-    color->GetTable(lo, hi, ColorTableSize, rgb.data());
+    else
+    {
+      color->GetColor(s, value);
+    }
+    std::copy_n(value, 3, &rgb[3 * i]);
   }
   if (const int changed = ClampColors(rgb))
   {
