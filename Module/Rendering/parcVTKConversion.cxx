@@ -32,11 +32,11 @@ namespace
 constexpr int ColorTableSize = 1024;
 constexpr int NonLinearSegmentPieces = 32; ///< pieces for a node with midpoint/sharpness
 
-/// Converts a vtkPiecewiseFunction into the core's exact piecewise-linear function. Nodes
-/// with a non-finite scalar or value are left out and values are clamped to [0, 1]; what
-/// was changed is appended to fixes, named by what.
+/// Converts a vtkPiecewiseFunction into the core's exact piecewise-linear function, of
+/// x / unit where f is of x. Nodes with a non-finite scalar or value are left out and
+/// values are clamped to [0, 1]; what was changed is appended to fixes, named by what.
 void ConvertPiecewise(vtkPiecewiseFunction* f, const char* what, PiecewiseLinearFunction& out,
-  std::string& fixes)
+  std::string& fixes, double unit = 1.0)
 {
   const int n = f ? f->GetSize() : 0;
   if (n == 0)
@@ -54,7 +54,7 @@ void ConvertPiecewise(vtkPiecewiseFunction* f, const char* what, PiecewiseLinear
     }
     const double c = std::min(std::max(v, 0.0), 1.0);
     clamped += c != v;
-    x.push_back(s);
+    x.push_back(s / unit);
     y.push_back(c);
   };
   double node[4], next[4];
@@ -295,8 +295,8 @@ bool WrapScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
   }
 }
 
-std::string ConvertProperty(
-  vtkVolumeProperty* property, const double range[2], CastParameters& p, int component)
+std::string ConvertProperty(vtkVolumeProperty* property, const double range[2],
+  CastParameters& p, int component, double gradientUnit)
 {
   std::string fixes;
   const int c = component;
@@ -310,7 +310,8 @@ std::string ConvertProperty(
   p.UseGradientOpacity = property->HasGradientOpacity(c) && !property->GetDisableGradientOpacity(c);
   if (p.UseGradientOpacity)
   {
-    ConvertPiecewise(property->GetGradientOpacity(c), "gradient opacity", p.GradientOpacity, fixes);
+    ConvertPiecewise(
+      property->GetGradientOpacity(c), "gradient opacity", p.GradientOpacity, fixes, gradientUnit);
   }
   p.OpacityUnitDistance = property->GetScalarOpacityUnitDistance(c);
   p.Shade = property->GetShade(c) &&
@@ -330,7 +331,7 @@ std::string ConvertProperty(
 }
 
 std::string ConvertLabels(vtkVolumeProperty* property, const double range[2],
-  const CastParameters& p, std::vector<LabelFunctions>& out)
+  const CastParameters& p, std::vector<LabelFunctions>& out, double gradientUnit)
 {
   std::string fixes;
   out.clear();
@@ -357,11 +358,18 @@ std::string ConvertLabels(vtkVolumeProperty* property, const double range[2],
     if (vtkPiecewiseFunction* gradient = property->GetLabelGradientOpacity(label))
     {
       f.UseGradientOpacity = true;
-      ConvertPiecewise(gradient, "label gradient opacity", f.GradientOpacity, fixes);
+      ConvertPiecewise(
+        gradient, "label gradient opacity", f.GradientOpacity, fixes, gradientUnit);
     }
     out.push_back(std::move(f));
   }
   return fixes;
+}
+
+double GradientUnit(vtkImageData* image)
+{
+  const double* spacing = image->GetSpacing();
+  return (std::fabs(spacing[0]) + std::fabs(spacing[1]) + std::fabs(spacing[2])) / 3.0;
 }
 
 bool OwnedExtent(vtkImageData* image, int extent[6])

@@ -46,16 +46,23 @@ bool CheckGrid(const int dims[3], const double spacing[3], std::string& error);
 /// already (it decides whether shading applies). Values no transfer function can mean are
 /// made usable the same way for every acceleration mode: nodes with a NaN or infinite
 /// scalar or value are left out, opacities are clamped to [0, 1] and colours to [0, 1]
-/// (NaN to 0). Returns a description of what was changed, empty when nothing was.
-std::string ConvertProperty(
-  vtkVolumeProperty* property, const double range[2], CastParameters& p, int component = 0);
+/// (NaN to 0). The gradient opacity function maps the gradient's magnitude in scalar units
+/// per gradientUnit world units, as VTK's mappers define it with the mean voxel spacing
+/// (GradientUnit); p's function is made one of the world gradient. Returns a description of
+/// what was changed, empty when nothing was.
+std::string ConvertProperty(vtkVolumeProperty* property, const double range[2],
+  CastParameters& p, int component = 0, double gradientUnit = 1.0);
 
 /// The functions of the labels (> 0) of property's label map into out, sorted: each
 /// label's own scalar opacity, colour and gradient opacity where it has them, p's (already
 /// converted for the field's range) where it has not. Returns what was fixed, as
 /// ConvertProperty does.
 std::string ConvertLabels(vtkVolumeProperty* property, const double range[2],
-  const CastParameters& p, std::vector<LabelFunctions>& out);
+  const CastParameters& p, std::vector<LabelFunctions>& out, double gradientUnit = 1.0);
+
+/// The length the gradient opacity functions of VTK's volume mappers measure gradients
+/// per: the mean of image's voxel spacing (world units).
+double GradientUnit(vtkImageData* image);
 
 /// The name of the field-data array that holds the point extent a piece owns
 /// (vtkPARCVolumeMapper::SetOwnedExtent).

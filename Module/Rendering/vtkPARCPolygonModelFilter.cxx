@@ -123,7 +123,7 @@ int vtkPARCPolygonModelFilter::RequestData(
 
   vtkVolumeProperty* property =
     this->VolumeProperty ? this->VolumeProperty : in.DefaultProperty.Get();
-  parc::vtk::ConvertProperty(property, in.Field.GetRange(), p);
+  parc::vtk::ConvertProperty(property, in.Field.GetRange(), p, 0, parc::vtk::GradientUnit(image));
   p.AverageRange[0] = this->AverageIPScalarRange[0];
   p.AverageRange[1] = this->AverageIPScalarRange[1];
   parc::ContributionRule rule;

@@ -291,6 +291,8 @@ public:
   parc::ScalarField Field;
   /// 0.5 when Field holds cell scalars (its voxels at the cells' centres), else 0.
   double CellOffset = 0.0;
+  /// World units the gradient opacity functions measure gradients per (GradientUnit).
+  double GradientUnit = 1.0;
   /// The box of Field (voxel-index coordinates) that is not ghost cells.
   parc::Vec3 OwnedLo, OwnedHi;
   int FieldComponent = 0; ///< the component of FieldArray that Field reads
@@ -712,7 +714,8 @@ bool vtkPARCVolumeMapper::PrepareMask(
   p.Mask = &in.Mask;
   if (labelMap)
   {
-    const std::string own = parc::vtk::ConvertLabels(property, in.Field.GetRange(), p, p.Labels);
+    const std::string own = parc::vtk::ConvertLabels(
+      property, in.Field.GetRange(), p, p.Labels, in.GradientUnit);
     parc::vtk::AppendSentence(fixes, own);
     p.MaskBlendFactor = this->MaskBlendFactor;
     if (p.Labels.empty())
@@ -880,6 +883,7 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
     return false;
   }
   in.CellOffset = cellFlag ? 0.5 : 0.0;
+  in.GradientUnit = parc::vtk::GradientUnit(image);
   // Dependent components (vtkVolumeProperty::IndependentComponentsOff): opacity and
   // gradient from the last component, colour from the others.
   const int components = scalars->GetNumberOfComponents();
@@ -1033,7 +1037,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
                   << blend << "; nothing is drawn.");
     return false;
   }
-  std::string fixes = parc::vtk::ConvertProperty(property, colorRange, p);
+  std::string fixes = parc::vtk::ConvertProperty(property, colorRange, p, 0, in.GradientUnit);
   p.ComponentWeight = in.Components.empty() ? 1.0 : property->GetComponentWeight(0);
   constexpr float UnsignedCharToUnit = 1.f / 255.f;
   p.ColorShiftCount = in.DependentComponents == 0 ? 0 : in.DependentComponents - 1;
@@ -1170,7 +1174,8 @@ bool vtkPARCVolumeMapper::PrepareComponents(
     const double* range = component.Field.GetRange();
     double colorRange[2] = { range[0], range[1] };
     this->ColorTableRange(property, c, colorRange);
-    const std::string own = parc::vtk::ConvertProperty(property, colorRange, q, c);
+    const std::string own =
+      parc::vtk::ConvertProperty(property, colorRange, q, c, in.GradientUnit);
     if (!own.empty())
     {
       parc::vtk::AppendSentence(fixes, "Component " + std::to_string(c) + ": " + own);

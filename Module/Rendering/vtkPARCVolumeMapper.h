@@ -94,7 +94,16 @@
  *   uniformly, with a warning.
  * - Positional lights use their attenuation and spot cone; shading is Blinn-Phong, two-sided,
  *   with each light's diffuse colour for the diffuse and its specular colour for the
- *   specular term (both times its intensity).
+ *   specular term (both times its intensity). The ambient term is the property's Ambient
+ *   times the sample's colour, as vtkGPUVolumeRayCastMapper has it.
+ *   vtkFixedPointVolumeRayCastMapper differs: it multiplies Ambient by each light's
+ *   intensity and ambient colour, which is black for vtkLight's default, so that its shaded
+ *   images lack the ambient term (an MRI head with Ambient 0.6: about 16 grey levels darker
+ *   than this mapper's and the GPU mapper's).
+ * - Gradient opacity functions map the gradient magnitude in scalar units per mean voxel
+ *   spacing (the world gradient's magnitude times the mean of the image's spacing), as
+ *   vtkFixedPointVolumeRayCastMapper and vtkGPUVolumeRayCastMapper measure it; with unit
+ *   spacing, per world unit.
  *
  * Shadows (paper section 5): when the renderer uses shadows (vtkRenderer::UseShadowsOn, or
  * ShadowMode On) and a light has a ShadowAttenuation > 0 (vtkLight's default is 1), every

@@ -5,7 +5,8 @@ GetColor(v) (premultiplied colour over alpha) and alpha > 0 exactly where GetVal
 Settings: colour clamping on (the first node's colour below it: VTK 9.1's GetTable gives
 black there) and off, a node's midpoint and sharpness, the Lab, diverging, HSV and step
 colour spaces, below- and above-range colours, opacity clamping off, and an opacity node's
-midpoint and sharpness."""
+midpoint and sharpness. The gradient opacity function measures gradients as VTK's mappers
+do: scalar units per mean voxel spacing."""
 import unittest
 
 import numpy as np
@@ -151,6 +152,41 @@ class TestPARCTransferFunctionSemantics(unittest.TestCase):
             for value in (50.0, 75.0, 180.0):
                 self.check(name, value, colour, opacities()["not clamped"], "maximum", 2)
                 self.check(name, value, colour, opacities()["clamped"], "composite", 2)
+
+    def test_gradient_opacity_per_mean_spacing(self):
+        # A ramp of 10 scalar units per voxel along x: 10 / sx per world unit, 10 / sx *
+        # mean(spacing) as VTK's mappers measure it; the gradient opacity opens between.
+        for spacing in ((4.0, 1.0, 1.0), (1.0, 1.0, 4.0)):
+            n = 16
+            ramp = np.tile(10.0 * np.arange(n, dtype=np.float32), n * n)
+            image = vtkImageData()
+            image.SetDimensions(n, n, n)
+            image.SetSpacing(*spacing)
+            array = numpy_to_vtk(ramp, deep=1)
+            image.GetPointData().SetScalars(array)
+            world = 10.0 / spacing[0]
+            vtk_measure = world * sum(spacing) / 3.0
+            threshold = 0.5 * (world + vtk_measure)
+            for opens_at, visible in ((threshold, True), (1.5 * vtk_measure, False)):
+                gradient = vtkPiecewiseFunction()
+                gradient.AddPoint(0.0, 0.0)
+                gradient.AddPoint(opens_at, 0.0)
+                gradient.AddPoint(opens_at * 1.01, 1.0)
+                gradient.AddPoint(1e6, 1.0)
+                opacity = vtkPiecewiseFunction()
+                opacity.AddPoint(0.0, 1.0)
+                opacity.AddPoint(200.0, 1.0)
+                prop = vtkVolumeProperty()
+                prop.SetScalarOpacity(opacity)
+                prop.SetGradientOpacity(gradient)
+                mapper = vtkPARCVolumeMapper()
+                mapper.SetInputData(image)  # composite: maximum intensity has none
+                window = offscreen_window(mapper, prop, 24)
+                window.Render()
+                shown = bool((ray_image(mapper)[:, 3] > 0).any())
+                self.assertEqual(shown, visible, "spacing %s: gradient %g a world unit, %g "
+                                 "as VTK measures it, opacity from %g" % (
+                                     spacing, world, vtk_measure, opens_at))
 
 
 if __name__ == "__main__":
