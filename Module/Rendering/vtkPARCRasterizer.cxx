@@ -289,6 +289,8 @@ public:
     this->LogicOp = glIsEnabled(GL_COLOR_LOGIC_OP);
     glGetIntegerv(GL_LOGIC_OP_MODE, &this->LogicOpMode);
     glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &this->VertexArray);
+    glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &this->ArrayBuffer);
+    glGetIntegerv(GL_RENDERBUFFER_BINDING, &this->Renderbuffer);
     glGetIntegerv(GL_PACK_ALIGNMENT, &this->PackAlignment);
     glGetIntegerv(GL_BLEND_EQUATION_RGB, &this->BlendEquation[0]);
     glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &this->BlendEquation[1]);
@@ -296,6 +298,8 @@ public:
   ~ScopedPassState()
   {
     glBindVertexArray(static_cast<GLuint>(this->VertexArray));
+    glBindBuffer(GL_ARRAY_BUFFER, static_cast<GLuint>(this->ArrayBuffer));
+    glBindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(this->Renderbuffer));
     glLogicOp(static_cast<GLenum>(this->LogicOpMode));
     (this->LogicOp ? glEnable : glDisable)(GL_COLOR_LOGIC_OP);
     (this->DepthClamp ? glEnable : glDisable)(GL_DEPTH_CLAMP);
@@ -317,7 +321,7 @@ private:
   GLboolean DepthClamp = GL_FALSE;
   GLboolean LogicOp = GL_FALSE;
   GLint LogicOpMode = GL_COPY;
-  GLint VertexArray = 0;
+  GLint VertexArray = 0, ArrayBuffer = 0, Renderbuffer = 0;
   GLint PackAlignment = 4;
   GLint BlendEquation[2] = { GL_FUNC_ADD, GL_FUNC_ADD };
 };

@@ -3,14 +3,18 @@
 // crosses in a PC supercell has its bit set. Reports how loose the buffers are. The same
 // buffers answer rays without a pixel (shadow rays): each pixel's ray, and the same line
 // reversed from behind the volume towards the eye, must get segments that hold every PC
-// interval the oracle finds on it.
+// interval the oracle finds on it. The passes leave every piece of GL state they touch as
+// they found it, also state VTK's cache does not follow.
 #include "parcBufferSources.h"
 #include "parcLightFrusta.h"
 #include "parcSegmentOracle.h"
 #include "parcTestScene.h"
 #include "vtkPARCRasterizer.h"
 
+#include <vtkOpenGLRenderWindow.h>
+#include <vtkOpenGLState.h>
 #include <vtkRendererCollection.h>
+#include <vtk_glew.h>
 
 #include <algorithm>
 #include <cmath>
@@ -161,6 +165,94 @@ bool CheckLights(vtkRenderWindow* window, vtkPARCRasterizer* rasterizer,
     }
   }
   return true;
+}
+
+/// The GL state a pass may touch, read from GL itself.
+struct GLState
+{
+  std::vector<GLint> Integers;
+  std::vector<GLboolean> Booleans;
+  std::vector<GLfloat> Floats;
+
+  static GLState Read()
+  {
+    GLState s;
+    for (GLenum name : { GL_VIEWPORT, GL_SCISSOR_BOX })
+    {
+      GLint v[4];
+      glGetIntegerv(name, v);
+      s.Integers.insert(s.Integers.end(), v, v + 4);
+    }
+    for (GLenum name : { GL_BLEND_SRC_RGB, GL_BLEND_DST_RGB, GL_BLEND_SRC_ALPHA,
+           GL_BLEND_DST_ALPHA, GL_BLEND_EQUATION_RGB, GL_BLEND_EQUATION_ALPHA, GL_DEPTH_FUNC,
+           GL_CURRENT_PROGRAM, GL_VERTEX_ARRAY_BINDING, GL_ARRAY_BUFFER_BINDING,
+           GL_RENDERBUFFER_BINDING, GL_DRAW_FRAMEBUFFER_BINDING, GL_READ_FRAMEBUFFER_BINDING,
+           GL_DRAW_BUFFER0, GL_READ_BUFFER, GL_ACTIVE_TEXTURE, GL_TEXTURE_BINDING_2D,
+           GL_PACK_ALIGNMENT, GL_UNPACK_ALIGNMENT, GL_LOGIC_OP_MODE })
+    {
+      GLint v = 0;
+      glGetIntegerv(name, &v);
+      s.Integers.push_back(v);
+    }
+    for (GLenum name : { GL_SCISSOR_TEST, GL_DEPTH_TEST, GL_BLEND, GL_CULL_FACE,
+           GL_DEPTH_CLAMP, GL_COLOR_LOGIC_OP, GL_STENCIL_TEST })
+    {
+      s.Booleans.push_back(glIsEnabled(name));
+    }
+    GLboolean mask[4], depthMask;
+    glGetBooleanv(GL_COLOR_WRITEMASK, mask);
+    glGetBooleanv(GL_DEPTH_WRITEMASK, &depthMask);
+    s.Booleans.insert(s.Booleans.end(), mask, mask + 4);
+    s.Booleans.push_back(depthMask);
+    GLfloat clear[4];
+    glGetFloatv(GL_COLOR_CLEAR_VALUE, clear);
+    s.Floats.assign(clear, clear + 4);
+    return s;
+  }
+  bool operator==(const GLState& o) const
+  {
+    return this->Integers == o.Integers && this->Booleans == o.Booleans &&
+      this->Floats == o.Floats;
+  }
+};
+
+/// Sets unusual GL state in window's context (as other code might leave it) and tells
+/// VTK's cache; the GL objects it binds are returned for deletion.
+std::vector<GLuint> SetUnusualState(vtkRenderWindow* window)
+{
+  auto* context = vtkOpenGLRenderWindow::SafeDownCast(window);
+  context->MakeCurrent();
+  GLuint vertexArray = 0, buffer = 0, renderbuffer = 0, texture = 0, framebuffer = 0;
+  glGenVertexArrays(1, &vertexArray);
+  glBindVertexArray(vertexArray);
+  glGenBuffers(1, &buffer);
+  glBindBuffer(GL_ARRAY_BUFFER, buffer);
+  glGenRenderbuffers(1, &renderbuffer);
+  glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 8, 8);
+  glGenFramebuffers(1, &framebuffer);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer);
+  glActiveTexture(GL_TEXTURE3);
+  glGenTextures(1, &texture);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glViewport(1, 2, 5, 6);
+  glScissor(2, 1, 3, 4);
+  glEnable(GL_SCISSOR_TEST);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_SRC_COLOR, GL_DST_ALPHA, GL_ONE, GL_ZERO);
+  glBlendEquationSeparate(GL_FUNC_SUBTRACT, GL_MAX);
+  glEnable(GL_CULL_FACE);
+  glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
+  glDepthMask(GL_FALSE);
+  glClearColor(0.25f, 0.5f, 0.75f, 1.f);
+  glPixelStorei(GL_PACK_ALIGNMENT, 8);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 2);
+  glLogicOp(GL_XOR);
+  context->GetState()->Reset();
+  return { vertexArray, buffer, renderbuffer, texture, framebuffer };
 }
 
 /// Checks every pixel of the current camera; returns false on the first violation.
@@ -359,6 +451,7 @@ int TestPARCRasterizer(int argc, char* argv[])
       placed(r, 3) = offset;
     }
   }
+  bool stateKept = true;
   for (int run = 0; run <= sized; ++run)
   {
     // Each size with separate faces and with merged faces (the mapper's models), then the
@@ -388,6 +481,20 @@ int TestPARCRasterizer(int argc, char* argv[])
       return CheckCamera(
         window, ren, rasterizer, grid, depthModel, colorModels, placement, name, tally);
     };
+    if (run == 0) // the passes leave GL state as they found it, also what VTK's cache does not follow
+    {
+      const std::vector<GLuint> objects = SetUnusualState(window);
+      const GLState before = GLState::Read();
+      if (!check("unusual GL state"))
+        return EXIT_FAILURE;
+      stateKept = GLState::Read() == before;
+      glDeleteVertexArrays(1, &objects[0]);
+      glDeleteBuffers(1, &objects[1]);
+      glDeleteRenderbuffers(1, &objects[2]);
+      glDeleteTextures(1, &objects[3]);
+      glDeleteFramebuffers(1, &objects[4]);
+      vtkOpenGLRenderWindow::SafeDownCast(window)->GetState()->Reset();
+    }
     // Axis-aligned parallel views with pixel centres exactly on cell planes: 64 x 48
     // pixels of one voxel each, centres on integer coordinates.
     for (int axis = 0; axis < 3; ++axis)
@@ -485,6 +592,11 @@ int TestPARCRasterizer(int argc, char* argv[])
   if (tally.TightLines < tally.Lines / 2)
   {
     std::cerr << "Fewer than half of the queries without a pixel were narrowed.\n";
+    return EXIT_FAILURE;
+  }
+  if (!stateKept)
+  {
+    std::cerr << "The passes left GL state other than they found it.\n";
     return EXIT_FAILURE;
   }
   if (tally.Words != std::set<int>{ 1, 2, 4, 8 })
