@@ -6,6 +6,7 @@
 #include "vtkInformationObjectBaseVectorKey.h"
 #include "vtkOpenGLRenderPass.h"
 #include "vtkProp.h"
+#include "vtkPropCollection.h"
 #include "vtkRenderer.h"
 #include "vtkVolume.h"
 
@@ -13,9 +14,12 @@ namespace parc
 {
 namespace vtk
 {
-bool InsideDualDepthPeeling(vtkProp* prop)
+namespace
 {
-  vtkInformation* keys = prop ? prop->GetPropertyKeys() : nullptr;
+/// Whether prop carries a dual depth peeling pass among its render passes.
+bool MarkedByDualDepthPeeling(vtkProp* prop)
+{
+  vtkInformation* keys = prop->GetPropertyKeys();
   vtkInformationObjectBaseVectorKey* passes = vtkOpenGLRenderPass::RenderPasses();
   if (!keys || !keys->Has(passes))
   {
@@ -24,6 +28,26 @@ bool InsideDualDepthPeeling(vtkProp* prop)
   for (int i = 0; i < keys->Length(passes); ++i)
   {
     if (vtkDualDepthPeelingPass::SafeDownCast(keys->Get(passes, i)))
+    {
+      return true;
+    }
+  }
+  return false;
+}
+}
+
+bool InsideDualDepthPeeling(vtkRenderer* renderer)
+{
+  if (!renderer || !renderer->GetUseDepthPeeling() || !renderer->GetUseDepthPeelingForVolumes())
+  {
+    return false;
+  }
+  vtkPropCollection* props = renderer->GetViewProps();
+  vtkCollectionSimpleIterator it;
+  props->InitTraversal(it);
+  while (vtkProp* prop = props->GetNextProp(it))
+  {
+    if (MarkedByDualDepthPeeling(prop))
     {
       return true;
     }

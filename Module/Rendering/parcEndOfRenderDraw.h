@@ -19,11 +19,13 @@ namespace parc
 {
 namespace vtk
 {
-/// Whether prop is being rendered inside VTK's dual depth peeling (a renderer with
-/// UseDepthPeeling and UseDepthPeelingForVolumes, ParaView's default, and translucent
-/// geometry): the pass renders volumes in each peel into its own framebuffer, through
-/// shader code only vtkGPUVolumeRayCastMapper provides.
-bool InsideDualDepthPeeling(vtkProp* prop);
+/// Whether renderer is rendering inside VTK's dual depth peeling (UseDepthPeeling and
+/// UseDepthPeelingForVolumes, ParaView's default, with translucent geometry): the pass
+/// renders volumes in each peel into its own framebuffer, through shader code only
+/// vtkGPUVolumeRayCastMapper provides. The pass marks the renderer's props while it runs
+/// (a prop that renders through another, as ParaView's vtkPVLODVolume, passes the mapper
+/// a volume without the mark).
+bool InsideDualDepthPeeling(vtkRenderer* renderer);
 
 /// Draws volumes once at the end of their renderer's render (its EndEvent): over what the
 /// renderer drew, as VTK draws volumes after its translucent geometry when they are not

@@ -614,7 +614,7 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   // view, the depth of other geometry, each volume's PARC passes, one cast of all volumes
   // and Auto's bookkeeping (CastImage); last the image over the viewport.
   vtkInternals& in = *this->Internals;
-  if (parc::vtk::InsideDualDepthPeeling(vol))
+  if (parc::vtk::InsideDualDepthPeeling(ren))
   {
     in.EndOfRender.Request(ren, vol); // drawn after the peels, over what they drew
     return;

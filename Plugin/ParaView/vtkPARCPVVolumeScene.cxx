@@ -75,6 +75,21 @@ void vtkPARCPVVolumeScene::RemoveMember(vtkPARCVolumeRepresentation* member)
   this->Members.erase(
     std::remove(this->Members.begin(), this->Members.end(), member), this->Members.end());
   this->Release(0);
+  if (this->Members.empty() && this->PeelingForVolumesSuspended && this->Renderer)
+  {
+    this->Renderer->SetUseDepthPeelingForVolumes(true);
+    this->PeelingForVolumesSuspended = false;
+  }
+}
+
+void vtkPARCPVVolumeScene::StartRender()
+{
+  this->RenderedInThisRender = false;
+  if (!this->Members.empty() && this->Renderer && this->Renderer->GetUseDepthPeelingForVolumes())
+  {
+    this->Renderer->SetUseDepthPeelingForVolumes(false);
+    this->PeelingForVolumesSuspended = true;
+  }
 }
 
 void vtkPARCPVVolumeScene::Release(int firstPort)

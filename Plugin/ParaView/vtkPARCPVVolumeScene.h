@@ -19,6 +19,10 @@
  * composites the ranks' images in the order of their pieces: exact when the volumes share
  * a partition (volumes on one grid, which ParaView splits alike).
  *
+ * While the scene has members, the view's volumes are not depth-peeled with its
+ * translucent geometry: they are drawn after it, as with the view's "Depth Peeling for
+ * Volumes" off (see PeelingForVolumesSuspended).
+ *
  * @sa vtkPARCVolumeRepresentation vtkPARCMultiVolume
  */
 #ifndef vtkPARCPVVolumeScene_h
@@ -86,8 +90,11 @@ private:
    * scene holds nothing of a representation it does not render.
    */
   void Release(int firstPort);
-  /** Starts a render of the renderer: the members are not rendered in it yet. */
-  void StartRender() { this->RenderedInThisRender = false; }
+  /**
+   * Starts a render of the renderer: the members are not rendered in it yet, and the
+   * renderer's volumes are not peeled while it has members (see PeelingForVolumesSuspended).
+   */
+  void StartRender();
 
   std::vector<vtkPARCVolumeRepresentation*> Members;
   /** The members of the last render together, by port (empty after a render alone). */
@@ -95,6 +102,16 @@ private:
   vtkWeakPointer<vtkRenderer> Renderer;
   unsigned long StartObserver = 0;
   bool RenderedInThisRender = false;
+  /**
+   * Whether the scene turned the renderer's UseDepthPeelingForVolumes off (it turns it on
+   * again when its last member leaves). VTK's dual depth peeling renders volumes inside
+   * its peels with shader code only the GPU mapper has; vtkPARCVolumeMapper then draws
+   * when the renderer ends, which on several ranks is after ParaView composited their
+   * images. Without peeling for volumes, they render after the translucent geometry
+   * before compositing, as ParaView's own volumes do with the view's "Depth Peeling for
+   * Volumes" off.
+   */
+  bool PeelingForVolumesSuspended = false;
   vtkNew<vtkPARCVolumeMapper> Mapper;
   vtkNew<vtkPARCMultiVolume> Volumes;
 };

@@ -14,7 +14,8 @@ import argparse
 import os
 import sys
 
-from paraview.simple import Connect, CreateRenderView, LoadPlugin, Render, SaveScreenshot
+from paraview.simple import (Connect, CreateRenderView, Hide, LoadPlugin, Render, SaveScreenshot,
+                             Show, Sphere)
 from paraview import servermanager
 
 from parc_pvtesting import (CLOUD_COLORS, CLOUD_OPACITY, GREY, NEGHIP_OPACITY,
@@ -296,6 +297,29 @@ if one_rank_dir:
           "%.5f of values more than 16 levels off" % (ranks, mean, RANKS_MEAN_TOLERANCE,
                                                      outliers))
 display.BlendMode = "Composite"
+
+# A translucent sphere beside the volume: the view peels its translucent geometry (for
+# volumes too, ParaView's default, with shader code only VTK's GPU mapper has): the PARC
+# volume is drawn after the peels, the same in every frame and on every rank count.
+sphere = Sphere(Center=[50, 32, 40], Radius=18, ThetaResolution=32, PhiResolution=32)
+sphere_display = Show(sphere, view)
+sphere_display.Opacity = 0.4
+own_translucent = shot("paraview-volume-translucent", "Volume")[0]
+translucent = shot("parc-volume-translucent", "PARC Volume", PARCAccelerationMode="Depth Buffer")[0]
+translucent_again = shot("parc-volume-translucent-again", "PARC Volume")[0]
+check(translucent == translucent_again and translucent != parc_depth,
+      "with a translucent sphere: the same image in two frames, the sphere in it")
+if one_rank_dir:
+    # The ranks composite the sphere's peeled layers too: ParaView's own volume's image
+    # moves as much between rank counts.
+    mean, outliers = against_one_rank("parc-volume-translucent", translucent)
+    own_mean, own_outliers = against_one_rank("paraview-volume-translucent", own_translucent)
+    check(mean <= max(RANKS_MEAN_TOLERANCE, own_mean) and
+          outliers <= max(RANKS_OUTLIER_TOLERANCE, own_outliers),
+          "translucent sphere on %d ranks: mean difference to 1 rank %.3f, %.5f of values "
+          "more than 16 levels off (ParaView's Volume: %.3f, %.5f)" % (
+              ranks, mean, outliers, own_mean, own_outliers))
+Hide(sphere, view)
 
 # The filter, with the same opacity function.
 model = PARCPolygonModel(Input=reader)  # noqa: F821 (defined by LoadPlugin)
