@@ -1,0 +1,120 @@
+// The object-factory drop-in: with vtkPARCOverrides enabled, vtkGPUVolumeRayCastMapper::New()
+// is a vtkPARCGPUVolumeRayCastMapper whose float ray-cast images equal vtkPARCVolumeMapper's
+// bit for bit (composite and maximum intensity, cropping, a clipping plane, image sample
+// distance 2); a vtkSmartVolumeMapper made then renders through PARC in its GPU and default
+// modes and says so (GetLastUsedRenderMode); vtkPARCOverrides::GetPARCMapper reaches the
+// statistics. Disabled, New() gives VTK's OpenGL mapper again, and a mapper made while
+// enabled keeps rendering through PARC.
+#include "parcTestScene.h"
+#include "vtkPARCGPUVolumeRayCastMapper.h"
+#include "vtkPARCOverrides.h"
+
+#include <vtkFixedPointVolumeRayCastMapper.h>
+#include <vtkPlane.h>
+#include <vtkRendererCollection.h>
+#include <vtkSmartVolumeMapper.h>
+
+#include <iostream>
+#include <string>
+
+namespace
+{
+/// Renders mapper alone in window's renderer (replacing the volume's mapper).
+void RenderWith(vtkRenderWindow* window, vtkVolume* volume, vtkVolumeMapper* mapper)
+{
+  volume->SetMapper(mapper);
+  window->Render();
+}
+
+bool Fail(const std::string& message)
+{
+  std::cerr << message << "\n";
+  return false;
+}
+
+/// Configures a GPU-API mapper and a PARC mapper alike.
+template <class Mapper>
+void Configure(Mapper* mapper, vtkImageData* image, int blend, vtkPlane* plane)
+{
+  mapper->SetInputData(image);
+  mapper->SetBlendMode(blend);
+  mapper->SetAutoAdjustSampleDistances(0);
+  mapper->SetSampleDistance(0.7f); // the GPU mapper's distances are floats
+  mapper->SetImageSampleDistance(2.0);
+  const double* b = image->GetBounds(); // the left two thirds along x
+  mapper->CroppingOn();
+  mapper->SetCroppingRegionPlanes(b[0], b[0] + 0.66 * (b[1] - b[0]), b[2], b[3], b[4], b[5]);
+  mapper->RemoveAllClippingPlanes();
+  mapper->AddClippingPlane(plane);
+}
+}
+
+int TestPARCOverrides(int, char*[])
+{
+  vtkSmartPointer<vtkImageData> image = parctest::MakeBlobs(40);
+  vtkNew<vtkRenderWindow> window;
+  window->SetSize(96, 80);
+  window->SetMultiSamples(0);
+  const double viewport[4] = { 0, 0, 1, 1 };
+  vtkSmartPointer<vtkPARCVolumeMapper> reference = parctest::AddVolume(
+    window, viewport, image, parctest::MakeProperty(true), vtkVolumeMapper::COMPOSITE_BLEND);
+  vtkRenderer* renderer = window->GetRenderers()->GetFirstRenderer();
+  vtkVolume* volume = vtkVolume::SafeDownCast(renderer->GetVolumes()->GetItemAsObject(0));
+  vtkNew<vtkPlane> plane;
+  plane->SetOrigin(image->GetCenter());
+  plane->SetNormal(1, 0.3, -0.2);
+  bool ok = true;
+
+  vtkPARCOverrides::Enable();
+  ok = vtkPARCOverrides::IsEnabled() || Fail("Enable did not enable the override");
+  vtkSmartPointer<vtkGPUVolumeRayCastMapper> gpu =
+    vtkSmartPointer<vtkGPUVolumeRayCastMapper>::Take(vtkGPUVolumeRayCastMapper::New());
+  auto* dropIn = vtkPARCGPUVolumeRayCastMapper::SafeDownCast(gpu);
+  if (!dropIn)
+  {
+    std::cerr << "vtkGPUVolumeRayCastMapper::New() made a " << gpu->GetClassName() << "\n";
+    return EXIT_FAILURE;
+  }
+  ok = ((vtkPARCOverrides::GetPARCMapper(gpu) == dropIn->GetPARCMapper() &&
+         vtkPARCOverrides::GetPARCMapper(reference) == reference) ||
+    Fail("GetPARCMapper does not find the PARC mappers")) && ok;
+  for (int blend : { vtkVolumeMapper::COMPOSITE_BLEND, vtkVolumeMapper::MAXIMUM_INTENSITY_BLEND })
+  {
+    Configure(reference.GetPointer(), image, blend, plane);
+    Configure(gpu.GetPointer(), image, blend, plane);
+    RenderWith(window, volume, reference);
+    const std::vector<float> expected = parctest::RayImage(reference);
+    const double alpha = parctest::MaxAlpha(reference);
+    RenderWith(window, volume, gpu);
+    const std::vector<float> got = parctest::RayImage(dropIn->GetPARCMapper());
+    ok = ((!expected.empty() && got == expected && alpha > 0.1) ||
+      Fail("blend " + std::to_string(blend) + ": the drop-in's image is not vtkPARCVolumeMapper's")) && ok;
+  }
+
+  // The smart mapper builds its GPU mapper through the factory.
+  for (int mode : { vtkSmartVolumeMapper::GPURenderMode, vtkSmartVolumeMapper::DefaultRenderMode })
+  {
+    vtkNew<vtkSmartVolumeMapper> smart;
+    smart->SetInputData(image);
+    smart->SetRequestedRenderMode(mode);
+    RenderWith(window, volume, smart);
+    vtkPARCVolumeMapper* parc = vtkPARCOverrides::GetPARCMapper(smart);
+    ok = ((smart->GetLastUsedRenderMode() == vtkSmartVolumeMapper::GPURenderMode && parc &&
+           parc->GetLastSampleCount() > 0 && parctest::MaxAlpha(parc) > 0.1) ||
+      Fail("the smart mapper in mode " + std::to_string(mode) + " did not render through PARC")) && ok;
+  }
+  vtkNew<vtkFixedPointVolumeRayCastMapper> fixedPoint;
+  ok = (!vtkPARCOverrides::GetPARCMapper(fixedPoint) ||
+    Fail("GetPARCMapper finds a PARC mapper in FixedPoint")) && ok;
+
+  vtkPARCOverrides::Disable();
+  vtkSmartPointer<vtkGPUVolumeRayCastMapper> after =
+    vtkSmartPointer<vtkGPUVolumeRayCastMapper>::Take(vtkGPUVolumeRayCastMapper::New());
+  ok = ((!vtkPARCOverrides::IsEnabled() && after &&
+         std::string(after->GetClassName()) == "vtkOpenGLGPUVolumeRayCastMapper") ||
+    Fail("Disable did not restore VTK's OpenGL GPU mapper")) && ok;
+  RenderWith(window, volume, gpu);
+  ok = (dropIn->GetPARCMapper()->GetLastSampleCount() > 0 ||
+    Fail("a mapper made while enabled no longer renders through PARC")) && ok;
+  return ok ? EXIT_SUCCESS : EXIT_FAILURE;
+}
