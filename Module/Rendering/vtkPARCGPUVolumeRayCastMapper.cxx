@@ -60,7 +60,6 @@ void vtkPARCGPUVolumeRayCastMapper::Forward()
   to->SetMaximumImageSampleDistance(ImageStep(this->GetMaximumImageSampleDistance()));
   to->SetFinalColorWindow(this->GetFinalColorWindow());
   to->SetFinalColorLevel(this->GetFinalColorLevel());
-  to->SetUseJittering(this->GetUseJittering());
   to->SetReportProgress(this->GetReportProgress());
 }
 

@@ -17,7 +17,8 @@
  * - SampleDistance: forwarded with AutoAdjustSampleDistances off; with it on (the
  *   default) the PARC mapper's own choice, half the smallest voxel edge, is used, as the
  *   GPU mapper chooses its own from the spacing.
- * - UseJittering: PARC samples one exact lattice; jittering is ignored (with a warning).
+ * - UseJittering: PARC samples one exact lattice; jittering is ignored, silently (ParaView
+ *   and vtkSmartVolumeMapper turn it on for their GPU mapper).
  * - UseDepthPass and its contour values: a GPU-specific shortcut with no meaning here
  *   (PARC's own acceleration skips empty space); ignored.
  * - RenderToImage: the image is drawn into the window as usual; GetColorImage gives the
