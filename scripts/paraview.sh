@@ -150,6 +150,11 @@ echo "== pvbatch test, 1 rank"
 checked pvbatch-1 pv 1 "$test" "$plugin" "$here/../shared/data" "$output"
 echo "== pvbatch test, 2 ranks"
 checked pvbatch-2 pv 2 "$test" "$plugin" "$here/../shared/data" "$output" --one-rank "$output"
+for ranks in 1 2; do
+  echo "== the stock Volume through the override, $ranks rank(s)"
+  PARC_OVERRIDE_GPU_MAPPER=1 checked "override-$ranks" pv "$ranks" \
+    "$here/Plugin/Testing/TestPARCPluginOverride.py" "$plugin" "$here/../shared/data" "$output"
+done
 echo "== pvpython test, connected to pvserver on 2 ranks"
 checked pvserver-2 client_server
 gui() { # the GUI runs a script and exits; the script writes its result to a file
