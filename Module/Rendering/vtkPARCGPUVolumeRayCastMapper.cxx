@@ -42,6 +42,15 @@ void vtkPARCGPUVolumeRayCastMapper::Forward()
   to->SetInputConnection(0, this->GetNumberOfInputConnections(0) > 0
       ? this->GetInputConnection(0, 0)
       : nullptr);
+  to->SetScalarMode(this->GetScalarMode()); // the array ParaView and programs select
+  if (this->GetArrayAccessMode() == VTK_GET_ARRAY_BY_NAME)
+  {
+    to->SelectScalarArray(this->GetArrayName());
+  }
+  else
+  {
+    to->SelectScalarArray(this->GetArrayId());
+  }
   to->SetBlendMode(this->GetBlendMode());
   to->SetAverageIPScalarRange(this->GetAverageIPScalarRange());
   to->SetCropping(this->GetCropping());

@@ -9,7 +9,8 @@
  * bit for bit.
  *
  * The settings and what they mean here:
- * - Input (port 0), blend mode, AverageIPScalarRange, cropping, clipping planes, masks
+ * - Input (port 0), the scalar array selection (scalar mode, array name or index), blend
+ *   mode, AverageIPScalarRange, cropping, clipping planes, masks
  *   (binary and label map, MaskBlendFactor), ColorRangeType, ImageSampleDistance and its
  *   minimum and maximum, AutoAdjustSampleDistances, LockSampleDistanceToInputSpacing,
  *   FinalColorWindow/Level: forwarded. Independent components come from the volume

@@ -10,6 +10,8 @@
 #include "vtkPARCOverrides.h"
 
 #include <vtkFixedPointVolumeRayCastMapper.h>
+#include <vtkFloatArray.h>
+#include <vtkPointData.h>
 #include <vtkPlane.h>
 #include <vtkRendererCollection.h>
 #include <vtkSmartVolumeMapper.h>
@@ -90,6 +92,28 @@ int TestPARCOverrides(int, char*[])
     ok = ((!expected.empty() && got == expected && alpha > 0.1) ||
       Fail("blend " + std::to_string(blend) + ": the drop-in's image is not vtkPARCVolumeMapper's")) && ok;
   }
+
+  // The array a program selects by name (as ParaView does), not the active scalars.
+  vtkNew<vtkImageData> twoArrays;
+  twoArrays->DeepCopy(image);
+  vtkNew<vtkFloatArray> inverted;
+  inverted->DeepCopy(parctest::MakeBlobs(40, true)->GetPointData()->GetScalars());
+  inverted->SetName("inverted");
+  twoArrays->GetPointData()->AddArray(inverted);
+  auto select = [&](vtkVolumeMapper* mapper, const char* name) {
+    mapper->SetInputData(twoArrays);
+    mapper->SetScalarModeToUsePointFieldData();
+    mapper->SelectScalarArray(name);
+    mapper->CroppingOff();
+    mapper->RemoveAllClippingPlanes();
+    RenderWith(window, volume, mapper);
+    return parctest::RayImage(vtkPARCOverrides::GetPARCMapper(mapper));
+  };
+  const std::vector<float> density = select(reference, "density");
+  const std::vector<float> selected = select(reference, "inverted");
+  ok = ((!selected.empty() && selected != density && select(gpu, "inverted") == selected) ||
+         Fail("the drop-in does not render the array selected by name")) &&
+    ok;
 
   // The smart mapper builds its GPU mapper through the factory.
   for (int mode : { vtkSmartVolumeMapper::GPURenderMode, vtkSmartVolumeMapper::DefaultRenderMode })
