@@ -99,6 +99,27 @@ void ConvertLights(
   }
 }
 
+/// The ambient light of the renderer's switched-on lights: the sum of their ambient
+/// colours times their intensities (black for vtkLight's defaults), as
+/// vtkFixedPointVolumeRayCastMapper lights the ambient term.
+parc::Vec3 LightsAmbient(vtkRenderer* ren)
+{
+  parc::Vec3 sum{ 0.0, 0.0, 0.0 };
+  vtkLightCollection* collection = ren->GetLights();
+  vtkCollectionSimpleIterator it;
+  collection->InitTraversal(it);
+  while (vtkLight* light = collection->GetNextLight(it))
+  {
+    if (light->GetSwitch())
+    {
+      const double* a = light->GetAmbientColor();
+      const double i = light->GetIntensity();
+      sum = sum + parc::Vec3{ a[0] * i, a[1] * i, a[2] * i };
+    }
+  }
+  return sum;
+}
+
 /// The matrix from 0-based voxel indices of the image to the render frame (origin at frame).
 /// A field of cell scalars has its voxels at the cells' centres: index i lies at the
 /// image's index i + cellOffset (0.5; 0 for point scalars).
@@ -572,6 +593,20 @@ const char* vtkPARCVolumeMapper::GetAccelerationModeAsString(int mode)
       return "DepthAndColorBuffer";
     case ACCELERATION_SUPERCELL_WALK:
       return "SupercellWalk";
+    default:
+      return "Unknown";
+  }
+}
+
+//------------------------------------------------------------------------------
+const char* vtkPARCVolumeMapper::GetAmbientModelAsString(int model)
+{
+  switch (model)
+  {
+    case AMBIENT_MATERIAL:
+      return "Material";
+    case AMBIENT_LIGHTS:
+      return "Lights";
     default:
       return "Unknown";
   }
@@ -1135,6 +1170,8 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
     const bool shadows = this->ShadowMode == SHADOWS_ON ||
       (this->ShadowMode == SHADOWS_FROM_RENDERER && ren->GetUseShadows());
     ConvertLights(ren, frame, shadows, p.Lights);
+    p.AmbientLight = this->AmbientModel == AMBIENT_LIGHTS ? LightsAmbient(ren)
+                                                          : parc::Vec3{ 1.0, 1.0, 1.0 };
   }
   else
   {
@@ -2212,6 +2249,7 @@ void vtkPARCVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "AccelerationMode: " << GetAccelerationModeAsString(this->AccelerationMode)
      << "\n";
   os << indent << "ShadingModel: " << GetShadingModelAsString(this->ShadingModel) << "\n";
+  os << indent << "AmbientModel: " << GetAmbientModelAsString(this->AmbientModel) << "\n";
   os << indent << "ShadowMode: " << GetShadowModeAsString(this->ShadowMode) << "\n";
   os << indent << "ColorRangeType: " << (this->ColorRangeType == NATIVE ? "NATIVE" : "SCALAR")
      << "\n";

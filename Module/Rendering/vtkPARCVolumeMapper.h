@@ -99,7 +99,7 @@
  *   vtkFixedPointVolumeRayCastMapper differs: it multiplies Ambient by each light's
  *   intensity and ambient colour, which is black for vtkLight's default, so that its shaded
  *   images lack the ambient term (an MRI head with Ambient 0.6: about 16 grey levels darker
- *   than this mapper's and the GPU mapper's).
+ *   than this mapper's and the GPU mapper's). SetAmbientModelToLights follows FixedPoint.
  * - Gradient opacity functions map the gradient magnitude in scalar units per mean voxel
  *   spacing (the world gradient's magnitude times the mean of the image's spacing), as
  *   vtkFixedPointVolumeRayCastMapper and vtkGPUVolumeRayCastMapper measure it; with unit
@@ -247,6 +247,29 @@ public:
   static const char* GetShadingModelAsString(int model);
   /** The shading model port 0's last render used (Exact when it was not shaded). */
   int GetLastShadingModel();
+  ///@}
+
+  enum AmbientModels
+  {
+    AMBIENT_MATERIAL = 0,
+    AMBIENT_LIGHTS = 1
+  };
+
+  ///@{
+  /**
+   * Where the ambient term's light comes from. Material, the default, as
+   * vtkGPUVolumeRayCastMapper under the renderer's own light: the property's Ambient times
+   * the sample's colour, as under a white ambient light. Lights, as
+   * vtkFixedPointVolumeRayCastMapper: Ambient times the sum of the switched-on lights'
+   * ambient colours times their intensities, which is black for vtkLight's defaults, so
+   * that the ambient term vanishes under VTK's default lights. A program written for
+   * FixedPoint keeps its images' brightness with Lights.
+   */
+  vtkSetClampMacro(AmbientModel, int, AMBIENT_MATERIAL, AMBIENT_LIGHTS);
+  vtkGetMacro(AmbientModel, int);
+  void SetAmbientModelToMaterial() { this->SetAmbientModel(AMBIENT_MATERIAL); }
+  void SetAmbientModelToLights() { this->SetAmbientModel(AMBIENT_LIGHTS); }
+  static const char* GetAmbientModelAsString(int model);
   ///@}
 
   enum ShadowModes
@@ -721,6 +744,7 @@ protected:
 
   int AccelerationMode = ACCELERATION_AUTO;
   int ShadingModel = SHADING_EXACT;
+  int AmbientModel = AMBIENT_MATERIAL;
   int ShadowMode = SHADOWS_FROM_RENDERER;
   int ColorRangeType = SCALAR;
   double SupercellSize[3] = { 4.0, 4.0, 4.0 };

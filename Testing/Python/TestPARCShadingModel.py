@@ -1,7 +1,9 @@
 """The quantized-normal shading model (SetShadingModelToQuantizedNormals) in a VTK
 pipeline: it replaces the per-sample gradients, stays close to exact shading, gives the
 same float image in every acceleration mode, holds 2 bytes per voxel only while it is the
-model, and leaves scenes with positional lights to exact shading."""
+model, and leaves scenes with positional lights to exact shading. The ambient model: with
+the lights' ambient (FixedPoint's), VTK's default lights give no ambient term and a
+light's ambient colour tints it; with the material's (the default), white ambient light."""
 import unittest
 
 import numpy as np
@@ -24,6 +26,33 @@ class TestPARCShadingModel(unittest.TestCase):
         mapper.SetAccelerationMode(mode)
         window.Render()
         return ray_image(mapper)
+
+    def test_ambient_from_the_lights(self):
+        def image(model, ambient=0.4, light_ambient=None):
+            mapper, window = make_scene()
+            renderer = window.GetRenderers().GetFirstRenderer()
+            renderer.GetVolumes().GetItemAsObject(0).GetProperty().SetAmbient(ambient)
+            if light_ambient is not None:
+                light = vtkLight()
+                light.SetLightTypeToHeadlight()
+                light.SetAmbientColor(*light_ambient)
+                renderer.AddLight(light)
+            mapper.SetAmbientModel(model)
+            return self.render(mapper, window)
+
+        material = vtkPARCVolumeMapper.AMBIENT_MATERIAL
+        lights = vtkPARCVolumeMapper.AMBIENT_LIGHTS
+        # VTK's default light has a black ambient colour: no ambient term.
+        self.assertTrue(np.array_equal(image(lights), image(material, ambient=0.0)))
+        self.assertFalse(np.array_equal(image(lights), image(material)))
+        # A white ambient light is the material model's.
+        self.assertTrue(np.array_equal(image(lights, light_ambient=(1, 1, 1)),
+                                       image(material, light_ambient=(1, 1, 1))))
+        # A red ambient light adds to red only.
+        red = image(lights, light_ambient=(1, 0, 0))
+        dark = image(lights, light_ambient=(0, 0, 0))
+        self.assertTrue((red[:, 0] >= dark[:, 0]).all() and (red[:, 0] > dark[:, 0]).any())
+        self.assertTrue(np.array_equal(red[:, 1:], dark[:, 1:]))
 
     def test_quantized_normals_replace_gradients(self):
         mapper, window = make_scene()

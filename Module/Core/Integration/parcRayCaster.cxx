@@ -318,6 +318,10 @@ bool RayCaster::Prepare(const Volume& volume)
   k.GradientNeeded = (parameters->Shade && !k.QuantizedNormals) ||
     (parameters->UseGradientOpacity && !k.GradientOpacityConstant) || labelGradients;
   k.ColorByValue = k.OpacityByValue && parameters->ColorShiftCount == 0;
+  for (int c = 0; c < 3; ++c)
+  {
+    k.Ambient[c] = static_cast<float>(parameters->Ambient * parameters->AmbientLight[c]);
+  }
   k.GreyLights = std::all_of(k.DirectionalLights.begin(), k.DirectionalLights.end(),
     [](const DirectionalLight& light) {
       return light.Diffuse.X == light.Diffuse.Y && light.Diffuse.X == light.Diffuse.Z &&
@@ -915,7 +919,7 @@ struct RayContext
     this->P.Normals->CellCorners(cell, codes);
     __m128 diffuse, specular;
     this->InterpolateNormalFactors(codes, f, diffuse, specular);
-    const __m128 ambient = _mm_set1_ps(static_cast<float>(this->P.Ambient));
+    const __m128 ambient = _mm_load_ps(this->K.Ambient); // red, green, blue, 0
     const __m128 lit = _mm_add_ps(_mm_mul_ps(rgb, _mm_add_ps(ambient, diffuse)), specular);
     return _mm_min_ps(_mm_set1_ps(1.f), lit); // std::min(lit, 1.f), NaN kept
   }
@@ -1339,10 +1343,9 @@ PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f
       this->AddPositionalLights(t, n, diffuse, specular);
     }
   }
-  const float ambient = static_cast<float>(this->P.Ambient);
   for (int c = 0; c < 3; ++c)
   {
-    rgb[c] = std::min(rgb[c] * (ambient + diffuse[c]) + specular[c], 1.f);
+    rgb[c] = std::min(rgb[c] * (this->K.Ambient[c] + diffuse[c]) + specular[c], 1.f);
   }
 }
 
@@ -1352,7 +1355,6 @@ void RayContext<View>::ShadeLanes()
   LaneBatch& b = this->Batch;
 #if defined(__SSE2__)
   const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.f);
-  const __m128 ambient = _mm_set1_ps(static_cast<float>(this->P.Ambient));
   const __m128 signBit = _mm_set1_ps(-0.f);
   auto dot = [](__m128 ax, __m128 ay, __m128 az, const Vec3f& v) {
     const __m128 x = _mm_mul_ps(ax, _mm_set1_ps(v.X)), y = _mm_mul_ps(ay, _mm_set1_ps(v.Y));
@@ -1407,6 +1409,7 @@ void RayContext<View>::ShadeLanes()
     for (int c = 0; c < 3; ++c)
     {
       const __m128 rgb = _mm_load_ps(b.Rgb[c] + i);
+      const __m128 ambient = _mm_set1_ps(this->K.Ambient[c]);
       const __m128 shaded =
         _mm_add_ps(_mm_mul_ps(rgb, _mm_add_ps(ambient, diffuse[c])), specular[c]);
       _mm_store_ps(b.Rgb[c] + i, _mm_min_ps(one, shaded)); // std::min(shaded, 1.f)
@@ -1464,10 +1467,9 @@ void RayContext<View>::ShadeQuantized(float rgb[3], double t, int j) const
     InterpolateFactors(this->K.NormalShading.data(), codes, w.Fractions, diffuse, specular);
 #endif
   }
-  const float ambient = static_cast<float>(this->P.Ambient);
   for (int c = 0; c < 3; ++c)
   {
-    rgb[c] = std::min(rgb[c] * (ambient + diffuse[c]) + specular[c], 1.f);
+    rgb[c] = std::min(rgb[c] * (this->K.Ambient[c] + diffuse[c]) + specular[c], 1.f);
   }
 }
 

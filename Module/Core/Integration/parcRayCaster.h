@@ -312,6 +312,9 @@ public:
     /// Whether every directional light's diffuse and specular factors are the same for
     /// red, green and blue (white lights): one channel's shading serves all three.
     bool GreyLights = false;
+    /// The ambient factor per channel (Ambient times AmbientLight), and 0: red, green,
+    /// blue as one register.
+    alignas(16) float Ambient[4] = { 0.f, 0.f, 0.f, 0.f };
     std::vector<DirectionalLight> DirectionalLights;
     std::vector<PositionalLight> PositionalLights;
     std::vector<double> SortedIsoValues;

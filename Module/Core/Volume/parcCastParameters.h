@@ -114,6 +114,10 @@ struct CastParameters
   double ComponentWeight = 1.0;
   bool Shade = false;
   double Ambient = 0.1, Diffuse = 0.7, Specular = 0.2, SpecularPower = 10.0;
+  /// The ambient light's colour, per channel: the ambient term is Ambient times it times
+  /// the sample's colour. White by default; the lights' summed ambient colours (times
+  /// their intensities) where a mapper's ambient comes from its lights.
+  Vec3 AmbientLight{ 1.0, 1.0, 1.0 };
   std::vector<Light> Lights;
   /// Exact: Blinn-Phong of the gradient of the interpolated field at every shaded sample
   /// or crossing. QuantizedNormals: the table shading of Normals (parcNormalVolume.h),
