@@ -90,6 +90,7 @@ vtkSmartPointer<vtkPARCVolumeMapper> CopyMapper(vtkPARCVolumeMapper* parc, int m
   m->SetSupercellSize(parc->GetSupercellSize());
   m->SetAutoSupercellSize(parc->GetAutoSupercellSize());
   m->SetShadingModel(parc->GetShadingModel());
+  m->SetAmbientModel(parc->GetAmbientModel());
   m->SetAccelerationMode(mode);
   return m;
 }
