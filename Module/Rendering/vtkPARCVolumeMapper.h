@@ -40,8 +40,13 @@
  *
  * Documented results and limits:
  * - NaN scalars count as the smallest finite value, -inf as the smallest and +inf as the
- *   largest (a warning gives the number replaced). double and 32-bit integers are cast
- *   through float (24-bit mantissa).
+ *   largest (a warning gives the number replaced), so a colour function's NaN colour does
+ *   not apply. double and 32-bit integers are cast through float (24-bit mantissa).
+ * - Transfer functions are sampled through their own GetColor and GetValue, so clamping,
+ *   midpoints and sharpness, colour spaces and below- and above-range colours hold; a
+ *   colour function into a table of 1024 entries over the data range (or its own range,
+ *   ColorRangeType NATIVE), an opacity segment with a midpoint or sharpness into 32 linear
+ *   pieces (classification needs piecewise-linear opacity).
  * - An image with fewer than 2 samples (cell scalars: cells) along an axis, zero spacing,
  *   no scalars or an unsupported type draws nothing and reports an error; so does an input
  *   that is not a vtkImageData (a vtkRectilinearGrid, say), with vtkResampleToImage named
