@@ -4,6 +4,7 @@
 #include "parcDepthFS.h"
 #include "parcFaceFS.h"
 #include "parcFaceVS.h"
+#include "parcPassGLState.h"
 #include "parcPlaneFS.h"
 #include "parcStatistics.h"
 #include "parcVTKConversion.h"
@@ -12,7 +13,6 @@
 #include "vtkMatrix4x4.h"
 #include "vtkObjectFactory.h"
 #include "vtkOpenGLRenderWindow.h"
-#include "vtkOpenGLShaderCache.h"
 #include "vtkOpenGLState.h"
 #include "vtkRenderer.h"
 #include "vtkWeakPointer.h"
@@ -51,9 +51,6 @@ TexelFormat NarrowestTexel(int words)
 /// edges along their normals), more than half a pixel.
 constexpr double DilationPixels = 0.75;
 constexpr double NearClipFraction = 0.5; ///< perspective: clip at this fraction of near
-/// Relative size of the x, y terms of the inverse projection's w row below which the rays
-/// count as affine in NDC x, y (otherwise the depth pass keeps whole face ranges).
-constexpr double AffineTolerance = 1e-12;
 /// The rounding margin of a fragment's hit depth and face coordinates, relative to the
 /// magnitudes that enter them (about 800 float ulps, far above the handful of roundings in
 /// the shaders; the rasterizer test fails without it).
@@ -136,19 +133,6 @@ void SetMatrix(GLuint program, const char* name, const parc::Matrix4& m)
     }
   }
   glUniformMatrix4fv(glGetUniformLocation(program, name), 1, GL_FALSE, v);
-}
-
-/// What both passes set: no scissor, depth test, culling or depth writes; all colour
-/// channels; depth clamping (faces beyond the near/far planes still count); tight rows.
-void SetCommonPassState(vtkOpenGLState* state)
-{
-  state->vtkglDisable(GL_SCISSOR_TEST);
-  state->vtkglDisable(GL_DEPTH_TEST);
-  state->vtkglDisable(GL_CULL_FACE);
-  state->vtkglColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
-  state->vtkglDepthMask(GL_FALSE);
-  state->vtkglPixelStorei(GL_PACK_ALIGNMENT, 4);
-  glEnable(GL_DEPTH_CLAMP);
 }
 
 /// A model on the GPU.
@@ -267,64 +251,6 @@ bool RenderTarget::Bind(vtkOpenGLState* state, GLenum format, int attachments, i
   }
   return true;
 }
-
-/// Saves the GL state the passes change and restores it when destroyed.
-class ScopedPassState
-{
-public:
-  explicit ScopedPassState(vtkOpenGLState* state)
-    : State(state)
-    , Viewport(state)
-    , ClearColor(state)
-    , ColorMask(state)
-    , DepthMask(state)
-    , BlendFunc(state)
-    , Scissor(state, GL_SCISSOR_TEST)
-    , DepthTest(state, GL_DEPTH_TEST)
-    , Blend(state, GL_BLEND)
-    , Cull(state, GL_CULL_FACE)
-  {
-    this->State->PushFramebufferBindings();
-    this->DepthClamp = glIsEnabled(GL_DEPTH_CLAMP);
-    this->LogicOp = glIsEnabled(GL_COLOR_LOGIC_OP);
-    glGetIntegerv(GL_LOGIC_OP_MODE, &this->LogicOpMode);
-    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &this->VertexArray);
-    glGetIntegerv(GL_ARRAY_BUFFER_BINDING, &this->ArrayBuffer);
-    glGetIntegerv(GL_RENDERBUFFER_BINDING, &this->Renderbuffer);
-    glGetIntegerv(GL_PACK_ALIGNMENT, &this->PackAlignment);
-    glGetIntegerv(GL_BLEND_EQUATION_RGB, &this->BlendEquation[0]);
-    glGetIntegerv(GL_BLEND_EQUATION_ALPHA, &this->BlendEquation[1]);
-  }
-  ~ScopedPassState()
-  {
-    glBindVertexArray(static_cast<GLuint>(this->VertexArray));
-    glBindBuffer(GL_ARRAY_BUFFER, static_cast<GLuint>(this->ArrayBuffer));
-    glBindRenderbuffer(GL_RENDERBUFFER, static_cast<GLuint>(this->Renderbuffer));
-    glLogicOp(static_cast<GLenum>(this->LogicOpMode));
-    (this->LogicOp ? glEnable : glDisable)(GL_COLOR_LOGIC_OP);
-    (this->DepthClamp ? glEnable : glDisable)(GL_DEPTH_CLAMP);
-    this->State->vtkglPixelStorei(GL_PACK_ALIGNMENT, this->PackAlignment);
-    this->State->vtkglBlendEquationSeparate(
-      static_cast<GLenum>(this->BlendEquation[0]), static_cast<GLenum>(this->BlendEquation[1]));
-    this->State->GetShaderCache()->ReleaseCurrentShader();
-    this->State->PopFramebufferBindings();
-  }
-
-private:
-  vtkOpenGLState* State;
-  vtkOpenGLState::ScopedglViewport Viewport;
-  vtkOpenGLState::ScopedglClearColor ClearColor;
-  vtkOpenGLState::ScopedglColorMask ColorMask;
-  vtkOpenGLState::ScopedglDepthMask DepthMask;
-  vtkOpenGLState::ScopedglBlendFuncSeparate BlendFunc;
-  vtkOpenGLState::ScopedglEnableDisable Scissor, DepthTest, Blend, Cull;
-  GLboolean DepthClamp = GL_FALSE;
-  GLboolean LogicOp = GL_FALSE;
-  GLint LogicOpMode = GL_COPY;
-  GLint VertexArray = 0, ArrayBuffer = 0, Renderbuffer = 0;
-  GLint PackAlignment = 4;
-  GLint BlendEquation[2] = { GL_FUNC_ADD, GL_FUNC_ADD };
-};
 }
 
 //------------------------------------------------------------------------------
@@ -335,8 +261,9 @@ public:
   vtkWeakPointer<vtkOpenGLRenderWindow> Context;
   GLuint DepthProgram = 0;
   GLuint PlaneProgram = 0;
-  GPUModel Models[2];        ///< depth, colour
-  RenderTarget Targets[2];   ///< depth, colour
+  static constexpr int Passes = 2;
+  GPUModel Models[Passes];      ///< by Pass
+  RenderTarget Targets[Passes]; ///< by Pass
   std::vector<std::uint32_t> Texels; ///< read-back of one plane attachment
   /// Seconds spent so far making the context current, compiling the programs, uploading
   /// models and binding (allocating) render targets.
@@ -365,8 +292,8 @@ public:
     while (glGetError() != GL_NO_ERROR)
     {
     }
-    ScopedPassState saved(state);
-    SetCommonPassState(state);
+    parc::vtk::ScopedPassState saved(state);
+    parc::vtk::SetCommonPassState(state);
     if (!body(state))
     {
       return false;
@@ -379,11 +306,11 @@ public:
     return true;
   }
   void Upload(GPUModel& gpu, const parc::PolygonModel& model, std::uint64_t version);
-  /// The GPU copy of model in slot (0 depth, 1 colour), uploaded when its version changed.
-  const GPUModel& Use(int slot, const parc::PolygonModel& model, std::uint64_t version,
+  /// The GPU copy of pass's model, uploaded when its version changed.
+  const GPUModel& Use(Pass pass, const parc::PolygonModel& model, std::uint64_t version,
     std::uint64_t& uploads)
   {
-    GPUModel& gpu = this->Models[slot];
+    GPUModel& gpu = this->Models[static_cast<int>(pass)];
     if (gpu.Version != version)
     {
       const auto start = std::chrono::steady_clock::now();
@@ -395,12 +322,12 @@ public:
     }
     return gpu;
   }
-  /// Targets[slot].Bind, its time counted as set-up.
+  /// The render target of pass bound, its time counted as set-up.
   bool BindTarget(
-    int slot, GLenum format, int attachments, int width, int height, std::string& error)
+    Pass pass, GLenum format, int attachments, int width, int height, std::string& error)
   {
     const auto start = std::chrono::steady_clock::now();
-    const bool bound = this->Targets[slot].Bind(
+    const bool bound = this->Targets[static_cast<int>(pass)].Bind(
       this->Context->GetState(), format, attachments, width, height, error);
     this->SetUpTime += parc::SecondsSince(start);
     return bound;
@@ -539,7 +466,7 @@ void vtkPARCRasterizer::vtkInternals::Draw(GLuint program, const GPUModel& gpu,
 {
   glUseProgram(program);
   SetVector(program, "SkipNormal", skipNormal);
-  // The view's frame has the eye at its origin (see MakeView): the shaders' coordinates
+  // The view's frame has the eye at its origin (see parc::vtk::MakePassView): the shaders' coordinates
   // stay small, and float never holds a large coordinate.
   SetMatrix(program, "IndexToRelative", indexToWorld);
   SetMatrix(program, "RelativeToClip", view.Camera.WorldToNDC);
@@ -619,21 +546,21 @@ vtkPARCRasterizer::~vtkPARCRasterizer()
 }
 
 bool vtkPARCRasterizer::HasModel(
-  vtkRenderWindow* window, bool colour, std::uint64_t modelVersion) const
+  vtkRenderWindow* window, Pass pass, std::uint64_t modelVersion) const
 {
   const vtkInternals& in = *this->Internals;
   return window && window == in.Context.GetPointer() &&
-    in.Models[colour ? 1 : 0].Version == modelVersion;
+    in.Models[static_cast<int>(pass)].Version == modelVersion;
 }
 
-void vtkPARCRasterizer::ReleasePass(vtkRenderWindow* window, bool colour)
+void vtkPARCRasterizer::ReleasePass(vtkRenderWindow* window, Pass pass)
 {
   vtkInternals& in = *this->Internals;
   if (!window || window != in.Context.GetPointer() || !in.DepthProgram)
   {
     return;
   }
-  const int slot = colour ? 1 : 0;
+  const int slot = static_cast<int>(pass);
   if (!in.Models[slot].VertexArray && in.Targets[slot].GetMemorySize() == 0)
   {
     return; // nothing held
@@ -641,7 +568,7 @@ void vtkPARCRasterizer::ReleasePass(vtkRenderWindow* window, bool colour)
   in.Context->MakeCurrent();
   in.Models[slot].Release();
   in.Targets[slot].Release();
-  if (colour)
+  if (pass == Pass::Planes)
   {
     std::vector<std::uint32_t>().swap(in.Texels);
   }
@@ -656,7 +583,7 @@ std::size_t vtkPARCRasterizer::GetMemorySize() const
 {
   const vtkInternals& in = *this->Internals;
   std::size_t bytes = in.Texels.capacity() * sizeof(std::uint32_t);
-  for (int slot = 0; slot < 2; ++slot)
+  for (int slot = 0; slot < vtkInternals::Passes; ++slot)
   {
     bytes += in.Models[slot].Bytes + in.Targets[slot].GetMemorySize();
   }
@@ -674,80 +601,6 @@ void vtkPARCRasterizer::ReleaseGraphicsResources(vtkWindow* window)
 }
 
 //------------------------------------------------------------------------------
-parc::Vec3 vtkPARCRasterizer::FrameOrigin(vtkRenderer* ren)
-{
-  const double* eye = ren->GetActiveCamera()->GetPosition();
-  return { eye[0], eye[1], eye[2] };
-}
-
-//------------------------------------------------------------------------------
-bool vtkPARCRasterizer::MakeView(vtkRenderer* ren, int width, int height, View& view)
-{
-  vtkCamera* camera = ren->GetActiveCamera();
-  // The view transform of the camera's frame: the translation by the camera position, large
-  // far from the origin, cancels in double here (leaving at most a constant offset that the
-  // rays and the passes share) and never enters float.
-  view.FrameOrigin = FrameOrigin(ren);
-  const parc::Matrix4 worldToView = parc::vtk::ToMatrix4(camera->GetViewTransformMatrix());
-  const parc::Matrix4 frameToView =
-    parc::Translated(worldToView, worldToView.TransformVector(view.FrameOrigin));
-  parc::Camera& c = view.Camera;
-  c.Width = width;
-  c.Height = height;
-  c.Parallel = camera->GetParallelProjection() != 0;
-  c.Eye = parc::Vec3();
-  const double* direction = camera->GetDirectionOfProjection();
-  c.Direction = parc::Normalized({ direction[0], direction[1], direction[2] });
-  c.NearDistance = camera->GetClippingRange()[0];
-  c.FarDistance = camera->GetClippingRange()[1];
-  if (!c.SetProjection(parc::Multiply(
-        parc::vtk::ToMatrix4(camera->GetProjectionTransformMatrix(ren->GetTiledAspectRatio(), -1, 1)),
-        frameToView)))
-  {
-    return false;
-  }
-  SetRayCoefficients(view);
-  return true;
-}
-
-//------------------------------------------------------------------------------
-void vtkPARCRasterizer::SetRayCoefficients(View& pass)
-{
-  const parc::Camera& rays = pass.Camera;
-  // With the camera's projections the homogeneous w of a point of NDC depth z does not
-  // depend on NDC x, y, so ray start and (unnormalized) direction are affine in x, y.
-  const parc::Matrix4& m = rays.NDCToWorld;
-  auto start = [&](double x, double y) {
-    return rays.Parallel ? m.TransformHomogeneous({ x, y, -1.0 }) - rays.Eye : parc::Vec3();
-  };
-  auto direction = [&](double x, double y) {
-    return m.TransformHomogeneous({ x, y, 1.0 }) - m.TransformHomogeneous({ x, y, -1.0 });
-  };
-  pass.RayBase[0] = start(0.0, 0.0);
-  pass.RayBase[1] = start(1.0, 0.0) - pass.RayBase[0];
-  pass.RayBase[2] = start(0.0, 1.0) - pass.RayBase[0];
-  pass.RayDirection[0] = direction(0.0, 0.0);
-  pass.RayDirection[1] = direction(1.0, 0.0) - pass.RayDirection[0];
-  pass.RayDirection[2] = direction(0.0, 1.0) - pass.RayDirection[0];
-  if (rays.Parallel)
-  {
-    pass.RayDirection[1] = pass.RayDirection[2] = parc::Vec3();
-  }
-  // |u| is convex in (x, y): its largest value on the image is at a corner.
-  pass.MaxRayDirectionLength = 0.0;
-  for (double x : { -1.0, 1.0 })
-  {
-    for (double y : { -1.0, 1.0 })
-    {
-      pass.MaxRayDirectionLength = std::max(pass.MaxRayDirectionLength,
-        parc::Length(pass.RayDirection[0] + x * pass.RayDirection[1] + y * pass.RayDirection[2]));
-    }
-  }
-  const double wScale = std::fabs(m(3, 2)) + std::fabs(m(3, 3));
-  pass.AffineRays = std::fabs(m(3, 0)) + std::fabs(m(3, 1)) <= AffineTolerance * wScale;
-}
-
-//------------------------------------------------------------------------------
 bool vtkPARCRasterizer::RenderLight(vtkRenderWindow* window, const parc::PolygonModel& model,
   std::uint64_t modelVersion, const parc::LightFrame& light, int resolution,
   const parc::SupercellGrid* grid, parc::LightBufferSource& source)
@@ -758,7 +611,7 @@ bool vtkPARCRasterizer::RenderLight(vtkRenderWindow* window, const parc::Polygon
   {
     View view;
     view.Camera = camera;
-    SetRayCoefficients(view);
+    parc::vtk::SetRayCoefficients(view);
     view.AffineRays = false; // every face keeps its whole depth range: any line is covered
     bool ok;
     if (model.MajorAxis < 0)
@@ -795,9 +648,9 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
 {
   vtkInternals& in = *this->Internals;
   return in.Run(window, "depth", this->LastError, [&](vtkOpenGLState* state) {
-    const GPUModel& gpu = in.Use(0, model, modelVersion, this->UploadCount);
+    const GPUModel& gpu = in.Use(Pass::Depth, model, modelVersion, this->UploadCount);
     const int w = view.Camera.Width, h = view.Camera.Height;
-    if (!in.BindTarget(0, GL_RG32F, 1, w, h, this->LastError))
+    if (!in.BindTarget(Pass::Depth, GL_RG32F, 1, w, h, this->LastError))
     {
       return false;
     }
@@ -829,7 +682,7 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
   }
   vtkInternals& in = *this->Internals;
   return in.Run(window, "plane", this->LastError, [&](vtkOpenGLState* state) {
-    const GPUModel& gpu = in.Use(1, model, modelVersion, this->UploadCount);
+    const GPUModel& gpu = in.Use(Pass::Planes, model, modelVersion, this->UploadCount);
     const int w = view.Camera.Width, h = view.Camera.Height;
     const std::size_t pixels = static_cast<std::size_t>(w) * h;
     passes = std::max(1, (model.PlaneCount + PlanesPerPass - 1) / PlanesPerPass);
@@ -845,7 +698,7 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
     for (int pass = 0; pass < passes; ++pass)
     {
       const int attachments = std::min(MaxAttachments, attachmentsTotal - pass * MaxAttachments);
-      if (!in.BindTarget(1, texel.Internal, attachments, w, h, this->LastError))
+      if (!in.BindTarget(Pass::Planes, texel.Internal, attachments, w, h, this->LastError))
       {
         return false;
       }

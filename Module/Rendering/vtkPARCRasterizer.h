@@ -44,7 +44,7 @@
 #include "PARCRenderingModule.h" // For export macro
 #include "vtkObject.h"
 
-#include "parcCamera.h"       // For Camera
+#include "parcPassView.h"     // For PassView
 #include "parcLightFrusta.h"  // For LightFrame, LightBufferSource
 #include "parcPolygonModel.h"  // For PolygonModel
 
@@ -64,31 +64,15 @@ public:
   vtkTypeMacro(vtkPARCRasterizer, vtkObject);
   void PrintSelf(ostream& os, vtkIndent indent) override;
 
-  /// The camera of a pass and of the rays, plus what the shaders need, in the camera's
-  /// frame: world coordinates minus the camera position (FrameOrigin), so that a volume far
-  /// from the world's origin loses no precision. The eye is the frame's origin; the models'
-  /// index-to-world matrices given to the passes must be in the same frame.
-  struct View
+  /// The view the passes are drawn with (parcPassView.h).
+  using View = parc::vtk::PassView;
+
+  /// The passes, each with a GPU model and a render target of its own.
+  enum class Pass
   {
-    parc::Camera Camera;    ///< the eye is at 0
-    parc::Vec3 FrameOrigin; ///< world position of the coordinates' origin
-    /// The ray through NDC (x, y) in eye-relative world coordinates: it starts at
-    /// RayBase[0] + x RayBase[1] + y RayBase[2] (0 in perspective) and runs along
-    /// RayDirection[0] + x RayDirection[1] + y RayDirection[2] (not normalized).
-    parc::Vec3 RayBase[3];
-    parc::Vec3 RayDirection[3];
-    double MaxRayDirectionLength = 0.0; ///< the largest |direction| over the image
-    bool AffineRays = false; ///< false: the coefficients do not describe the rays
+    Depth = 0,
+    Planes = 1
   };
-
-  /// The world position of the frame's origin for the renderer's active camera: its position.
-  static parc::Vec3 FrameOrigin(vtkRenderer* ren);
-  /// The view of a width x height ray image of the renderer's active camera, in the
-  /// camera's frame (see View; the eye is at 0). False when the projection is singular.
-  static bool MakeView(vtkRenderer* ren, int width, int height, View& view);
-
-  /// Fills the ray coefficients of view from its camera.
-  static void SetRayCoefficients(View& view);
 
   /// Near/far view depths of the depth model (2 floats per pixel, see class comment).
   bool RenderDepth(vtkRenderWindow* window, const parc::PolygonModel& model,
@@ -113,9 +97,9 @@ public:
     std::uint64_t modelVersion, const parc::Matrix4& indexToWorld, const View& view, int raySign,
     std::vector<std::uint32_t>& bits, int& wordsPerPixel, int& passes);
 
-  /// Whether the model of version (depth or colour pass) is on window's GPU already: the
+  /// Whether the model of version (of the pass) is on window's GPU already: the
   /// passes then need none of its vertices.
-  bool HasModel(vtkRenderWindow* window, bool colour, std::uint64_t modelVersion) const;
+  bool HasModel(vtkRenderWindow* window, Pass pass, std::uint64_t modelVersion) const;
 
   const std::string& GetLastError() const { return this->LastError; }
   /// How many times a model was uploaded to the GPU (statistics).
@@ -127,9 +111,9 @@ public:
   /// software GL all of it is main memory).
   std::size_t GetMemorySize() const;
 
-  /// Frees the model and render target of one pass (depth or colour) when window is the
-  /// context they belong to: a pass the view no longer uses holds no memory.
-  void ReleasePass(vtkRenderWindow* window, bool colour);
+  /// Frees the model and render target of one pass when window is the context they belong
+  /// to: a pass the view no longer uses holds no memory.
+  void ReleasePass(vtkRenderWindow* window, Pass pass);
   /// Frees the GL objects when window is the context they belong to (or null).
   void ReleaseGraphicsResources(vtkWindow* window);
 

@@ -410,12 +410,12 @@ public:
     if (!depth)
     {
       this->DepthSource.ReleaseBuffer();
-      this->Rasterizer->ReleasePass(window, false);
+      this->Rasterizer->ReleasePass(window, vtkPARCRasterizer::Pass::Depth);
     }
     if (!color)
     {
       this->PlaneSource.ReleaseBuffer();
-      this->Rasterizer->ReleasePass(window, true);
+      this->Rasterizer->ReleasePass(window, vtkPARCRasterizer::Pass::Planes);
     }
     if (!walk)
     {
@@ -1113,7 +1113,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   }
 
   // The core sees world coordinates minus the camera position, as the passes' views do.
-  const parc::Vec3 frame = vtkPARCRasterizer::FrameOrigin(ren);
+  const parc::Vec3 frame = parc::vtk::FrameOrigin(ren);
   vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(in.Port, 0));
   in.IndexToFrame = IndexToFrame(image, vol, frame, in.CellOffset);
   const parc::Matrix4& indexToWorld = in.IndexToFrame;
@@ -1295,7 +1295,7 @@ bool vtkPARCVolumeMapper::vtkInternals::MakeView(
   }
   const double step = self->ChooseImageSampleDistance();
   self->LastImageSampleDistance = step;
-  if (!vtkPARCRasterizer::MakeView(ren, std::max(1, static_cast<int>(width / step)),
+  if (!parc::vtk::MakePassView(ren, std::max(1, static_cast<int>(width / step)),
         std::max(1, static_cast<int>(height / step)), view))
   {
     vtkErrorWithObjectMacro(self, "The camera's projection is singular.");
@@ -1378,7 +1378,7 @@ void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, 
   const bool shadows = lights != nullptr;
   this->LightPasses = LightPassWork();
   std::vector<parc::Occluders::Member> occluders;
-  const parc::Vec3 frame = vtkPARCRasterizer::FrameOrigin(ren);
+  const parc::Vec3 frame = parc::vtk::FrameOrigin(ren);
   for (const auto& entry : this->Rendered)
   {
     vtkVolumeState& volume = *entry.first;
@@ -1619,10 +1619,10 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   {
     const std::uint64_t version = in.Plan.GetModelVersion();
     const parc::PolygonModel& model =
-      in.Plan.GetDepthModel(in.Rasterizer->HasModel(window, false, version));
+      in.Plan.GetDepthModel(in.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Depth, version));
     std::vector<float> nearFar = in.DepthSource.ReleaseBuffer();
     ok = in.Rasterizer->RenderDepth(window, model, version, indexToWorld, passView, nearFar);
-    if (in.Rasterizer->HasModel(window, false, version))
+    if (in.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Depth, version))
     {
       in.Plan.ReleaseDepthVertices();
     }
@@ -1634,14 +1634,14 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     const int axis = MajorAxis(indexToWorld, passView.Camera.Direction);
     const std::uint64_t version = in.Plan.GetColorModelVersion(axis);
     const parc::PolygonModel& model =
-      in.Plan.GetColorModel(axis, in.Rasterizer->HasModel(window, true, version));
+      in.Plan.GetColorModel(axis, in.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Planes, version));
     std::vector<std::uint32_t> bits = in.PlaneSource.ReleaseBuffer();
     int words = 0;
     std::vector<parc::Vec3> starts, directions;
     passView.Camera.RayBounds(in.CoreVolume.WorldToIndex, starts, directions);
     ok = in.Rasterizer->RenderPlanes(window, model, version, indexToWorld, passView,
       parc::RayAxisSign(model, starts, directions), bits, words, in.PassCount);
-    if (in.Rasterizer->HasModel(window, true, version))
+    if (in.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Planes, version))
     {
       in.Plan.ReleaseColorVertices(axis);
     }
@@ -1732,7 +1732,8 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   }
   const double start = vtkTimerLog::GetUniversalTime();
   passes.Key.clear();
-  const bool uploaded = in.LightRasterizer->HasModel(window, planes, version);
+  const bool uploaded = in.LightRasterizer->HasModel(
+    window, planes ? vtkPARCRasterizer::Pass::Planes : vtkPARCRasterizer::Pass::Depth, version);
   const parc::PolygonModel& model =
     planes ? in.Plan.GetColorModel(axis, uploaded) : in.Plan.GetDepthModel(uploaded);
   const bool ok = in.LightRasterizer->RenderLight(
