@@ -1,0 +1,708 @@
+// PARC for VTK: FieldView<T>, the typed, non-owning view of a scalar field's values that the
+// ray caster's hot loops sample (values converted to float as they are loaded; nearest and
+// trilinear samples, lattice blocks, gradients). ScalarField::Dispatch hands one out.
+#ifndef parcFieldView_h
+#define parcFieldView_h
+
+#include "parcMath.h"
+#include "parcRayLattice.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <type_traits>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace parc
+{
+
+enum class Interpolation
+{
+  Nearest,
+  Linear
+};
+
+/// The voxel differences v(c + e_a) - v(c - e_a) at the 8 corners c of the cell a ray's
+/// gradient was taken in last, per axis a: the next gradient in that cell reuses them.
+struct CellDifferences
+{
+  std::ptrdiff_t Offset = -1; ///< the cell's first voxel, or -1
+  /// Values[corner][axis]; the fourth entry is 0 (the axes are interpolated together).
+  alignas(16) float Values[8][4];
+};
+
+/// Typed, non-owning read access to a field's values (see the file comment).
+template <typename T>
+class FieldView
+{
+  /// How a block holds corner values before interpolating them: 8- and 16-bit integers
+  /// as 32-bit ones (converted to float 4 lanes at a time, exactly), others as floats.
+  using LaneValue =
+    std::conditional_t<std::is_integral<T>::value && sizeof(T) <= 2, std::int32_t, float>;
+
+public:
+  FieldView(const T* data, const int dims[3], std::ptrdiff_t stride)
+    : Data(data)
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      this->Dims[a] = dims[a];
+      this->Last[a] = dims[a] - 1;
+      this->LastCell[a] = dims[a] - 2;
+    }
+    this->Step[0] = stride;
+    this->Step[1] = stride * dims[0];
+    this->Step[2] = this->Step[1] * dims[1];
+    for (int n = 0; n < 8; ++n)
+    {
+      this->Corner[n] = ((n & 1) ? this->Step[0] : 0) + ((n & 2) ? this->Step[1] : 0) +
+        ((n & 4) ? this->Step[2] : 0);
+    }
+  }
+
+  const int* GetDimensions() const { return this->Dims; }
+  /// The view of the values `elements` further in memory, with the same layout: another
+  /// component of the same multi-component array.
+  FieldView Shifted(std::ptrdiff_t elements) const
+  {
+    FieldView view = *this;
+    view.Data += elements;
+    return view;
+  }
+  /// The first value of row (j, k), voxels (0 .. nx-1, j, k) being GetXStep() elements
+  /// apart: for loops over whole rows in the values' own type.
+  const T* Row(int j, int k) const { return this->Data + j * this->Step[1] + k * this->Step[2]; }
+  std::ptrdiff_t GetXStep() const { return this->Step[0]; }
+  float Value(int i, int j, int k) const
+  {
+    return static_cast<float>(this->Data[i * this->Step[0] + j * this->Step[1] + k * this->Step[2]]);
+  }
+
+  /// The range of the 8 corner values of cell (i, j, k).
+  void CellRange(int i, int j, int k, float& lo, float& hi) const
+  {
+    const int cell[3] = { i, j, k };
+    float c[8];
+    this->LoadCorners(this->CellPointer(cell), c);
+    const auto range = std::minmax({ c[0], c[1], c[2], c[3], c[4], c[5], c[6], c[7] });
+    lo = range.first;
+    hi = range.second;
+  }
+
+  /// Trilinear interpolation at index coordinates p (clamped to the box).
+  float SampleLinear(const Vec3& p) const
+  {
+    int cell[3];
+    float f[3];
+    this->Locate(p, cell, f);
+    return this->Trilinear(cell, f);
+  }
+  /// The samples at the points lattice.Point(k dt) for k = k0 .. k0 + count - 1 (count <=
+  /// LatticeBlock::Size) into block; lanes up to the next multiple of LatticeBlock::Lanes
+  /// hold the samples after them. Each is the same arithmetic as Sample of that point and
+  /// its location that of Locate. No branch depends on the data, and each step works on
+  /// several lanes at once.
+  /// cells (optional, linear interpolation of a field whose x neighbours are next to each
+  /// other): a bit per cell, bit c % 8 of byte c / 8 for the cell whose first voxel is value
+  /// c. Only the groups of LatticeBlock::Lanes lanes where some lane's cell has its bit set
+  /// are sampled (the values of the others are 0). Returns the lanes sampled whose cell
+  /// has its bit set, as bits 1 << j (all n lanes without cells).
+  PARC_HOT_INLINE unsigned SampleLattice(const RayLattice& lattice, double dt, long k0,
+    int count, Interpolation mode, LatticeBlock& block,
+    const std::uint8_t* cells = nullptr) const
+  {
+    const int n = LatticeBlock::Lanes * ((count + LatticeBlock::Lanes - 1) / LatticeBlock::Lanes);
+    const unsigned all = (1u << n) - 1u;
+    if (mode == Interpolation::Nearest)
+    {
+      for (int j = 0; j < n; ++j)
+      {
+        block.Values[j] =
+          this->SampleNearest(lattice.Point((static_cast<double>(k0) + j) * dt));
+      }
+      return all;
+    }
+    alignas(16) float u[LatticeBlock::Size];
+    for (int j = 0; j < n; ++j)
+    {
+      u[j] = lattice.Offset((static_cast<double>(k0) + j) * dt); // k0 + j exactly, as a double
+    }
+    for (int a = 0; a < 3; ++a)
+    {
+      LocateLanes(lattice.Origin[a], lattice.Direction[a], u, n, this->Last[a],
+        this->LastCell[a], block.Cell[a], block.Fractions[a]);
+    }
+    for (int j = 0; j < n; ++j)
+    {
+      block.Offset[j] = block.Cell[0][j] * this->Step[0] + block.Cell[1][j] * this->Step[1] +
+        block.Cell[2][j] * this->Step[2];
+    }
+    unsigned lanes = all;
+    if (cells)
+    {
+      lanes = 0;
+      for (int j = 0; j < n; ++j)
+      {
+        const std::ptrdiff_t c = block.Offset[j];
+        lanes |= static_cast<unsigned>((cells[c >> 3] >> (c & 7)) & 1) << j;
+      }
+    }
+    for (int j = 0; j < n; j += LatticeBlock::Lanes)
+    {
+      if (((lanes >> j) & GroupBits) != 0)
+      {
+        this->SampleGroup(block, j);
+      }
+      else
+      {
+        std::fill_n(block.Values + j, LatticeBlock::Lanes, 0.f);
+      }
+    }
+    return lanes;
+  }
+  /// Interpolates 8 corner values (x fastest) at fractions f.
+  static PARC_HOT_INLINE float Interpolate(const float c[8], const float f[3])
+  {
+    const float c00 = Lerp(c[0], c[1], f[0]);
+    const float c10 = Lerp(c[2], c[3], f[0]);
+    const float c01 = Lerp(c[4], c[5], f[0]);
+    const float c11 = Lerp(c[6], c[7], f[0]);
+    return Lerp(Lerp(c00, c10, f[1]), Lerp(c01, c11, f[1]), f[2]);
+  }
+  /// The value of the nearest voxel to p (ties round up; clamped to the box).
+  float SampleNearest(const Vec3& p) const
+  {
+    int idx[3];
+    NearestVoxel(p, this->Dims, idx);
+    return this->Value(idx[0], idx[1], idx[2]);
+  }
+  float Sample(const Vec3& p, Interpolation mode) const
+  {
+    return mode == Interpolation::Linear ? this->SampleLinear(p) : this->SampleNearest(p);
+  }
+  /// Central-difference gradient of the interpolated field at p (offsets of one voxel), in
+  /// scalar units per voxel index; one-sided where p is within one voxel of a box face.
+  Vec3 Gradient(const Vec3& p, Interpolation mode) const
+  {
+    CellDifferences differences;
+    return this->Gradient(p, mode, differences);
+  }
+  /// The same, reusing (and updating) the differences of the cell of the last gradient.
+  /// located (optional, linear interpolation only) is p's location, from SampleLattice: it
+  /// is not computed again.
+  Vec3 Gradient(const Vec3& p, Interpolation mode, CellDifferences& differences,
+    const SampleLocation* located = nullptr) const
+  {
+    return mode == Interpolation::Linear ? this->GradientLinear(p, differences, located)
+                                         : this->GradientNearest(p);
+  }
+  /// Where p (clamped to the box) lies, as Sample locates it.
+  SampleLocation LocationOf(const Vec3& p) const
+  {
+    SampleLocation w;
+    this->Locate(p, w.Cell, w.Fractions);
+    w.Offset = this->CellOffset(w.Cell);
+    return w;
+  }
+  /// Whether central differences in every point of cell need no voxel outside the box.
+  PARC_HOT_INLINE bool IsInteriorCell(const int cell[3]) const
+  {
+    bool interior = true;
+    for (int a = 0; a < 3; ++a)
+    {
+      interior &= (cell[a] >= 1) & (cell[a] + 3 <= this->Dims[a]); // no branch
+    }
+    return interior;
+  }
+  /// The linear-interpolation gradient at a located point of an interior cell, in float:
+  /// the same bits as Gradient. Inside, f(p + e_a) - f(p - e_a) is the trilinear
+  /// interpolation, in p's own cell, of the voxel differences v(c + e_a) - v(c - e_a) at
+  /// its 8 corners.
+  PARC_HOT_INLINE Vec3f InteriorGradient(
+    const SampleLocation& w, CellDifferences& differences) const
+  {
+#if defined(__SSE2__)
+    alignas(16) float g[4];
+    _mm_store_ps(g, this->InteriorGradientVector(w, differences));
+#else
+    this->EnsureDifferences(w, differences);
+    const float(*d)[4] = differences.Values;
+    float g[3];
+    for (int a = 0; a < 3; ++a)
+    {
+      const float c[8] = { d[0][a], d[1][a], d[2][a], d[3][a], d[4][a], d[5][a], d[6][a],
+        d[7][a] };
+      g[a] = 0.5f * Interpolate(c, w.Fractions);
+    }
+#endif
+    return { g[0], g[1], g[2] };
+  }
+#if defined(__SSE2__)
+  /// InteriorGradient as the lanes of a register (x, y, z, 0): the same bits. The three
+  /// axes are interpolated at once, with the same operations lane by lane.
+  PARC_HOT_INLINE __m128 InteriorGradientVector(
+    const SampleLocation& w, CellDifferences& differences) const
+  {
+    this->EnsureDifferences(w, differences);
+    const float(*d)[4] = differences.Values;
+    auto lerp = [](__m128 a, __m128 b, __m128 t) {
+      return _mm_add_ps(a, _mm_mul_ps(t, _mm_sub_ps(b, a)));
+    };
+    const __m128 fx = _mm_set1_ps(w.Fractions[0]), fy = _mm_set1_ps(w.Fractions[1]);
+    const __m128 fz = _mm_set1_ps(w.Fractions[2]);
+    const __m128 c00 = lerp(_mm_load_ps(d[0]), _mm_load_ps(d[1]), fx);
+    const __m128 c10 = lerp(_mm_load_ps(d[2]), _mm_load_ps(d[3]), fx);
+    const __m128 c01 = lerp(_mm_load_ps(d[4]), _mm_load_ps(d[5]), fx);
+    const __m128 c11 = lerp(_mm_load_ps(d[6]), _mm_load_ps(d[7]), fx);
+    return _mm_mul_ps(_mm_set1_ps(0.5f), lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz));
+  }
+#endif
+
+private:
+  /// Loads differences for w's cell unless they hold it already.
+  PARC_HOT_INLINE void EnsureDifferences(
+    const SampleLocation& w, CellDifferences& differences) const
+  {
+    if (w.Offset != differences.Offset)
+    {
+      this->LoadDifferences(this->Data + w.Offset, differences.Values);
+      differences.Offset = w.Offset;
+    }
+  }
+  /// The cell along one axis and the fraction inside it, for x clamped to [0, last]
+  /// (last = lastCell + 1, the number of cells).
+  static PARC_HOT_INLINE void LocateAxis(double x, double last, int lastCell, int& i, float& f)
+  {
+    x = x > 0.0 ? x : 0.0; // also NaN
+    x = x < last ? x : last;
+    i = static_cast<int>(x);
+    i = i < lastCell ? i : lastCell;
+    f = static_cast<float>(x - i);
+  }
+  // The lanes of a LatticeBlock, with SSE2 where there is SSE2: the same IEEE operations
+  // in the same order as the scalar code (LocateAxis, Interpolate), so the same bits.
+
+  /// LocateAxis for the coordinates o + u[j] d (in float) of the lanes. The last cell
+  /// holds [lastCell, last], so min(floor(x), lastCell) = floor(min(x, lastCell)).
+  static PARC_HOT_INLINE void LocateLanes(
+    float o, float d, const float* u, int n, double last, int lastCell, int* cell, float* f)
+  {
+    // Coordinates in float are exact in LocateAxis's double (last and lastCell are whole
+    // numbers of cells, exact in float): the same cells and fractions.
+    const float lastF = static_cast<float>(last), lastCellF = static_cast<float>(lastCell);
+#if defined(__SSE2__)
+    const __m128 vo = _mm_set1_ps(o), vd = _mm_set1_ps(d), vlast = _mm_set1_ps(lastF);
+    const __m128 vcell = _mm_set1_ps(lastCellF), zero = _mm_setzero_ps();
+    for (int j = 0; j < n; j += 4)
+    {
+      __m128 x = _mm_add_ps(vo, _mm_mul_ps(_mm_load_ps(u + j), vd));
+      x = _mm_max_ps(x, zero); // x > 0 ? x : 0, also for NaN
+      x = _mm_min_ps(x, vlast); // x < last ? x : last
+      const __m128i i = _mm_cvttps_epi32(_mm_min_ps(x, vcell));
+      _mm_storeu_si128(reinterpret_cast<__m128i*>(cell + j), i);
+      _mm_storeu_ps(f + j, _mm_sub_ps(x, _mm_cvtepi32_ps(i)));
+    }
+    static_assert(LatticeBlock::Lanes == 4, "four lanes to an SSE register");
+#else
+    for (int j = 0; j < n; ++j)
+    {
+      float x = o + u[j] * d;
+      x = x > 0.f ? x : 0.f; // also NaN
+      x = x < lastF ? x : lastF;
+      const int i = static_cast<int>(x < lastCellF ? x : lastCellF);
+      cell[j] = i;
+      f[j] = x - static_cast<float>(i);
+    }
+#endif
+  }
+  /// The lanes of a LatticeBlock::Lanes group.
+  static constexpr unsigned GroupBits = (1u << LatticeBlock::Lanes) - 1u;
+  /// Interpolates the located lanes of block's group from lane first into its values.
+  PARC_HOT_INLINE void SampleGroup(LatticeBlock& block, int first) const
+  {
+    const std::ptrdiff_t* corner = this->Corner;
+    const std::ptrdiff_t* offsets = block.Offset + first;
+#if defined(__SSE2__)
+    static_assert(LatticeBlock::Lanes == 4, "four lanes to an SSE register");
+    __m128 c[8];
+    this->LoadGroupCorners(offsets, corner, c);
+    auto lerp = [](__m128 a, __m128 b, __m128 t) {
+      return _mm_add_ps(a, _mm_mul_ps(t, _mm_sub_ps(b, a)));
+    };
+    const __m128 fx = _mm_loadu_ps(block.Fractions[0] + first);
+    const __m128 fy = _mm_loadu_ps(block.Fractions[1] + first);
+    const __m128 fz = _mm_loadu_ps(block.Fractions[2] + first);
+    const __m128 c00 = lerp(c[0], c[1], fx);
+    const __m128 c10 = lerp(c[2], c[3], fx);
+    const __m128 c01 = lerp(c[4], c[5], fx);
+    const __m128 c11 = lerp(c[6], c[7], fx);
+    _mm_storeu_ps(block.Values + first, lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz));
+#else
+    for (int l = 0; l < LatticeBlock::Lanes; ++l)
+    {
+      float v[8];
+      for (int m = 0; m < 8; ++m)
+      {
+        v[m] = static_cast<float>(static_cast<LaneValue>(this->Data[offsets[l] + corner[m]]));
+      }
+      const int j = first + l;
+      const float f[3] = { block.Fractions[0][j], block.Fractions[1][j], block.Fractions[2][j] };
+      block.Values[j] = Interpolate(v, f);
+    }
+#endif
+  }
+#if defined(__SSE2__)
+  /// Whether a cell's two x neighbours fit one 32-bit load (8- and 16-bit integers), so
+  /// that LoadGroupCorners may load them together when they are next to each other.
+  static constexpr bool PairedCorners = std::is_integral<T>::value && sizeof(T) <= 2;
+  /// Two neighbouring values as the bits of one integer (the first lowest, x86).
+  using Pair = std::conditional_t<sizeof(T) == 1, std::uint16_t, std::uint32_t>;
+  /// LoadGroupCorners of 8-bit values whose x neighbours are next to each other: the pairs
+  /// of corners of rows y = 0 and 1 (z = 0), then of y = 0 and 1 (z = 1), each into the
+  /// 16-bit words of one register (row after row, lane after lane), then split apart into
+  /// even and odd corners: the same values.
+  PARC_HOT_INLINE void LoadBytePairs(
+    const std::ptrdiff_t* offsets, const std::ptrdiff_t corner[8], __m128 c[8]) const
+  {
+    const T* base[4] = { this->Data + offsets[0], this->Data + offsets[1],
+      this->Data + offsets[2], this->Data + offsets[3] };
+    auto pair = [&](int l, int m) {
+      std::uint16_t p;
+      std::memcpy(&p, base[l] + corner[m], sizeof(p));
+      return static_cast<int>(p);
+    };
+    __m128i rows[2];
+    for (int z = 0; z < 2; ++z)
+    {
+      const int m = 4 * z;
+      __m128i w = _mm_cvtsi32_si128(pair(0, m));
+      w = _mm_insert_epi16(w, pair(1, m), 1);
+      w = _mm_insert_epi16(w, pair(2, m), 2);
+      w = _mm_insert_epi16(w, pair(3, m), 3);
+      w = _mm_insert_epi16(w, pair(0, m + 2), 4);
+      w = _mm_insert_epi16(w, pair(1, m + 2), 5);
+      w = _mm_insert_epi16(w, pair(2, m + 2), 6);
+      w = _mm_insert_epi16(w, pair(3, m + 2), 7);
+      rows[z] = w;
+    }
+    const __m128i zero = _mm_setzero_si128();
+    for (int z = 0; z < 2; ++z)
+    {
+      // The even corner's bits low (x86), as 16-bit words.
+      __m128i even, odd;
+      if (std::is_signed<T>::value)
+      {
+        even = _mm_srai_epi16(_mm_slli_epi16(rows[z], 8), 8);
+        odd = _mm_srai_epi16(rows[z], 8);
+      }
+      else
+      {
+        even = _mm_and_si128(rows[z], _mm_set1_epi16(0xFF));
+        odd = _mm_srli_epi16(rows[z], 8);
+      }
+      // Words to 32 bits (signed: the word in both halves, shifted down).
+      auto low = [&](__m128i v) {
+        return std::is_signed<T>::value ? _mm_srai_epi32(_mm_unpacklo_epi16(v, v), 16)
+                                        : _mm_unpacklo_epi16(v, zero);
+      };
+      auto high = [&](__m128i v) {
+        return std::is_signed<T>::value ? _mm_srai_epi32(_mm_unpackhi_epi16(v, v), 16)
+                                        : _mm_unpackhi_epi16(v, zero);
+      };
+      c[4 * z] = _mm_cvtepi32_ps(low(even));
+      c[4 * z + 1] = _mm_cvtepi32_ps(low(odd));
+      c[4 * z + 2] = _mm_cvtepi32_ps(high(even));
+      c[4 * z + 3] = _mm_cvtepi32_ps(high(odd));
+    }
+  }
+  /// The corner values c[corner] of the cells at offsets[0 .. 3], lane by lane, as floats;
+  /// held in registers (no store and load again). With x neighbours next to each other
+  /// (Step[0] = 1) each pair of corners (x offsets 0 and 1) is loaded at once and split
+  /// apart four lanes at a time (8-bit values: LoadBytePairs): the same values as one load
+  /// a corner.
+  PARC_HOT_INLINE void LoadGroupCorners(
+    const std::ptrdiff_t* offsets, const std::ptrdiff_t corner[8], __m128 c[8]) const
+  {
+    if constexpr (PairedCorners)
+    {
+      if (this->Step[0] == 1)
+      {
+        if constexpr (sizeof(T) == 1)
+        {
+          this->LoadBytePairs(offsets, corner, c);
+          return;
+        }
+        constexpr int bits = 8 * sizeof(T);
+        constexpr bool sign = std::is_signed<T>::value;
+        for (int m = 0; m < 8; m += 2)
+        {
+          Pair p[4];
+          for (int l = 0; l < 4; ++l)
+          {
+            std::memcpy(p + l, this->Data + offsets[l] + corner[m], sizeof(Pair));
+          }
+          // The even corner's bits low (x86).
+          const __m128i pair = _mm_setr_epi32(static_cast<std::int32_t>(p[0]),
+            static_cast<std::int32_t>(p[1]), static_cast<std::int32_t>(p[2]),
+            static_cast<std::int32_t>(p[3]));
+          const __m128i low = _mm_slli_epi32(pair, 32 - bits);
+          const __m128i high = _mm_slli_epi32(pair, 32 - 2 * bits);
+          c[m] = _mm_cvtepi32_ps(
+            sign ? _mm_srai_epi32(low, 32 - bits) : _mm_srli_epi32(low, 32 - bits));
+          c[m + 1] = _mm_cvtepi32_ps(
+            sign ? _mm_srai_epi32(high, 32 - bits) : _mm_srli_epi32(high, 32 - bits));
+        }
+        return;
+      }
+    }
+    for (int m = 0; m < 8; ++m)
+    {
+      auto value = [&](int l) {
+        return static_cast<float>(static_cast<LaneValue>(this->Data[offsets[l] + corner[m]]));
+      };
+      c[m] = _mm_setr_ps(value(0), value(1), value(2), value(3));
+    }
+  }
+#endif
+  PARC_HOT_INLINE void Locate(const Vec3& p, int cell[3], float f[3]) const
+  {
+    LocateAxis(p.X, this->Last[0], this->LastCell[0], cell[0], f[0]);
+    LocateAxis(p.Y, this->Last[1], this->LastCell[1], cell[1], f[1]);
+    LocateAxis(p.Z, this->Last[2], this->LastCell[2], cell[2], f[2]);
+  }
+  static PARC_HOT_INLINE float Lerp(float a, float b, float t) { return a + t * (b - a); }
+  std::ptrdiff_t CellOffset(const int cell[3]) const
+  {
+    return cell[0] * this->Step[0] + cell[1] * this->Step[1] + cell[2] * this->Step[2];
+  }
+  const T* CellPointer(const int cell[3]) const { return this->Data + this->CellOffset(cell); }
+  PARC_HOT_INLINE void LoadCorners(const T* v, float c[8]) const
+  {
+    const std::ptrdiff_t* corner = this->Corner;
+    for (int n = 0; n < 8; ++n)
+    {
+      c[n] = static_cast<float>(v[corner[n]]);
+    }
+  }
+  float Trilinear(const int cell[3], const float f[3]) const
+  {
+    float c[8];
+    this->LoadCorners(this->CellPointer(cell), c);
+    return Interpolate(c, f);
+  }
+
+  Vec3 GradientLinear(
+    const Vec3& p, CellDifferences& differences, const SampleLocation* located) const
+  {
+    const SampleLocation w = located ? *located : this->LocationOf(p);
+    if (!this->IsInteriorCell(w.Cell))
+    {
+      return this->GradientNearFaces(p, w.Cell, w.Fractions);
+    }
+    const Vec3f g = this->InteriorGradient(w, differences);
+    return { g.X, g.Y, g.Z };
+  }
+  /// The voxel differences v(c + e_a) - v(c - e_a) at the 8 corners c of the interior cell
+  /// whose first voxel is v, as d[corner][axis] (corner n: x offset n & 1, y (n >> 1) & 1,
+  /// z (n >> 2) & 1; d[n][3] = 0). Per axis, each difference takes one corner of the cell
+  /// and one voxel outside it: 8 corner loads and 24 outer ones. 8- and 16-bit differences
+  /// are taken in integers, exactly, and converted together.
+  PARC_HOT_INLINE void LoadDifferences(const T* v, float d[8][4]) const
+  {
+#if defined(__SSE2__)
+    if constexpr (PairedCorners)
+    {
+      if (this->Step[0] == 1)
+      {
+        this->LoadDifferencesOfRows(v, d);
+        return;
+      }
+    }
+#endif
+    const std::ptrdiff_t* corner = this->Corner;
+    LaneValue c[8];
+    for (int n = 0; n < 8; ++n)
+    {
+      c[n] = static_cast<LaneValue>(v[corner[n]]);
+    }
+    LaneValue e[8][4];
+    for (int a = 0; a < 3; ++a)
+    {
+      const std::ptrdiff_t s = this->Step[a];
+      const int bit = 1 << a;
+      for (int n = 0; n < 8; ++n)
+      {
+        if (n & bit)
+        {
+          continue;
+        }
+        // Corners n (low along a) and n | bit (high): the low one's difference is the high
+        // corner minus the voxel before the cell, the high one's the voxel after the cell
+        // minus the low corner.
+        const T* low = v + corner[n];
+        e[n][a] = c[n | bit] - static_cast<LaneValue>(low[-s]);
+        e[n | bit][a] = static_cast<LaneValue>(low[2 * s]) - c[n];
+      }
+    }
+    for (int n = 0; n < 8; ++n)
+    {
+      e[n][3] = 0;
+#if defined(__SSE2__)
+      // Built in registers: a load spanning the four separate stores would wait for them.
+      if constexpr (std::is_same<LaneValue, std::int32_t>::value)
+      {
+        _mm_store_ps(d[n], _mm_cvtepi32_ps(_mm_setr_epi32(e[n][0], e[n][1], e[n][2], 0)));
+      }
+      else
+      {
+        _mm_store_ps(d[n], _mm_setr_ps(e[n][0], e[n][1], e[n][2], 0.f));
+      }
+#else
+      for (int a = 0; a < 4; ++a)
+      {
+        d[n][a] = static_cast<float>(e[n][a]);
+      }
+#endif
+    }
+  }
+#if defined(__SSE2__)
+  /// LoadDifferences of 8- and 16-bit values whose x neighbours are next to each other:
+  /// the same differences from 12 loads instead of 32. Each of the cell's four x rows is
+  /// read with its outer neighbours (x = -1 .. 2), the outer voxels along y and z two at a
+  /// time; the differences of four corners are taken together and turned corner by corner.
+  PARC_HOT_INLINE void LoadDifferencesOfRows(const T* v, float d[8][4]) const
+  {
+    const std::ptrdiff_t sy = this->Step[1], sz = this->Step[2];
+    // row[y + 2 z]: x = -1 .. 2 of the cell's row (y, z).
+    __m128i row[4];
+    for (int r = 0; r < 4; ++r)
+    {
+      row[r] = WidenFour(LoadFour(v - 1 + (r & 1) * sy + (r >> 1) * sz));
+    }
+    // The corners (x = 0, 1) of rows (0, z) and (1, z), as lanes 0 1 2 3.
+    const __m128i centre[2] = { MiddlePairs(row[0], row[1]), MiddlePairs(row[2], row[3]) };
+    // The outer voxels (x = 0, 1) before and after the cell along y, per z, and along z,
+    // per y (as lanes 0 1 2 3: y or z = 0, then 1).
+    const __m128i yBefore = WidenFour(LoadPairs(v - sy, v - sy + sz));
+    const __m128i yAfter = WidenFour(LoadPairs(v + 2 * sy, v + 2 * sy + sz));
+    const __m128i zBefore = WidenFour(LoadPairs(v - sz, v + sy - sz));
+    const __m128i zAfter = WidenFour(LoadPairs(v + 2 * sz, v + sy + 2 * sz));
+    for (int z = 0; z < 2; ++z)
+    {
+      // Corners 4 z .. 4 z + 3: (x, y) = (0, 0), (1, 0), (0, 1), (1, 1).
+      const __m128i& c = centre[z];
+      const __m128i dx = _mm_sub_epi32(_mm_unpackhi_epi64(row[2 * z], row[2 * z + 1]),
+        _mm_unpacklo_epi64(row[2 * z], row[2 * z + 1]));
+      const __m128i yPair = z == 0 ? yBefore : _mm_srli_si128(yBefore, 8);
+      const __m128i yNext = z == 0 ? yAfter : _mm_srli_si128(yAfter, 8);
+      const __m128i dy = _mm_sub_epi32(_mm_unpacklo_epi64(_mm_srli_si128(c, 8), yNext),
+        _mm_unpacklo_epi64(yPair, c));
+      const __m128i dz = z == 0 ? _mm_sub_epi32(centre[1], zBefore)
+                                : _mm_sub_epi32(zAfter, centre[0]);
+      __m128 ax = _mm_cvtepi32_ps(dx), ay = _mm_cvtepi32_ps(dy), az = _mm_cvtepi32_ps(dz);
+      __m128 zero = _mm_setzero_ps();
+      _MM_TRANSPOSE4_PS(ax, ay, az, zero);
+      _mm_store_ps(d[4 * z], ax);
+      _mm_store_ps(d[4 * z + 1], ay);
+      _mm_store_ps(d[4 * z + 2], az);
+      _mm_store_ps(d[4 * z + 3], zero);
+    }
+  }
+  /// Four values as the bits of one integer (the first lowest).
+  using Four = std::conditional_t<sizeof(T) == 1, std::uint32_t, std::uint64_t>;
+  static PARC_HOT_INLINE Four LoadFour(const T* p)
+  {
+    Four bits;
+    std::memcpy(&bits, p, sizeof(bits));
+    return bits;
+  }
+  /// Two values at a, then two at b, as the bits of one integer.
+  static PARC_HOT_INLINE Four LoadPairs(const T* a, const T* b)
+  {
+    Pair low, high;
+    std::memcpy(&low, a, sizeof(low));
+    std::memcpy(&high, b, sizeof(high));
+    return static_cast<Four>(low) | (static_cast<Four>(high) << (8 * sizeof(Pair)));
+  }
+  /// Four values (Four's bits) as 32-bit integers, exactly.
+  static PARC_HOT_INLINE __m128i WidenFour(Four bits)
+  {
+    constexpr int shift = 32 - 8 * static_cast<int>(sizeof(T));
+    // Each value repeated to fill its 32-bit lane (bytes twice, then 16 bits twice), so
+    // that its top bits are the value, shifted down with or without its sign.
+    __m128i x;
+    if constexpr (sizeof(T) == 1)
+    {
+      x = _mm_cvtsi32_si128(static_cast<int>(bits));
+      x = _mm_unpacklo_epi8(x, x);
+    }
+    else
+    {
+      x = _mm_set_epi64x(0, static_cast<long long>(bits));
+    }
+    x = _mm_unpacklo_epi16(x, x);
+    return std::is_signed<T>::value ? _mm_srai_epi32(x, shift) : _mm_srli_epi32(x, shift);
+  }
+  /// Lanes 1 and 2 of a, then of b (x = 0, 1 of two rows read from x = -1).
+  static PARC_HOT_INLINE __m128i MiddlePairs(__m128i a, __m128i b)
+  {
+    return _mm_castps_si128(
+      _mm_shuffle_ps(_mm_castsi128_ps(a), _mm_castsi128_ps(b), _MM_SHUFFLE(2, 1, 2, 1)));
+  }
+#endif
+  /// Central differences of SampleLinear with the offsets clamped to the box.
+  Vec3 GradientNearFaces(const Vec3& p, const int cell[3], const float f[3]) const
+  {
+    Vec3 g;
+    for (int a = 0; a < 3; ++a)
+    {
+      const double lo = std::max(p[a] - 1.0, 0.0);
+      const double hi = std::min(p[a] + 1.0, static_cast<double>(this->Dims[a] - 1));
+      const double h = hi - lo;
+      if (!(h > 0.0))
+      {
+        g[a] = 0.0;
+        continue;
+      }
+      int shifted[3] = { cell[0], cell[1], cell[2] };
+      float shiftedF[3] = { f[0], f[1], f[2] };
+      LocateAxis(hi, this->Last[a], this->LastCell[a], shifted[a], shiftedF[a]);
+      const float high = this->Trilinear(shifted, shiftedF);
+      LocateAxis(lo, this->Last[a], this->LastCell[a], shifted[a], shiftedF[a]);
+      const float low = this->Trilinear(shifted, shiftedF);
+      g[a] = (high - low) / h;
+    }
+    return g;
+  }
+  Vec3 GradientNearest(const Vec3& p) const
+  {
+    Vec3 g;
+    for (int a = 0; a < 3; ++a)
+    {
+      Vec3 lo = p, hi = p;
+      lo[a] = std::max(p[a] - 1.0, 0.0);
+      hi[a] = std::min(p[a] + 1.0, static_cast<double>(this->Dims[a] - 1));
+      const double h = hi[a] - lo[a];
+      g[a] = h > 0.0 ? (this->SampleNearest(hi) - this->SampleNearest(lo)) / h : 0.0;
+    }
+    return g;
+  }
+
+  const T* Data;
+  std::ptrdiff_t Step[3]; ///< elements between neighbours along x, y, z
+  /// The offsets of a cell's 8 corners from its first voxel (corner n: x offset n & 1,
+  /// y (n >> 1) & 1, z (n >> 2) & 1).
+  std::ptrdiff_t Corner[8];
+  int Dims[3];
+  double Last[3]; ///< the last index coordinate along x, y, z
+  int LastCell[3]; ///< the last cell index along x, y, z
+};
+
+} // namespace parc
+
+#endif
