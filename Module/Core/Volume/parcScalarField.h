@@ -27,7 +27,6 @@
 #include <type_traits>
 #include <vector>
 
-
 namespace parc
 {
 

@@ -1,0 +1,343 @@
+// The private classes of vtkPARCVolumeMapper: the state of one input volume and the
+// mapper's internals, shared by the files the mapper is written in.
+#ifndef vtkPARCVolumeMapperInternals_h
+#define vtkPARCVolumeMapperInternals_h
+
+#include "vtkPARCVolumeMapper.h"
+
+#include "parcAccelerationPlan.h"
+#include "parcBufferSources.h"
+#include "parcEndOfRenderDraw.h"
+#include "parcLightFrusta.h"
+#include "parcPolygonModel.h"
+#include "parcRayCaster.h"
+#include "parcVTKConversion.h"
+#include "vtkPARCMultiVolume.h"
+#include "vtkPARCRasterizer.h"
+
+#include "vtkCamera.h"
+#include "vtkColorTransferFunction.h"
+#include "vtkCommand.h"
+#include "vtkDataArray.h"
+#include "vtkFloatArray.h"
+#include "vtkImageData.h"
+#include "vtkInformation.h"
+#include "vtkLight.h"
+#include "vtkLightCollection.h"
+#include "vtkMultiVolume.h"
+#include "vtkMatrix4x4.h"
+#include "vtkObjectFactory.h"
+#include "vtkOpenGLRayCastImageDisplayHelper.h"
+#include "vtkPlane.h"
+#include "vtkPlaneCollection.h"
+#include "vtkPiecewiseFunction.h"
+#include "vtkPointData.h"
+#include "vtkSmartPointer.h"
+#include "vtkPropCollection.h"
+#include "vtkRenderWindow.h"
+#include "vtkRenderer.h"
+#include "vtkSMPTools.h"
+#include "vtkSmartVolumeMapper.h"
+#include "vtkTimerLog.h"
+#include "vtkVolume.h"
+#include "vtkVolumeProperty.h"
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#if defined(__GLIBC__)
+#include <malloc.h>
+#endif
+#include <utility>
+#include <vector>
+
+namespace parc
+{
+namespace mapper
+{
+/// The modes Auto tries, in the plan's candidate numbering (no pass last).
+constexpr int AutoCandidates[parc::AutoTrials::Count] = {
+  vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER, vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER,
+  vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_NONE
+};
+
+/// What a classification was made from: it is made again when any of it changes.
+struct ClassificationKey
+{
+  std::uint64_t FieldVersion = 0;
+  const void* Property = nullptr; ///< compared, never dereferenced
+  vtkMTimeType PropertyTime = 0;
+  int Blend = -1;
+  /// The label map's labels with functions, and the latest time of their opacities.
+  std::size_t Labels = 0;
+  vtkMTimeType LabelsTime = 0;
+  double Average[2] = { 0, 0 }, Size[3] = { 0, 0, 0 };
+  bool operator==(const ClassificationKey& o) const
+  {
+    return FieldVersion == o.FieldVersion && Property == o.Property &&
+      PropertyTime == o.PropertyTime && Blend == o.Blend && Labels == o.Labels &&
+      LabelsTime == o.LabelsTime &&
+      std::equal(Average, Average + 2, o.Average) && std::equal(Size, Size + 3, o.Size);
+  }
+};
+
+/// The lights' passes of one render: their time and the frusta rendered.
+struct LightPassWork
+{
+  double Time = 0.0;
+  int Frusta = 0;
+};
+}
+}
+
+using parc::mapper::AutoCandidates;
+using parc::mapper::ClassificationKey;
+using parc::mapper::LightPassWork;
+
+//------------------------------------------------------------------------------
+/// One input volume (one input port): its field, ray function, caster and PARC
+/// acceleration, with the classification and models cached until their inputs change.
+class vtkPARCVolumeMapper::vtkVolumeState
+{
+public:
+  int Port = 0;
+  parc::ScalarField Field;
+  /// 0.5 when Field holds cell scalars (its voxels at the cells' centres), else 0.
+  double CellOffset = 0.0;
+  /// World units the gradient opacity functions measure gradients per (GradientUnit).
+  double GradientUnit = 1.0;
+  /// The box of Field (voxel-index coordinates) that is not ghost cells.
+  parc::Vec3 OwnedLo, OwnedHi;
+  int FieldComponent = 0; ///< the component of FieldArray that Field reads
+  /// The number of dependent components (2 or 4: colour from the others), or 0.
+  int DependentComponents = 0;
+  /// The binary mask's values (port 0), and the array and time they were wrapped from.
+  parc::ScalarField Mask;
+  vtkSmartPointer<vtkDataArray> MaskArray;
+  vtkMTimeType MaskTime = 0;
+  vtkMTimeType FieldTime = 0;
+  /// Counts the fields wrapped: what the pyramid and the classification were made from (an
+  /// array switched by SelectScalarArray or a scalar mode can be older than the last one).
+  std::uint64_t FieldVersion = 0;
+  vtkMTimeType FixesWarnedTime = 0; ///< the property whose conversion fixes were reported
+  vtkSmartPointer<vtkDataArray> FieldArray; ///< the values Field reads
+  /// The quantized normals of Field (ShadingModel QuantizedNormals), and the field
+  /// version they were made from.
+  parc::NormalVolume Normals;
+  std::uint64_t NormalsVersion = 0;
+  parc::CastParameters Parameters;
+  /// Components 1, 2, ... of independent components (vtkVolumeProperty::
+  /// IndependentComponentsOn), each with its own field (FieldArray's values of that
+  /// component), parameters and caster; empty for one component.
+  struct ComponentState
+  {
+    parc::ScalarField Field;
+    parc::CastParameters Parameters;
+    parc::RayCaster Caster;
+  };
+  std::vector<std::unique_ptr<ComponentState>> Components;
+  /// Voxel index -> render frame (world minus the camera position), of the last
+  /// PrepareParameters; every world quantity the core sees is in that frame.
+  parc::Matrix4 IndexToFrame;
+  /// Field, Parameters and IndexToFrame as the caster is prepared on them.
+  parc::Volume CoreVolume;
+  parc::RayCaster Caster;
+  parc::CastStatistics Stats; ///< of the last render
+  int LastMode = ACCELERATION_NONE;
+  /// The classification decided the last frame's mode without Auto's measurements (no
+  /// supercell, or every one, may contribute): no trial is to come.
+  bool ModeSettledByClassification = false;
+
+  // PARC: the classification and models, remade only when their inputs change.
+  parc::AccelerationPlan Plan;
+  ClassificationKey Classified;
+  ClassificationKey CellsClassified; ///< the key of the plan's contributing cells
+  /// What the classification of this volume depends on, now.
+  ClassificationKey Key(vtkPARCVolumeMapper* self, vtkVolume* vol) const;
+  vtkNew<vtkPARCRasterizer> Rasterizer;
+  parc::DepthBufferSource DepthSource;
+  parc::PlaneBufferSource PlaneSource;
+  const parc::BothSource Both{ DepthSource, PlaneSource };
+  const parc::WholeRaySource WholeRays;
+  const parc::EmptySource NoRays;
+  bool FallbackWarned = false;
+  // PARC for shadow rays: per light (index into Parameters.Lights), the depth or plane
+  // passes of the light's cameras, remade only when what they were made from changes (not
+  // the camera).
+  vtkNew<vtkPARCRasterizer> LightRasterizer;
+  struct LightPasses
+  {
+    std::vector<double> Key; ///< light and volume in world coordinates, model version
+    parc::LightBufferSource Source;
+  };
+  std::vector<LightPasses> LightBuffers;
+  /// Bytes held by the lights' buffers.
+  std::size_t LightBufferMemory() const
+  {
+    std::size_t bytes = 0;
+    for (const LightPasses& passes : this->LightBuffers)
+    {
+      bytes += passes.Source.GetMemorySize() + passes.Key.capacity() * sizeof(double);
+    }
+    return bytes;
+  }
+  vtkIdType PolygonCount = 0;
+  int PlaneCount = 0;
+  int PassCount = 0;
+  double ProjectionTime = 0.0; ///< of the last render
+
+  /// Seconds the plan and the rasterizer spent so far setting up (Auto's RecordSetUp).
+  double SetUpTime() const
+  {
+    return this->Plan.GetSetUpTime() + this->Rasterizer->GetSetUpTime();
+  }
+  /// Frees the buffers and GL objects of the passes, and the walk's flags, that a settled
+  /// mode does not use (Auto keeps them while it still has modes to try).
+  void ReleaseUnusedPasses(vtkRenderWindow* window, bool depth, bool color, bool walk = false)
+  {
+    if (this->Plan.Auto.Remaining() > 0 && this->Plan.Auto.Chosen >= 0)
+    {
+      return;
+    }
+    if (!depth)
+    {
+      this->DepthSource.ReleaseBuffer();
+      this->Rasterizer->ReleasePass(window, vtkPARCRasterizer::Pass::Depth);
+    }
+    if (!color)
+    {
+      this->PlaneSource.ReleaseBuffer();
+      this->Rasterizer->ReleasePass(window, vtkPARCRasterizer::Pass::Planes);
+    }
+    if (!walk)
+    {
+      this->Plan.ReleaseWalk();
+    }
+  }
+
+  /// Bytes held per structure (see GetMemorySize).
+  std::vector<std::pair<const char*, std::size_t>> Memory() const;
+
+  /// The shading model's part of Parameters (after the lights and IndexToFrame): the
+  /// quantized normals (made again when the field changed) and the view direction they are
+  /// shaded for, or exact shading.
+  void PrepareShadingModel(bool quantized, vtkRenderer* ren);
+  /// The mode Auto resolves to for the current classification, ray function and view.
+  int ChooseMode(const vtkPARCVolumeMapper* self, int requested, const parc::Camera& camera);
+  /// The segment source of shadow rays towards light `index` (lit from lights, in the
+  /// render frame whose world origin is frame): the light's plane passes (planes) or depth
+  /// passes, run again only when the light, the volume's transform, its model or that kind
+  /// changed; null when they cannot run (the whole ray is cast).
+  const parc::SegmentSource* LightSource(vtkRenderWindow* window,
+    const std::vector<parc::Light>& lights, std::size_t index, const parc::Vec3& frame,
+    bool planes, LightPassWork& work);
+  /// Runs the PARC passes of the requested mode; the segment source the caster uses.
+  const parc::SegmentSource& RunPasses(vtkPARCVolumeMapper* self, vtkRenderer* ren,
+    vtkVolume* vol, const vtkPARCRasterizer::View& view);
+};
+
+//------------------------------------------------------------------------------
+class vtkPARCVolumeMapper::vtkInternals
+{
+public:
+  /// Per input port, made when the port is first rendered.
+  std::vector<std::unique_ptr<vtkVolumeState>> Volumes;
+  /// The volumes of the current render with their props, in port order.
+  std::vector<std::pair<vtkVolumeState*, vtkVolume*>> Rendered;
+  parc::SceneCaster Scene;
+  /// What shadows the rendered volumes when a light casts shadows (see ShadowMembers).
+  parc::Occluders Shadows;
+  std::vector<parc::CastStatistics> MemberStats;
+  std::vector<float> Image;
+  int ImageSize[2] = { 0, 0 };
+  std::vector<float> Depth;
+  std::vector<unsigned char> Display;
+  parc::CastStatistics Stats; ///< summed over the rendered volumes
+  double CastingTime = 0.0;
+  double ProjectionTime = 0.0;
+  LightPassWork LightPasses; ///< the shadow rays' light passes (part of the render)
+  double RenderTime = 0.0;
+  vtkNew<vtkOpenGLRayCastImageDisplayHelper> DisplayHelper;
+  /// The volume's allocated render time for this render (render-time budgets).
+  double Budget = 0.0;
+  /// Whether this render adjusts the sample distances to the budget (AutoAdjust-, or
+  /// InteractiveAdjustSampleDistances in an interactive render).
+  bool AdjustSampleDistances = false;
+  /// The last render that cast: its time, the parts of it in the PARC passes and the cast,
+  /// its image sample distance and sample distance (port 0), from which the next render's
+  /// image sample distance is estimated.
+  double PreviousTime = 0.0, PreviousProjection = 0.0, PreviousCasting = 0.0;
+  double PreviousRendererTime = 0.0; ///< the renderer's whole last render
+  double PreviousImageStep = 1.0, PreviousSampleDistance = 0.0;
+  bool JitteringWarned = false, RenderModeWarned = false, WindowWarned = false;
+  /// The renders asked for inside VTK's dual depth peeling, drawn when the renderer ends.
+  parc::vtk::EndOfRenderDraw EndOfRender;
+
+  explicit vtkInternals(vtkPARCVolumeMapper* self)
+    : EndOfRender([self](vtkRenderer* ren, vtkVolume* vol) { self->Render(ren, vol); })
+  {
+  }
+
+  /// Bytes held per structure (see GetMemorySize).
+  std::vector<std::pair<const char*, std::size_t>> Memory() const;
+
+  // The phases of a render after the volumes are prepared (see Render).
+  /// The ray image's view for the renderer's camera; false (nothing to cast) when the
+  /// viewport is empty or the projection singular.
+  bool MakeView(vtkPARCVolumeMapper* self, vtkRenderer* ren, vtkPARCRasterizer::View& view);
+  /// The window depth of the other geometry under each ray-image pixel.
+  const float* ReadGeometryDepth(vtkRenderer* ren, const parc::Camera& rays);
+  /// What set-up work the volumes have done so far: a frame that did some does not count
+  /// for Auto.
+  struct SetUpWork
+  {
+    std::uint64_t ModelBuilds, Uploads;
+    double Seconds; ///< of the plan's and the rasterizer's set-up so far
+  };
+  std::vector<SetUpWork> CountSetUpWork() const;
+  /// Runs each volume's PARC passes: the volumes with the segment source each casts with.
+  std::vector<parc::SceneCaster::Member> RunPasses(
+    vtkPARCVolumeMapper* self, vtkRenderer* ren, const vtkPARCRasterizer::View& view);
+  /// Every rendered volume shadows every shaded one when a shaded volume has a light that
+  /// casts shadows (each caster's occluders are set, or cleared).
+  void SetUpShadows(vtkPARCVolumeMapper* self, vtkRenderer* ren);
+  /// Casts the ray image; false when aborted.
+  bool Cast(vtkPARCVolumeMapper* self, vtkRenderer* ren, const parc::Camera& rays,
+    const float* depth, const std::vector<parc::SceneCaster::Member>& members);
+  /// Gives each volume's Auto the times of this frame, and its supercell search when
+  /// searchSizes (Auto chooses the size, and the frame is not interactive).
+  void RecordAuto(const std::vector<SetUpWork>& before, bool completed, bool searchSizes);
+  /// After a render that set anything up (pyramids, classifications, models, uploads:
+  /// their temporaries freed), gives the allocator's free pages back to the system. glibc
+  /// keeps them otherwise, and a process rendering a large volume would hold 1.5-2 times
+  /// what the mapper holds.
+  void ReturnFreedMemory();
+  std::uint64_t SetUpWorkReturned = 0; ///< the set-up work counted at the last return
+
+  vtkVolumeState& At(int port)
+  {
+    if (static_cast<std::size_t>(port) >= this->Volumes.size())
+    {
+      this->Volumes.resize(port + 1);
+    }
+    if (!this->Volumes[port])
+    {
+      this->Volumes[port].reset(new vtkVolumeState);
+      this->Volumes[port]->Port = port;
+    }
+    return *this->Volumes[port];
+  }
+  /// Sums f(volume) over the volumes of the last render.
+  template <class T, class F>
+  T Sum(F&& f) const
+  {
+    T total = 0;
+    for (const auto& entry : this->Rendered)
+    {
+      total += f(*entry.first);
+    }
+    return total;
+  }
+};
+
+#endif
