@@ -4,36 +4,10 @@ namespace
 {
 constexpr float DisplayDepth = 1e-6f; ///< window depth of the displayed image quad
 
-/// Pixels along each edge of a light's PARC buffers (shadow rays).
-constexpr int LightBufferSize = 256;
-
-/// Relative difference under which what a light's passes were made from counts as unchanged.
-constexpr double LightKeyTolerance = 1e-9;
-
 /// The share of a render's allocated time a budgeted render aims at: the window's own work
 /// after the renderers (swapping buffers: 0.02 s at 800^2 on llvmpipe) and the variation
 /// between frames take the rest.
 constexpr double BudgetShare = 0.7;
-
-/// The volume axis whose direction (indexToWorld's column) is closest to direction, the
-/// view's (or a light's towards the volume): its planes are crossed in order by every ray.
-int MajorAxis(const parc::Matrix4& indexToWorld, const parc::Vec3& direction)
-{
-  int best = 2;
-  double bestCosine = -1.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    const parc::Vec3 axis =
-      parc::Normalized({ indexToWorld(0, a), indexToWorld(1, a), indexToWorld(2, a) });
-    const double c = std::fabs(parc::Dot(axis, direction));
-    if (c > bestCosine)
-    {
-      bestCosine = c;
-      best = a;
-    }
-  }
-  return best;
-}
 
 /// True when the renderer draws any visible prop besides volumes.
 bool HasOtherGeometry(vtkRenderer* ren)
@@ -51,8 +25,6 @@ bool HasOtherGeometry(vtkRenderer* ren)
   return false;
 }
 }
-
-
 
 vtkStandardNewMacro(vtkPARCVolumeMapper);
 
@@ -203,7 +175,6 @@ void vtkPARCVolumeMapper::SetMaskInput(vtkImageData* mask)
   vtkSetObjectBodyMacro(MaskInput, vtkImageData, mask);
 }
 
-
 //------------------------------------------------------------------------------
 double vtkPARCVolumeMapper::ChooseImageSampleDistance() const
 {
@@ -282,13 +253,7 @@ int vtkPARCVolumeMapper::IsRenderSupported(vtkRenderWindow*, vtkVolumeProperty*)
     : 0;
 }
 
-
-
-
 //------------------------------------------------------------------------------
-
-
-
 
 //------------------------------------------------------------------------------
 void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
@@ -369,78 +334,6 @@ vtkPARCVolumeMapper::vtkInternals::CountSetUpWork() const
 }
 
 //------------------------------------------------------------------------------
-std::vector<parc::SceneCaster::Member> vtkPARCVolumeMapper::vtkInternals::RunPasses(
-  vtkPARCVolumeMapper* self, vtkRenderer* ren, const vtkPARCRasterizer::View& view)
-{
-  std::vector<parc::SceneCaster::Member> members;
-  for (const auto& entry : this->Rendered)
-  {
-    vtkVolumeState& volume = *entry.first;
-    volume.Plan.Auto.Chosen = -1;
-    const double start = vtkTimerLog::GetUniversalTime();
-    self->PrepareCells(volume, entry.second);
-    const parc::SegmentSource& source = volume.RunPasses(self, ren, entry.second, view);
-    volume.ProjectionTime = vtkTimerLog::GetUniversalTime() - start;
-    this->ProjectionTime += volume.ProjectionTime;
-    members.push_back({ &volume.Caster, &source });
-  }
-  return members;
-}
-
-//------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, vtkRenderer* ren)
-{
-  const auto castsShadows = [](const parc::Light& light) { return light.ShadowAttenuation > 0.0; };
-  // Volumes of independent components neither cast nor receive shadows.
-  const auto inShadows = [](const vtkVolumeState& volume) { return volume.Components.empty(); };
-  // The lights of the shaded volumes (every shaded volume has all of the renderer's).
-  const std::vector<parc::Light>* lights = nullptr;
-  for (const auto& entry : this->Rendered)
-  {
-    const std::vector<parc::Light>& own = entry.first->Parameters.Lights;
-    if (inShadows(*entry.first) && std::any_of(own.begin(), own.end(), castsShadows))
-    {
-      lights = &own;
-    }
-  }
-  const bool shadows = lights != nullptr;
-  this->LightPasses = LightPassWork();
-  std::vector<parc::Occluders::Member> occluders;
-  const parc::Vec3 frame = parc::vtk::FrameOrigin(ren);
-  for (const auto& entry : this->Rendered)
-  {
-    vtkVolumeState& volume = *entry.first;
-    if (!inShadows(volume))
-    {
-      continue;
-    }
-    parc::Occluders::Member member{ &volume.Caster, {} };
-    // The walk answers any ray: shadow rays need no pass from the lights.
-    const bool walk = self->AccelerationMode == ACCELERATION_SUPERCELL_WALK;
-    for (std::size_t i = 0; shadows && self->AccelerationMode != ACCELERATION_NONE &&
-         volume.Plan.GetGrid().GetNumberOfSupercells() > 0 && i < lights->size();
-         ++i)
-    {
-      if (!castsShadows((*lights)[i]))
-      {
-        member.LightSources.push_back(nullptr);
-        continue;
-      }
-      const bool planes = self->AccelerationMode == ACCELERATION_COLOR_BUFFER;
-      member.LightSources.push_back(walk
-          ? &volume.Plan.GetWalk(volume.CoreVolume.WorldToIndex)
-          : volume.LightSource(ren->GetRenderWindow(), *lights, i, frame, planes, this->LightPasses));
-    }
-    occluders.push_back(std::move(member));
-  }
-  this->Shadows.SetMembers(shadows ? std::move(occluders) : std::vector<parc::Occluders::Member>());
-  for (const auto& entry : this->Rendered)
-  {
-    entry.first->Caster.SetOccluders(shadows && inShadows(*entry.first) ? &this->Shadows : nullptr);
-  }
-}
-
-//------------------------------------------------------------------------------
 bool vtkPARCVolumeMapper::vtkInternals::Cast(vtkPARCVolumeMapper* self, vtkRenderer* ren,
   const parc::Camera& rays, const float* depth,
   const std::vector<parc::SceneCaster::Member>& members)
@@ -500,48 +393,6 @@ bool vtkPARCVolumeMapper::vtkInternals::Cast(vtkPARCVolumeMapper* self, vtkRende
 }
 
 //------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
-  const std::vector<SetUpWork>& before, bool completed, bool searchSizes)
-{
-  // Each volume's estimate takes its own projection and its share of the casting, in
-  // proportion to its samples.
-  for (std::size_t v = 0; v < this->Rendered.size(); ++v)
-  {
-    vtkVolumeState& volume = *this->Rendered[v].first;
-    const double share = this->Stats.Samples > 0
-      ? static_cast<double>(volume.Stats.Samples) / static_cast<double>(this->Stats.Samples)
-      : 1.0 / static_cast<double>(this->Rendered.size());
-    const bool setUp = volume.Plan.GetModelBuilds() != before[v].ModelBuilds ||
-      volume.Rasterizer->GetUploadCount() != before[v].Uploads;
-    parc::FrameMeasure frame;
-    frame.Projection = volume.ProjectionTime;
-    frame.SetUp = volume.SetUpTime() - before[v].Seconds;
-    frame.Casting = share * this->CastingTime;
-    frame.Samples = static_cast<double>(volume.Stats.Samples);
-    frame.Contributing = static_cast<double>(volume.Stats.ContributingSamples);
-    frame.EmptyCells = static_cast<double>(volume.Stats.EmptyCellSamples);
-    frame.Timing = volume.Stats.Timing;
-    const std::uint64_t version = volume.Plan.GetModelVersion();
-    const std::size_t contributing = volume.Plan.GetGrid().GetNumberOfContributing();
-    if (completed && setUp)
-    {
-      volume.Plan.Auto.RecordSetUp(version, contributing, frame);
-    }
-    else
-    {
-      volume.Plan.Auto.Record(version, contributing, frame, completed);
-    }
-    if (searchSizes && completed && !setUp)
-    {
-      const int* candidate = std::find(
-        AutoCandidates, AutoCandidates + parc::AutoTrials::Count, volume.LastMode);
-      volume.Plan.Sizes.Record(static_cast<int>(candidate - AutoCandidates),
-        volume.Plan.Auto.Settled, frame.Projection + frame.Casting);
-    }
-  }
-}
-
-//------------------------------------------------------------------------------
 void vtkPARCVolumeMapper::vtkInternals::ReturnFreedMemory()
 {
   std::uint64_t work = 0;
@@ -561,313 +412,6 @@ void vtkPARCVolumeMapper::vtkInternals::ReturnFreedMemory()
 #if defined(__GLIBC__)
     malloc_trim(0);
 #endif
-  }
-}
-
-//------------------------------------------------------------------------------
-int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
-  const vtkPARCVolumeMapper* self, int requested, const parc::Camera& camera)
-{
-  vtkVolumeState& in = *this;
-  if (requested != ACCELERATION_AUTO)
-  {
-    return requested;
-  }
-  const parc::SupercellGrid& grid = in.Plan.GetGrid();
-  const std::size_t pc = grid.GetNumberOfContributing();
-  if (pc == grid.GetNumberOfSupercells())
-  {
-    in.ModeSettledByClassification = true;
-    return ACCELERATION_NONE; // every supercell may contribute: no pass can help
-  }
-  // Which pass pays off, if any, depends on the GL implementation (software GL makes the
-  // passes dear), the data, the ray function and the view: measure.
-  const int* dims = in.Field.GetDimensions();
-  const parc::Vec3 centre = in.IndexToFrame.TransformPoint( // the eye is the frame's origin
-    { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
-  in.Plan.Auto.SetView(camera.Direction, parc::Length(centre));
-  if (self->AutoSupercellSize && in.Plan.Sizes.IsSearching())
-  {
-    return AutoCandidates[in.Plan.Sizes.GetCandidate()]; // the search's frames take its pass
-  }
-  // No trial during interaction: a trial of a slow mode would break the frame budget.
-  return AutoCandidates[in.Plan.Auto.Choose(
-    in.Plan.GetModelVersion(), pc, camera.Width, camera.Height, !self->LastInteractive)];
-}
-
-//------------------------------------------------------------------------------
-const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
-  vtkPARCVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
-  const vtkPARCRasterizer::View& passView)
-{
-  vtkVolumeState& in = *this;
-  const int requested = self->AccelerationMode;
-  vtkRenderWindow* window = ren->GetRenderWindow();
-  in.LastMode = ACCELERATION_NONE;
-  in.ModeSettledByClassification = false;
-  // A slice takes one sample a ray and asks for no segments: no pass can pay off.
-  if (requested == ACCELERATION_NONE || in.Parameters.Blend == parc::BlendMode::Slice ||
-    !self->PrepareModels(in, vol))
-  {
-    in.ReleaseUnusedPasses(window, false, false);
-    return in.WholeRays;
-  }
-  const parc::SupercellGrid& grid = in.Plan.GetGrid();
-  if (grid.GetNumberOfContributing() == 0)
-  {
-    in.LastMode = requested;
-    in.ModeSettledByClassification = true;
-    in.ReleaseUnusedPasses(window, false, false);
-    return in.NoRays; // nothing can show: no pass, no sample
-  }
-  const int* dims = in.Field.GetDimensions();
-  if (!passView.Camera.MayMeetBox(
-        in.IndexToFrame, parc::Vec3{ 0, 0, 0 }, parc::Vec3(dims[0] - 1, dims[1] - 1, dims[2] - 1)))
-  {
-    in.LastMode = requested;
-    return in.NoRays; // outside the view (another volume of the scene is not): no pass
-  }
-  const int mode = in.ChooseMode(self, requested, passView.Camera);
-  if (mode == ACCELERATION_NONE)
-  {
-    in.ReleaseUnusedPasses(window, false, false);
-    return in.WholeRays;
-  }
-  if (mode == ACCELERATION_SUPERCELL_WALK)
-  {
-    in.LastMode = mode;
-    in.ReleaseUnusedPasses(window, false, false, true);
-    return in.Plan.GetWalk(in.CoreVolume.WorldToIndex);
-  }
-  const parc::Matrix4& indexToWorld = in.IndexToFrame;
-  const bool depth = mode == ACCELERATION_DEPTH_BUFFER || mode == ACCELERATION_BOTH;
-  const bool color = mode == ACCELERATION_COLOR_BUFFER || mode == ACCELERATION_BOTH;
-  bool ok = true;
-  if (depth)
-  {
-    const std::uint64_t version = in.Plan.GetModelVersion();
-    const parc::PolygonModel& model =
-      in.Plan.GetDepthModel(in.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Depth, version));
-    std::vector<float> nearFar = in.DepthSource.ReleaseBuffer();
-    ok = in.Rasterizer->RenderDepth(window, model, version, indexToWorld, passView, nearFar);
-    if (in.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Depth, version))
-    {
-      in.Plan.ReleaseDepthVertices();
-    }
-    in.DepthSource.Set(passView.Camera, std::move(nearFar), &grid, in.CoreVolume.WorldToIndex);
-    in.PolygonCount += static_cast<vtkIdType>(in.Plan.GetDepthQuads());
-  }
-  if (ok && color)
-  {
-    const int axis = MajorAxis(indexToWorld, passView.Camera.Direction);
-    const std::uint64_t version = in.Plan.GetColorModelVersion(axis);
-    const parc::PolygonModel& model =
-      in.Plan.GetColorModel(axis, in.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Planes, version));
-    std::vector<std::uint32_t> bits = in.PlaneSource.ReleaseBuffer();
-    int words = 0;
-    std::vector<parc::Vec3> starts, directions;
-    passView.Camera.RayBounds(in.CoreVolume.WorldToIndex, starts, directions);
-    ok = in.Rasterizer->RenderPlanes(window, model, version, indexToWorld, passView,
-      parc::RayAxisSign(model, starts, directions), bits, words, in.PassCount);
-    if (in.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Planes, version))
-    {
-      in.Plan.ReleaseColorVertices(axis);
-    }
-    in.PlaneSource.Set(passView.Camera, std::move(bits), words, &grid, axis, model.FirstPlane,
-      in.CoreVolume.WorldToIndex);
-    in.PlaneCount = model.PlaneCount;
-    in.PolygonCount += static_cast<vtkIdType>(in.Plan.GetColorQuads(axis));
-  }
-  if (!ok)
-  {
-    if (!in.FallbackWarned)
-    {
-      vtkWarningWithObjectMacro(self, "PARC passes are not available ("
-          << in.Rasterizer->GetLastError() << "); casting unaccelerated.");
-      in.FallbackWarned = true;
-    }
-    in.PolygonCount = 0;
-    in.PlaneCount = in.PassCount = 0;
-    return in.WholeRays;
-  }
-  in.LastMode = mode;
-  in.ReleaseUnusedPasses(window, depth, color);
-  if (mode == ACCELERATION_BOTH)
-  {
-    return in.Both;
-  }
-  return depth ? static_cast<const parc::SegmentSource&>(in.DepthSource) : in.PlaneSource;
-}
-
-//------------------------------------------------------------------------------
-const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
-  vtkRenderWindow* window, const std::vector<parc::Light>& lights, std::size_t index,
-  const parc::Vec3& frame, bool planes, LightPassWork& work)
-{
-  vtkVolumeState& in = *this;
-  const parc::SupercellGrid& grid = in.Plan.GetGrid();
-  if (grid.GetNumberOfContributing() == 0)
-  {
-    return &in.NoRays; // nothing in this volume can block a light
-  }
-  const parc::Light& light = lights[index];
-  parc::LightFrame frameOfLight;
-  if (!parc::MakeLightFrame(light, in.IndexToFrame, in.Field.GetDimensions(), frameOfLight))
-  {
-    return nullptr;
-  }
-  const parc::Vec3& eye = frameOfLight.Eye; // render frame
-  // Colour planes along the axis nearest the light's view of the box (its centre), or depth.
-  const auto towardsCentre = [&frameOfLight]() {
-    parc::Vec3 centre;
-    for (const parc::Vec3& corner : frameOfLight.Corners)
-    {
-      centre = centre + (1.0 / frameOfLight.Corners.size()) * corner;
-    }
-    return centre;
-  };
-  const int axis = planes ? MajorAxis(frameOfLight.IndexToLight, towardsCentre()) : -1;
-  const std::uint64_t version =
-    axis < 0 ? in.Plan.GetModelVersion() : in.Plan.GetColorModelVersion(axis);
-  // What the passes depend on, in world coordinates.
-  std::vector<double> key = { light.Positional ? 1.0 : 0.0, static_cast<double>(version),
-    static_cast<double>(LightBufferSize), static_cast<double>(axis) };
-  for (const parc::Vec3& x : { light.Position + frame, light.FocalPoint + frame, eye + frame })
-  {
-    key.insert(key.end(), { x.X, x.Y, x.Z });
-  }
-  for (int r = 0; r < 3; ++r)
-  {
-    for (int c = 0; c < 4; ++c)
-    {
-      key.push_back(in.IndexToFrame(r, c) + (c == 3 ? frame[r] : 0.0));
-    }
-  }
-  if (in.LightBuffers.size() < lights.size())
-  {
-    in.LightBuffers.resize(lights.size());
-  }
-  LightPasses& passes = in.LightBuffers[index];
-  passes.Source.Offset = -1.0 * eye; // render frame -> the light's frame (eye at 0)
-  // The same world quantities come back through the render frame with rounding.
-  const auto same = [](double a, double b) {
-    return std::fabs(a - b) <= LightKeyTolerance * std::max({ 1.0, std::fabs(a), std::fabs(b) });
-  };
-  if (passes.Key.size() == key.size() &&
-    std::equal(key.begin(), key.end(), passes.Key.begin(), same))
-  {
-    return &passes.Source;
-  }
-  const double start = vtkTimerLog::GetUniversalTime();
-  passes.Key.clear();
-  const bool uploaded = in.LightRasterizer->HasModel(
-    window, planes ? vtkPARCRasterizer::Pass::Planes : vtkPARCRasterizer::Pass::Depth, version);
-  const parc::PolygonModel& model =
-    planes ? in.Plan.GetColorModel(axis, uploaded) : in.Plan.GetDepthModel(uploaded);
-  const bool ok = in.LightRasterizer->RenderLight(
-    window, model, version, frameOfLight, LightBufferSize, &grid, passes.Source);
-  work.Time += vtkTimerLog::GetUniversalTime() - start;
-  work.Frusta += static_cast<int>(passes.Source.GetFrustumCount());
-  if (!ok || passes.Source.GetFrustumCount() == 0)
-  {
-    return nullptr;
-  }
-  passes.Key = std::move(key);
-  return &passes.Source;
-}
-
-//------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::PrepareCells(vtkVolumeState& in, vtkVolume* vol)
-{
-  if (!in.Caster.ReadsContributingCells())
-  {
-    in.Caster.SetContributingCells(nullptr);
-    in.Plan.ReleaseCells();
-    in.CellsClassified = ClassificationKey();
-    return;
-  }
-  ClassificationKey key = in.Key(this, vol);
-  std::fill_n(key.Size, 3, 0.0); // cells do not depend on the supercells
-  if (!(key == in.CellsClassified))
-  {
-    in.CellsClassified = key;
-    parc::ContributionRule rule;
-    rule.Set(in.Parameters, in.Field.GetRange());
-    in.Plan.ClassifyCells(in.Field, in.FieldVersion, rule);
-  }
-  in.Caster.SetContributingCells(&in.Plan.GetContributingCells());
-}
-
-//------------------------------------------------------------------------------
-ClassificationKey vtkPARCVolumeMapper::vtkVolumeState::Key(
-  vtkPARCVolumeMapper* self, vtkVolume* vol) const
-{
-  const vtkVolumeState& in = *this;
-  ClassificationKey key;
-  key.FieldVersion = in.FieldVersion;
-  key.Property = vol->GetProperty();
-  key.PropertyTime = vol->GetProperty()->GetMTime();
-  key.Blend = self->GetInputBlendMode(in.Port);
-  key.Labels = in.Parameters.Labels.size();
-  for (const parc::LabelFunctions& label : in.Parameters.Labels)
-  {
-    if (vtkPiecewiseFunction* opacity = vol->GetProperty()->GetLabelScalarOpacity(label.Label))
-    {
-      key.LabelsTime = std::max(key.LabelsTime, opacity->GetMTime());
-    }
-  }
-  std::copy_n(self->AverageIPScalarRange, 2, key.Average);
-  self->SupercellSizeOf(in, key.Size);
-  return key;
-}
-
-//------------------------------------------------------------------------------
-bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
-{
-  const ClassificationKey key = in.Key(this, vol);
-  if (key == in.Classified)
-  {
-    return in.Plan.GetGrid().GetNumberOfSupercells() > 0; // empty after a failed one
-  }
-  in.Classified = key;
-  // One rule per component: a supercell is PC where any component may contribute.
-  std::vector<const parc::ScalarField*> fields{ &in.Field };
-  std::vector<parc::ContributionRule> rules(1 + in.Components.size());
-  rules[0].Set(in.Parameters, in.Field.GetRange());
-  for (std::size_t c = 0; c < in.Components.size(); ++c)
-  {
-    const vtkVolumeState::ComponentState& component = *in.Components[c];
-    fields.push_back(&component.Field);
-    rules[c + 1].Set(component.Parameters, component.Field.GetRange());
-  }
-  double requested[3], size[3];
-  this->SupercellSizeOf(in, requested);
-  if (!in.Plan.Classify(fields, in.FieldVersion, rules, in.Parameters.Interp, requested, size))
-  {
-    vtkErrorMacro("Invalid supercell size (" << requested[0] << ", " << requested[1] << ", "
-                                             << requested[2] << "): casting unaccelerated.");
-    return false;
-  }
-  if (!std::equal(size, size + 3, requested))
-  {
-    vtkWarningMacro("Supercell size (" << requested[0] << ", " << requested[1] << ", "
-      << requested[2] << ") would make "
-      << parc::SupercellGrid::CountSupercells(in.Plan.GetGrid().GetCellDimensions(), requested)
-      << " supercells, more than the " << parc::SupercellGrid::MaxSupercells
-      << " allowed: using (" << size[0] << ", " << size[1] << ", " << size[2] << ").");
-  }
-  return true;
-}
-
-//------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::SupercellSizeOf(const vtkVolumeState& in, double size[3]) const
-{
-  const double scale = this->AccelerationMode == ACCELERATION_AUTO && this->AutoSupercellSize
-    ? in.Plan.Sizes.GetScale()
-    : 1.0;
-  for (int a = 0; a < 3; ++a)
-  {
-    size[a] = scale * this->SupercellSize[a];
   }
 }
 
