@@ -40,10 +40,7 @@
 
 namespace
 {
-using parctools::CopyMapper;
 using parctools::FixedPointLike;
-using parctools::MinMedian;
-using parctools::RayImage;
 using parctools::TimedRender;
 using parctools::WarmUp;
 using parcstudies::AutoTrialFrames;
