@@ -51,7 +51,7 @@ SIZE = 300
 MEAN_TOLERANCE = 4.0
 OUTLIER_TOLERANCE = 0.02
 # The same between N ranks and 1 rank: the pieces take the same samples, read their
-# neighbours' ghost points and share one colour table, but ParaView composites the ranks'
+# neighbours' border points and share one colour table, but ParaView composites the ranks'
 # images in 8 bits, and early ray termination stops within a piece. ParaView's own mapper
 # must not come closer to its 1-rank image than PARC does.
 RANKS_MEAN_TOLERANCE = 0.5
@@ -240,7 +240,7 @@ if one_rank_dir:
           "Volume: %.5f)" % (outliers, RANKS_OUTLIER_TOLERANCE, own_outliers))
     check(mean <= own_mean and outliers <= own_outliers,
           "PARC's %d-rank image is as close to its 1-rank image as ParaView's Volume's" % ranks)
-    # Shadow rays cross the other ranks' pieces, which each rank holds as ghost layers.
+    # Shadow rays cross the other ranks' pieces, which each rank reads as border layers.
     mean, outliers = against_one_rank("parc-volume-shadows", shadowed)
     check(mean <= RANKS_MEAN_TOLERANCE and outliers <= RANKS_OUTLIER_TOLERANCE,
           "shadows on %d ranks: mean difference to 1 rank %.3f <= %.1f grey levels, %.5f of "
