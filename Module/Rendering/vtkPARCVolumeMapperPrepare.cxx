@@ -9,17 +9,28 @@ namespace
 constexpr double MaxSamplesPerDiagonal = 1e7;
 
 /// The renderer's lights that are on, in the render frame (origin at frame). A light casts
-/// shadows (its ShadowAttenuation) only when shadows is true.
-void ConvertLights(
-  vtkRenderer* ren, const parc::Vec3& frame, bool shadows, std::vector<parc::Light>& lights)
+/// shadows (its ShadowAttenuation) only when shadows is true. ambient is their ambient
+/// light: the sum of their ambient colours times their intensities (black for vtkLight's
+/// defaults), as vtkFixedPointVolumeRayCastMapper lights the ambient term.
+void ConvertLights(vtkRenderer* ren, const parc::Vec3& frame, bool shadows,
+  std::vector<parc::Light>& lights, parc::Vec3& ambient)
 {
   lights.clear();
+  ambient = parc::Vec3{ 0.0, 0.0, 0.0 };
   vtkLightCollection* collection = ren->GetLights();
   vtkCollectionSimpleIterator it;
   collection->InitTraversal(it);
   while (vtkLight* light = collection->GetNextLight(it))
   {
-    if (!light->GetSwitch() || light->GetIntensity() <= 0.0)
+    if (!light->GetSwitch())
+    {
+      continue;
+    }
+    const double i = light->GetIntensity();
+    const double* ambientColor = light->GetAmbientColor();
+    ambient =
+      ambient + parc::Vec3{ ambientColor[0] * i, ambientColor[1] * i, ambientColor[2] * i };
+    if (i <= 0.0)
     {
       continue;
     }
@@ -30,7 +41,6 @@ void ConvertLights(
     light->GetTransformedFocalPoint(f);
     l.Position = parc::Vec3{ p[0], p[1], p[2] } - frame;
     l.FocalPoint = parc::Vec3{ f[0], f[1], f[2] } - frame;
-    const double i = light->GetIntensity();
     const double* c = light->GetDiffuseColor();
     l.Color = { c[0] * i, c[1] * i, c[2] * i };
     const double* s = light->GetSpecularColor();
@@ -44,27 +54,6 @@ void ConvertLights(
               : 0.0;
     lights.push_back(l);
   }
-}
-
-/// The ambient light of the renderer's switched-on lights: the sum of their ambient
-/// colours times their intensities (black for vtkLight's defaults), as
-/// vtkFixedPointVolumeRayCastMapper lights the ambient term.
-parc::Vec3 LightsAmbient(vtkRenderer* ren)
-{
-  parc::Vec3 sum{ 0.0, 0.0, 0.0 };
-  vtkLightCollection* collection = ren->GetLights();
-  vtkCollectionSimpleIterator it;
-  collection->InitTraversal(it);
-  while (vtkLight* light = collection->GetNextLight(it))
-  {
-    if (light->GetSwitch())
-    {
-      const double* a = light->GetAmbientColor();
-      const double i = light->GetIntensity();
-      sum = sum + parc::Vec3{ a[0] * i, a[1] * i, a[2] * i };
-    }
-  }
-  return sum;
 }
 
 /// The matrix from 0-based voxel indices of the image to the render frame (origin at frame).
@@ -565,9 +554,10 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   {
     const bool shadows = this->ShadowMode == SHADOWS_ON ||
       (this->ShadowMode == SHADOWS_FROM_RENDERER && ren->GetUseShadows());
-    ConvertLights(ren, frame, shadows, p.Lights);
-    p.AmbientLight = this->AmbientModel == AMBIENT_LIGHTS ? LightsAmbient(ren)
-                                                          : parc::Vec3{ 1.0, 1.0, 1.0 };
+    parc::Vec3 lightsAmbient;
+    ConvertLights(ren, frame, shadows, p.Lights, lightsAmbient);
+    p.AmbientLight =
+      this->AmbientModel == AMBIENT_LIGHTS ? lightsAmbient : parc::Vec3{ 1.0, 1.0, 1.0 };
   }
   else
   {
