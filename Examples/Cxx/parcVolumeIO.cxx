@@ -58,57 +58,6 @@ long long FileSize(const std::string& path)
   return stat(path.c_str(), &st) == 0 ? static_cast<long long>(st.st_size) : -1;
 }
 
-bool TakeVolume(
-  vtkAlgorithm* reader, const std::string& path, vtkImageData* out, std::string& error);
-
-bool ReadRaw(const std::string& path, vtkImageData* out, std::string& error)
-{
-  static const std::regex pattern(
-    R"(_(\d+)x(\d+)x(\d+)_(u?int8|u?int16(le|be)?|u?int32(le|be)?|float32|float64)\.raw$)",
-    std::regex::icase);
-  std::smatch m;
-  if (!std::regex_search(path, m, pattern))
-  {
-    error = "raw file names must end in _XxYxZ_TYPE.raw (TYPE uint8, int16le, float32, ...): " +
-      path;
-    return false;
-  }
-  const int dims[3] = { std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3]) };
-  std::string type = m[4];
-  std::transform(type.begin(), type.end(), type.begin(), ::tolower);
-  const bool bigEndian = EndsWith(type, "be");
-  int vtkType = VTK_UNSIGNED_CHAR, bytes = 1;
-  if (type == "int8") { vtkType = VTK_SIGNED_CHAR; }
-  else if (type.rfind("uint16", 0) == 0) { vtkType = VTK_UNSIGNED_SHORT; bytes = 2; }
-  else if (type.rfind("int16", 0) == 0) { vtkType = VTK_SHORT; bytes = 2; }
-  else if (type.rfind("uint32", 0) == 0) { vtkType = VTK_UNSIGNED_INT; bytes = 4; }
-  else if (type.rfind("int32", 0) == 0) { vtkType = VTK_INT; bytes = 4; }
-  else if (type == "float32") { vtkType = VTK_FLOAT; bytes = 4; }
-  else if (type == "float64") { vtkType = VTK_DOUBLE; bytes = 8; }
-  const long long expected = static_cast<long long>(dims[0]) * dims[1] * dims[2] * bytes;
-  if (FileSize(path) != expected)
-  {
-    error = "raw file " + path + " has " + std::to_string(FileSize(path)) + " bytes, expected " +
-      std::to_string(expected) + " for its name's dimensions and type";
-    return false;
-  }
-  vtkNew<vtkImageReader2> reader;
-  reader->SetFileName(path.c_str());
-  reader->SetFileDimensionality(3);
-  reader->SetDataExtent(0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1);
-  reader->SetDataScalarType(vtkType);
-  reader->SetNumberOfScalarComponents(1);
-  if (bigEndian)
-  {
-    reader->SetDataByteOrderToBigEndian();
-  }
-  else
-  {
-    reader->SetDataByteOrderToLittleEndian();
-  }
-  return TakeVolume(reader, path, out, error);
-}
-
 template <class Reader>
 vtkSmartPointer<vtkAlgorithm> MakeReader(const std::string& path)
 {
@@ -179,6 +128,54 @@ bool TakeVolume(vtkAlgorithm* reader, const std::string& path, vtkImageData* out
   }
   out->ShallowCopy(image);
   return true;
+}
+
+bool ReadRaw(const std::string& path, vtkImageData* out, std::string& error)
+{
+  static const std::regex pattern(
+    R"(_(\d+)x(\d+)x(\d+)_(u?int8|u?int16(le|be)?|u?int32(le|be)?|float32|float64)\.raw$)",
+    std::regex::icase);
+  std::smatch m;
+  if (!std::regex_search(path, m, pattern))
+  {
+    error = "raw file names must end in _XxYxZ_TYPE.raw (TYPE uint8, int16le, float32, ...): " +
+      path;
+    return false;
+  }
+  const int dims[3] = { std::stoi(m[1]), std::stoi(m[2]), std::stoi(m[3]) };
+  std::string type = m[4];
+  std::transform(type.begin(), type.end(), type.begin(), ::tolower);
+  const bool bigEndian = EndsWith(type, "be");
+  int vtkType = VTK_UNSIGNED_CHAR, bytes = 1;
+  if (type == "int8") { vtkType = VTK_SIGNED_CHAR; }
+  else if (type.rfind("uint16", 0) == 0) { vtkType = VTK_UNSIGNED_SHORT; bytes = 2; }
+  else if (type.rfind("int16", 0) == 0) { vtkType = VTK_SHORT; bytes = 2; }
+  else if (type.rfind("uint32", 0) == 0) { vtkType = VTK_UNSIGNED_INT; bytes = 4; }
+  else if (type.rfind("int32", 0) == 0) { vtkType = VTK_INT; bytes = 4; }
+  else if (type == "float32") { vtkType = VTK_FLOAT; bytes = 4; }
+  else if (type == "float64") { vtkType = VTK_DOUBLE; bytes = 8; }
+  const long long expected = static_cast<long long>(dims[0]) * dims[1] * dims[2] * bytes;
+  if (FileSize(path) != expected)
+  {
+    error = "raw file " + path + " has " + std::to_string(FileSize(path)) + " bytes, expected " +
+      std::to_string(expected) + " for its name's dimensions and type";
+    return false;
+  }
+  vtkNew<vtkImageReader2> reader;
+  reader->SetFileName(path.c_str());
+  reader->SetFileDimensionality(3);
+  reader->SetDataExtent(0, dims[0] - 1, 0, dims[1] - 1, 0, dims[2] - 1);
+  reader->SetDataScalarType(vtkType);
+  reader->SetNumberOfScalarComponents(1);
+  if (bigEndian)
+  {
+    reader->SetDataByteOrderToBigEndian();
+  }
+  else
+  {
+    reader->SetDataByteOrderToLittleEndian();
+  }
+  return TakeVolume(reader, path, out, error);
 }
 }
 
