@@ -20,7 +20,7 @@ namespace
 constexpr int WindowSize = 96;
 
 /// window (a new one of WindowSize pixels with a renderer when null) showing image through
-/// mapper alone, with a copy of property, in its first renderer, from a fixed oblique view.
+/// mapper alone, with a copy of property, in its first renderer, from the oblique view.
 vtkSmartPointer<vtkRenderWindow> Show(vtkPARCVolumeMapper* mapper, vtkImageData* image,
   vtkVolumeProperty* property, vtkRenderWindow* window = nullptr)
 {
@@ -40,15 +40,7 @@ vtkSmartPointer<vtkRenderWindow> Show(vtkPARCVolumeMapper* mapper, vtkImageData*
   volume->SetProperty(copy);
   renderer->RemoveAllViewProps();
   renderer->AddVolume(volume);
-  vtkCamera* camera = renderer->GetActiveCamera(); // the same view in a reused renderer
-  camera->SetPosition(0, 0, 1);
-  camera->SetFocalPoint(0, 0, 0);
-  camera->SetViewUp(0, 1, 0);
-  renderer->ResetCamera();
-  renderer->GetActiveCamera()->Azimuth(35);
-  renderer->GetActiveCamera()->Elevation(25);
-  renderer->GetActiveCamera()->OrthogonalizeViewUp();
-  renderer->ResetCameraClippingRange();
+  parctest::SetObliqueView(renderer);
   return shown;
 }
 
