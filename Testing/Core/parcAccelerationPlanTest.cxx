@@ -352,3 +352,17 @@ TEST(SupercellSearch, ALargeVolumeStartsAtALargerScale)
   EXPECT_EQ(scales, (std::vector<double>{ 2, 2, 4, 4, 1, 1 }));
   EXPECT_EQ(search.GetScale(), 2.0);
 }
+
+TEST(SupercellSearch, NeverTriesMoreSupercellsThanTheGridAllows)
+{
+  // Ever faster as supercells shrink, on a volume where a quarter of the size (1 cell,
+  // 448 million supercells) exceeds SupercellGrid::MaxSupercells: the search ends at half.
+  const double size[3] = { 4, 4, 4 };
+  const int large[3] = { 720, 864, 720 };
+  SupercellSearch search;
+  search.Begin(large, size);
+  const std::vector<double> scales = RunSearch(search, AutoTrials::Depth, [](double s) { return s; });
+  EXPECT_EQ(scales, (std::vector<double>{ 2, 2, 4, 4, 1, 1, 0.5, 0.5 }));
+  EXPECT_EQ(search.GetScale(), 0.5);
+  EXPECT_TRUE(search.IsDone());
+}

@@ -239,6 +239,12 @@ void SupercellSearch::Begin(const int cells[3], const double size[3])
   {
     this->StartScale *= 2.0;
   }
+  // Scales below the start that would exceed the grid's limit are never tried.
+  while (count(this->LeastScale) > static_cast<double>(SupercellGrid::MaxSupercells) &&
+    this->LeastScale < this->StartScale)
+  {
+    this->LeastScale *= 2.0;
+  }
   this->Scale = this->BestScale = this->StartScale;
 }
 
@@ -291,7 +297,7 @@ void SupercellSearch::Record(int candidate, bool settled, double seconds)
 void SupercellSearch::Try(double scale)
 {
   this->ScaleFrames = 0;
-  if (scale < MinScale || scale > MaxScale)
+  if (scale < this->LeastScale || scale > MaxScale)
   {
     this->State = Done;
     this->Scale = this->BestScale;

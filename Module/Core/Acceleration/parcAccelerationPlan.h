@@ -172,7 +172,8 @@ public:
   static constexpr double StartSupercells = 1 << 20;
 
   /// Starts from the smallest power-of-two scale (at least 1) at which a field of `cells`
-  /// cells per axis holds at most StartSupercells supercells of `size` times the scale:
+  /// cells per axis holds at most StartSupercells supercells of `size` times the scale
+  /// (and never tries one that makes more than SupercellGrid::MaxSupercells):
   /// the first passes of a large volume then draw tens of thousands of polygons, not
   /// millions (each costs pass time and, on a software GL, about a kilobyte of the
   /// driver's memory).
@@ -202,6 +203,9 @@ private:
   } State = Waiting;
   int Candidate = -1;
   double StartScale = 1.0;
+  /// The least scale tried: MinScale, or more where smaller supercells would exceed
+  /// SupercellGrid::MaxSupercells (Begin).
+  double LeastScale = MinScale;
   double Scale = 1.0, BestScale = 1.0, BestSeconds = 0.0;
   double ScaleSeconds = 0.0; ///< the least frame of Scale so far
   int ScaleFrames = 0;       ///< frames of Scale so far
