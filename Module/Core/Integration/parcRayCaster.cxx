@@ -181,6 +181,14 @@ bool RayCaster::Prepare(const Volume& volume)
     static_cast<float>(parameters->SampleDistance / parameters->OpacityUnitDistance);
   const bool uncorrected = blend == BlendMode::Additive || blend == BlendMode::AverageIntensity;
   k.OpacityExponent = uncorrected ? 1.f : perUnit;
+  k.OpacityRoots = 0;
+  for (int m = 1; m <= RenderConstants::MaxOpacityRoots; ++m)
+  {
+    if (k.OpacityExponent == std::ldexp(1.f, -m))
+    {
+      k.OpacityRoots = m;
+    }
+  }
   k.OpacityScale = blend == BlendMode::Additive ? perUnit : 1.f;
   k.ComponentWeight = static_cast<float>(parameters->ComponentWeight);
   double constant = 1.0;

@@ -284,6 +284,11 @@ public:
     /// ray functions take the exponent dt / unit distance; additive blending the scale
     /// dt / unit distance; average intensity neither.
     float OpacityExponent = 1.f;
+    /// m when OpacityExponent is 2^-m, 1 <= m <= MaxOpacityRoots (sample distances of a
+    /// half, a quarter, ... of the unit distance, as half a voxel of a volume whose spacing
+    /// is a power of two): the correction takes m square roots, not a power; else 0.
+    int OpacityRoots = 0;
+    static constexpr int MaxOpacityRoots = 8;
     float OpacityScale = 1.f;
     float ComponentWeight = 1.f; ///< CastParameters::ComponentWeight
     bool GradientNeeded = false;

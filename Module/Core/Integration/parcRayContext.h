@@ -632,14 +632,14 @@ struct RayContext
       return;
     }
 #if defined(__SSE2__)
-    if (exponent == 0.5f || exponent == 0.25f)
+    if (const int roots = this->K.OpacityRoots)
     {
       const __m128 one = _mm_set1_ps(1.f);
       for (int j = 0; j < LatticeBlock::Size; j += 4)
       {
         const __m128 v = _mm_loadu_ps(a + j);
-        __m128 root = _mm_sqrt_ps(_mm_sub_ps(one, v));
-        if (exponent == 0.25f)
+        __m128 root = _mm_sub_ps(one, v);
+        for (int r = 0; r < roots; ++r)
         {
           root = _mm_sqrt_ps(root);
         }
@@ -773,15 +773,14 @@ struct RayContext
     {
       return a;
     }
-    const float transparency = 1.f - a;
-    // The sample distances of half and a quarter of the unit distance by square roots.
-    if (exponent == 0.5f)
+    float transparency = 1.f - a;
+    if (const int roots = this->K.OpacityRoots) // see RenderConstants::OpacityRoots
     {
-      return 1.f - std::sqrt(transparency);
-    }
-    if (exponent == 0.25f)
-    {
-      return 1.f - std::sqrt(std::sqrt(transparency));
+      for (int r = 0; r < roots; ++r)
+      {
+        transparency = std::sqrt(transparency);
+      }
+      return 1.f - transparency;
     }
     return 1.f - std::pow(transparency, exponent);
   }
