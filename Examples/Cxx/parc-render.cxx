@@ -4,6 +4,7 @@
 #include "parcAccuracyStudy.h"
 #include "parcRenderStudies.h"
 #include "parcRenderTools.h"
+#include "parcViewer.h"
 #include "parcVolumeIO.h"
 #include "vtkPARCMultiVolume.h"
 #include "vtkPARCVolumeMapper.h"
@@ -65,9 +66,11 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
                         vtkFixedPointVolumeRayCastMapper shades)
   --size N | WxH        image size in pixels (default 300)
   --azimuth DEG --elevation DEG --zoom F     camera around the volume (after a reset)
-  --camera-position X,Y,Z [--focal-point X,Y,Z]   explicit camera
+  --camera-position X,Y,Z [--focal-point X,Y,Z] [--view-up X,Y,Z]   explicit camera
   --parallel            parallel projection (default perspective)
   --sample-distance D   world units (default: half the smallest spacing)
+  --image-sample-distance D  rays every D pixels (default 1; turns the mapper's
+                        AutoAdjustSampleDistances off)
   --acceleration MODE   none, depth, color, both, walk (the supercells walked on the CPU,
                         no GL pass), auto (default)
   --supercell M,N,P     supercell size in cells (default: the mapper's 4,4,4, scaled by
@@ -127,6 +130,12 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
                         with shadows for acceleration none, depth, colour and Auto (each
                         on primary and shadow rays): cells, casting and total times,
                         light-pass time, ratios beside the paper's (needs --light)
+  --interactive         open a window on the volume instead: trackball interaction, keys
+                        for blend mode, transfer function, shading, acceleration, image
+                        sample distance and screenshots ('h' lists them), a status line
+  --playback FILE       with --interactive: play a vtkInteractorEventRecorder log instead
+                        of waiting for a user, then print the viewer's state (JSON)
+  --screenshot-prefix P with --interactive: screenshots are written as P-N.png
   --json                print statistics as JSON
   --help
 )";
@@ -148,7 +157,10 @@ struct Options
   double Supercell[3] = { 4, 4, 4 };
   bool SupercellSet = false; ///< else the mapper's, which Auto scales
   std::vector<double> Sweep;
-  double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 };
+  double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 }, ViewUp[3] = { 0, 0, 0 };
+  bool HasViewUp = false, Interactive = false;
+  double ImageSampleDistance = 0.0; ///< 0: the mapper's default
+  std::string Playback, ScreenshotPrefix = "parc-view";
   int Width = 300, Height = 300, Repeat = 1;
   std::vector<std::array<double, 3>> Lights;
   bool Shadows = false, Floor = false, QuantizedNormals = false;
@@ -224,6 +236,11 @@ Options Parse(int argc, char* argv[])
     else if (a == "--zoom") { o.Zoom = ToNumber(a, value()); }
     else if (a == "--camera-position") { ToTriple(a, value(), o.Position); o.HasPosition = true; }
     else if (a == "--focal-point") { ToTriple(a, value(), o.Focal); o.HasFocal = true; }
+    else if (a == "--view-up") { ToTriple(a, value(), o.ViewUp); o.HasViewUp = true; }
+    else if (a == "--interactive") { o.Interactive = true; }
+    else if (a == "--image-sample-distance") { o.ImageSampleDistance = ToNumber(a, value()); }
+    else if (a == "--playback") { o.Playback = value(); }
+    else if (a == "--screenshot-prefix") { o.ScreenshotPrefix = value(); }
     else if (a == "--parallel") { o.Parallel = true; }
     else if (a == "--sample-distance") { o.SampleDistance = ToNumber(a, value()); }
     else if (a == "--acceleration") { o.Acceleration = value(); }
@@ -397,6 +414,47 @@ void SetUpProperty(vtkImageData* image, int blend, const std::string& tf, bool h
   property->SetShade(shade || blend == vtkVolumeMapper::ISOSURFACE_BLEND);
 }
 
+/// --interactive: the viewer on the scene set up; with --playback, its state afterwards as
+/// JSON (the camera to full precision, so that a fresh render can be compared).
+int Interact(const Options& o, int blend, int acceleration, vtkRenderWindow* window,
+  vtkRenderer* renderer, vtkPARCVolumeMapper* mapper, vtkVolumeProperty* property,
+  vtkImageData* image)
+{
+  window->SetOffScreenRendering(0);
+  parcviewer::Settings settings;
+  settings.Playback = o.Playback;
+  settings.ScreenshotPrefix = o.ScreenshotPrefix;
+  settings.SetUp = [&o, image](int b, const std::string& tf, vtkVolumeProperty* p) {
+    SetUpProperty(image, b, tf, o.HasIso, o.Iso, false, p);
+  };
+  parcviewer::State state;
+  state.Blend = blend;
+  state.TF = o.TF;
+  state.Shading = o.Shade ? (o.QuantizedNormals ? 2 : 1) : 0;
+  state.Acceleration = acceleration;
+  const parcviewer::Frames frames = parcviewer::Run(settings, window, renderer, mapper, property, state);
+  if (!o.Playback.empty())
+  {
+    vtkCamera* c = renderer->GetActiveCamera();
+    const auto triple = [](const double* v) {
+      char text[128];
+      std::snprintf(text, sizeof(text), "[%.17g, %.17g, %.17g]", v[0], v[1], v[2]);
+      return std::string(text);
+    };
+    std::cout << "{\n  \"frames\": " << frames.All << ",\n  \"interactive_frames\": "
+              << frames.Interactive << ",\n  \"blend\": " << state.Blend
+              << ",\n  \"tf\": \"" << state.TF << "\",\n  \"shading\": " << state.Shading
+              << ",\n  \"acceleration\": " << state.Acceleration
+              << ",\n  \"image_sample_distance\": " << state.ImageSampleDistance
+              << ",\n  \"last_interactive\": " << mapper->GetLastInteractive()
+              << ",\n  \"last_image_sample_distance\": " << mapper->GetLastImageSampleDistance()
+              << ",\n  \"camera_position\": " << triple(c->GetPosition())
+              << ",\n  \"focal_point\": " << triple(c->GetFocalPoint())
+              << ",\n  \"view_up\": " << triple(c->GetViewUp()) << "\n}" << std::endl;
+  }
+  return 0;
+}
+
 int main(int argc, char* argv[])
 {
   const Options o = Parse(argc, argv);
@@ -444,6 +502,11 @@ int main(int argc, char* argv[])
   mapper->SetSampleDistance(o.SampleDistance);
   mapper->SetShadingModel(o.QuantizedNormals ? vtkPARCVolumeMapper::SHADING_QUANTIZED_NORMALS
                                              : vtkPARCVolumeMapper::SHADING_EXACT);
+  if (o.ImageSampleDistance > 0.0)
+  {
+    mapper->SetAutoAdjustSampleDistances(0);
+    mapper->SetImageSampleDistance(o.ImageSampleDistance);
+  }
   vtkNew<vtkVolume> volume;
   volume->SetMapper(mapper);
   volume->SetProperty(property);
@@ -512,6 +575,10 @@ int main(int argc, char* argv[])
     {
       camera->SetFocalPoint(o.Focal);
     }
+    if (o.HasViewUp)
+    {
+      camera->SetViewUp(o.ViewUp);
+    }
   }
   else
   {
@@ -521,6 +588,10 @@ int main(int argc, char* argv[])
   }
   camera->Zoom(o.Zoom);
   renderer->ResetCameraClippingRange();
+  if (o.Interactive)
+  {
+    return Interact(o, blend, acceleration, window, renderer, mapper, property, image);
+  }
 
   WarmUp(window, mapper);
   double wall = 0.0, casting = 0.0, total = 0.0;
