@@ -1,4 +1,4 @@
-// Only the effects a scene calls for (issue 14): gradients, shadow rays and light passes,
+// Only the effects a scene calls for: gradients, shadow rays and light passes,
 // the view's passes and the rebuilds each have a counter, and switching the effect off (or
 // leaving its inputs unchanged) makes that counter 0, while switching it on makes it
 // positive, so that every check can fail.
