@@ -284,15 +284,37 @@ caster_section() {
     "$data/embryo_256x256x256_uint8.raw --blend iso --iso 80"
 }
 
+# The sections in order, with what each took in a run on this machine (minutes, quick and
+# full): the time left is estimated from them, scaled by how this run keeps to them.
+sections=(accuracy_section paper_section growth_section stability_section sweep_section)
+quick_minutes=(3 2 3 1 1)
+full_minutes=(8 4 60 1 2 4)
+[ "$quick" = 1 ] || sections+=(caster_section)
+# Runs section i of the list, saying on stderr (not in the report) which section runs, how
+# far along the run is and about how long is left.
+run_section() {
+  local i=$1 n=${#sections[@]} planned=0 done_planned=0 k elapsed left
+  for ((k = 0; k < n; ++k)); do
+    local m; m=$([ "$quick" = 1 ] && echo "${quick_minutes[$k]}" || echo "${full_minutes[$k]}")
+    planned=$((planned + m))
+    ((k < i)) && done_planned=$((done_planned + m))
+  done
+  elapsed=$((($(date +%s) - start) / 60))
+  if ((done_planned > 0 && elapsed > 0)); then
+    left=$(((planned - done_planned) * elapsed / done_planned))
+  else
+    left=$((planned - done_planned))
+  fi
+  echo "[benchmark] section $((i + 1))/$n: ${sections[$i]%_section} ($((100 * done_planned / planned))% done, ${elapsed} min so far, about ${left} min left)" >&2
+  "${sections[$i]}"
+}
+
 start=$(date +%s)
 {
   header
-  accuracy_section
-  paper_section
-  growth_section
-  stability_section
-  sweep_section
-  [ "$quick" = 1 ] || caster_section
+  for ((i = 0; i < ${#sections[@]}; ++i)); do
+    run_section "$i"
+  done
   echo
   echo "---"
   echo "The run took $(( ($(date +%s) - start) / 60 )) min $(( ($(date +%s) - start) % 60 )) s."

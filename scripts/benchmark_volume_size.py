@@ -249,24 +249,33 @@ def report(outdir, quick, factors=None, images=None):
     rounds = QUICK_ROUNDS if quick else ROUNDS
     os.makedirs(os.path.join(outdir, "volumes"), exist_ok=True)
     rows = []
+    # The volumes in order; the time left is estimated from their sizes (a volume's time
+    # grows with its bytes).
+    volumes = [(kind, factor) for kind, kind_factors in factors.items() for factor in kind_factors]
+    weights = [factor ** 3 * np.dtype(kind).itemsize for kind, factor in volumes]
+    begun = time.time()
     try:
-        for kind, kind_factors in factors.items():
-            for factor in kind_factors:
-                started = time.time()
-                child("--make", outdir, factor, kind)
-                measured = child("--measure", outdir, factor, kind, ",".join(map(str, images)),
-                                 rounds)
-                for row in measured:
-                    for name in ("fixed", "parc"):
-                        fresh = child("--first", outdir, factor, kind, name, row["shade"], images[0])
-                        row["first_" + name] = fresh["first"]
-                        row["growth_" + name] = fresh["growth"]
-                        if name == "parc":
-                            row["memory_size_" + name] = fresh["memory_size"]
-                rows.extend(measured)
-                os.remove(volume_path(outdir, factor, kind))
-                print("(%s: %.0f s)" % (label(measured[0]), time.time() - started),
-                      file=sys.stderr, flush=True)
+        for index, (kind, factor) in enumerate(volumes):
+            done = sum(weights[:index])
+            left = ("about %.0f min left" % ((time.time() - begun) / 60 * (sum(weights) - done) / done)
+                    if done else "")
+            print("[volume size] %d/%d: x%d %s %s" % (index + 1, len(volumes), factor, kind, left),
+                  file=sys.stderr, flush=True)
+            started = time.time()
+            child("--make", outdir, factor, kind)
+            measured = child("--measure", outdir, factor, kind, ",".join(map(str, images)),
+                             rounds)
+            for row in measured:
+                for name in ("fixed", "parc"):
+                    fresh = child("--first", outdir, factor, kind, name, row["shade"], images[0])
+                    row["first_" + name] = fresh["first"]
+                    row["growth_" + name] = fresh["growth"]
+                    if name == "parc":
+                        row["memory_size_" + name] = fresh["memory_size"]
+            rows.extend(measured)
+            os.remove(volume_path(outdir, factor, kind))
+            print("(%s: %.0f s)" % (label(measured[0]), time.time() - started),
+                  file=sys.stderr, flush=True)
     finally:
         shutil.rmtree(os.path.join(outdir, "volumes"), ignore_errors=True)
     with open(os.path.join(outdir, "volume-size.json"), "w") as f:

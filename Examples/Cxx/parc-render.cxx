@@ -33,11 +33,14 @@
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
+#include <memory>
 #include <iostream>
 #include <utility>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include <unistd.h>
 
 namespace
 {
@@ -136,6 +139,9 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
   --playback FILE       with --interactive: play a vtkInteractorEventRecorder log instead
                         of waiting for a user, then print the viewer's state (JSON)
   --screenshot-prefix P with --interactive: screenshots are written as P-N.png
+  --progress            a progress line (set-up steps, casting) on stderr for every
+                        render; without it, for renders over a second when stderr is
+                        a terminal
   --json                print statistics as JSON
   --help
 )";
@@ -158,7 +164,7 @@ struct Options
   bool SupercellSet = false; ///< else the mapper's, which Auto scales
   std::vector<double> Sweep;
   double Position[3] = { 0, 0, 0 }, Focal[3] = { 0, 0, 0 }, ViewUp[3] = { 0, 0, 0 };
-  bool HasViewUp = false, Interactive = false;
+  bool HasViewUp = false, Interactive = false, Progress = false;
   double ImageSampleDistance = 0.0; ///< 0: the mapper's default
   std::string Playback, ScreenshotPrefix = "parc-view";
   int Width = 300, Height = 300, Repeat = 1;
@@ -238,6 +244,7 @@ Options Parse(int argc, char* argv[])
     else if (a == "--focal-point") { ToTriple(a, value(), o.Focal); o.HasFocal = true; }
     else if (a == "--view-up") { ToTriple(a, value(), o.ViewUp); o.HasViewUp = true; }
     else if (a == "--interactive") { o.Interactive = true; }
+    else if (a == "--progress") { o.Progress = true; }
     else if (a == "--image-sample-distance") { o.ImageSampleDistance = ToNumber(a, value()); }
     else if (a == "--playback") { o.Playback = value(); }
     else if (a == "--screenshot-prefix") { o.ScreenshotPrefix = value(); }
@@ -588,6 +595,11 @@ int main(int argc, char* argv[])
   }
   camera->Zoom(o.Zoom);
   renderer->ResetCameraClippingRange();
+  std::unique_ptr<parctools::ProgressLine> progress;
+  if (o.Progress || isatty(STDERR_FILENO))
+  {
+    progress = std::make_unique<parctools::ProgressLine>(window, mapper, o.Progress);
+  }
   if (o.Interactive)
   {
     return Interact(o, blend, acceleration, window, renderer, mapper, property, image);

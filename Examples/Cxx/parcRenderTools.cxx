@@ -9,10 +9,12 @@
 #include <vtkNew.h>
 #include <vtkPointData.h>
 #include <vtkRenderWindow.h>
+#include <vtkCommand.h>
 #include <vtkTimerLog.h>
 #include <vtkWindowToImageFilter.h>
 
 #include <algorithm>
+#include <cstdio>
 
 namespace parctools
 {
@@ -93,5 +95,50 @@ vtkSmartPointer<vtkPARCVolumeMapper> CopyMapper(vtkPARCVolumeMapper* parc, int m
   m->SetAmbientModel(parc->GetAmbientModel());
   m->SetAccelerationMode(mode);
   return m;
+}
+
+ProgressLine::ProgressLine(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, bool always)
+  : Window(window)
+  , Mapper(mapper)
+  , Always(always)
+{
+  this->Tags[0] = window->AddObserver(vtkCommand::StartEvent, this, &ProgressLine::OnStart);
+  this->Tags[1] = mapper->AddObserver(vtkCommand::ProgressEvent, this, &ProgressLine::OnProgress);
+  this->Tags[2] = window->AddObserver(vtkCommand::EndEvent, this, &ProgressLine::OnEnd);
+}
+
+ProgressLine::~ProgressLine()
+{
+  this->Window->RemoveObserver(this->Tags[0]);
+  this->Mapper->RemoveObserver(this->Tags[1]);
+  this->Window->RemoveObserver(this->Tags[2]);
+}
+
+void ProgressLine::OnStart()
+{
+  this->Start = vtkTimerLog::GetUniversalTime();
+  this->Shown = false;
+}
+
+void ProgressLine::OnProgress()
+{
+  if (!this->Always && vtkTimerLog::GetUniversalTime() - this->Start < Delay)
+  {
+    return;
+  }
+  const char* text = this->Mapper->GetProgressText();
+  std::fprintf(stderr, "\rparc-render: %-28s %3.0f%%", text ? text : "",
+    100.0 * this->Mapper->GetProgress());
+  std::fflush(stderr);
+  this->Shown = true;
+}
+
+void ProgressLine::OnEnd()
+{
+  if (this->Shown)
+  {
+    std::fputc('\n', stderr);
+    this->Shown = false;
+  }
 }
 }

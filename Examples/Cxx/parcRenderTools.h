@@ -40,6 +40,31 @@ vtkSmartPointer<vtkFixedPointVolumeRayCastMapper> FixedPointLike(
 /// A mapper like parc (the inputs and ray functions of every port, the sample distance,
 /// supercell size and shading model) in acceleration mode.
 vtkSmartPointer<vtkPARCVolumeMapper> CopyMapper(vtkPARCVolumeMapper* parc, int mode);
+
+/// A progress line on stderr for the renders of a window while it lives: the mapper's
+/// progress text and percentage (its ProgressEvent), rewritten in place and ended with the
+/// render. Always, or only for renders that have run longer than Delay (a long set-up).
+class ProgressLine
+{
+public:
+  static constexpr double Delay = 1.0; ///< seconds
+  ProgressLine(vtkRenderWindow* window, vtkPARCVolumeMapper* mapper, bool always);
+  ~ProgressLine();
+  ProgressLine(const ProgressLine&) = delete;
+  ProgressLine& operator=(const ProgressLine&) = delete;
+
+private:
+  void OnStart();
+  void OnProgress();
+  void OnEnd();
+
+  vtkRenderWindow* Window;
+  vtkPARCVolumeMapper* Mapper;
+  bool Always;
+  double Start = 0.0;
+  bool Shown = false;
+  unsigned long Tags[3] = { 0, 0, 0 };
+};
 }
 
 #endif

@@ -136,6 +136,7 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->SetAbortExecute(0); // like an algorithm's execution, each render starts un-aborted
   in.Stats = parc::CastStatistics();
   in.CastingTime = in.ProjectionTime = 0.0;
+  in.SetUpReported = false;
   in.ImageSize[0] = in.ImageSize[1] = 0; // no image until a cast fills one
   in.Budget = vol->GetAllocatedRenderTime();
   // The renderer's last render holds this mapper's last one and what else it drew then.
@@ -166,6 +167,17 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     in.PreviousCasting = in.CastingTime;
     in.PreviousImageStep = this->LastImageSampleDistance;
     in.PreviousSampleDistance = this->LastSampleDistance;
+  }
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCVolumeMapper::ReportSetUp(const char* step, double progress)
+{
+  this->Internals->SetUpReported = true;
+  if (this->ReportProgress)
+  {
+    this->SetProgressText(step);
+    this->UpdateProgress(progress);
   }
 }
 
@@ -348,7 +360,8 @@ bool vtkPARCVolumeMapper::vtkInternals::Cast(vtkPARCVolumeMapper* self, vtkRende
     if (self->ReportProgress)
     {
       self->InvokeEvent(vtkCommand::VolumeMapperRenderProgressEvent, &fraction);
-      self->UpdateProgress(fraction);
+      self->SetProgressText(CastingProgressText);
+      self->UpdateProgress(self->Internals->SetUpReported ? 0.5 + 0.5 * fraction : fraction);
     }
     return !self->GetAbortExecute() && !window->CheckAbortStatus();
   };

@@ -737,6 +737,12 @@ protected:
    * caster leaves out the samples of cells that cannot contribute.
    */
   void PrepareCells(vtkVolumeState& volume, vtkVolume* prop);
+  /**
+   * A set-up step of this render begins (with ReportProgress): the progress text names it
+   * and the progress (ProgressEvent) is `progress`; the render's casting then reports
+   * from 0.5 to 1.
+   */
+  void ReportSetUp(const char* step, double progress);
 
   /**
    * The image sample distance of this render: ImageSampleDistance, or with

@@ -61,6 +61,16 @@ constexpr int AutoCandidates[parc::AutoTrials::Count] = {
   vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_NONE
 };
 
+/// The render's progress as each set-up step begins (vtkPARCVolumeMapper::ReportSetUp).
+namespace SetUpProgress
+{
+constexpr double Scalars = 0.05;    ///< wrapping (and scanning) new scalars
+constexpr double Cells = 0.2;       ///< classifying the cells for the caster
+constexpr double Supercells = 0.35; ///< classifying the supercells, building the models
+}
+/// The progress text while rays are cast.
+constexpr const char* CastingProgressText = "casting rays";
+
 /// What a classification was made from: it is made again when any of it changes.
 struct ClassificationKey
 {
@@ -93,6 +103,8 @@ struct LightPassWork
 using parc::mapper::AutoCandidates;
 using parc::mapper::ClassificationKey;
 using parc::mapper::LightPassWork;
+using parc::mapper::CastingProgressText;
+namespace SetUpProgress = parc::mapper::SetUpProgress;
 
 //------------------------------------------------------------------------------
 /// One input volume (one input port): its field, ray function, caster and PARC
@@ -254,6 +266,9 @@ public:
   std::vector<unsigned char> Display;
   parc::CastStatistics Stats; ///< summed over the rendered volumes
   double CastingTime = 0.0;
+  /// Whether this render has set something up (ReportSetUp): its casting then reports
+  /// the second half of the render's progress.
+  bool SetUpReported = false;
   double ProjectionTime = 0.0;
   LightPassWork LightPasses; ///< the shadow rays' light passes (part of the render)
   double RenderTime = 0.0;

@@ -373,6 +373,7 @@ void vtkPARCVolumeMapper::PrepareCells(vtkVolumeState& in, vtkVolume* vol)
   if (!(key == in.CellsClassified))
   {
     in.CellsClassified = key;
+    this->ReportSetUp("classifying the cells", SetUpProgress::Cells);
     parc::ContributionRule rule;
     rule.Set(in.Parameters, in.Field.GetRange());
     in.Plan.ClassifyCells(in.Field, in.FieldVersion, rule);
@@ -412,6 +413,7 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
     return in.Plan.GetGrid().GetNumberOfSupercells() > 0; // empty after a failed one
   }
   in.Classified = key;
+  this->ReportSetUp("classifying the supercells", SetUpProgress::Supercells);
   // One rule per component: a supercell is PC where any component may contribute.
   std::vector<const parc::ScalarField*> fields{ &in.Field };
   std::vector<parc::ContributionRule> rules(1 + in.Components.size());

@@ -332,6 +332,7 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
   {
     return true;
   }
+  this->ReportSetUp("reading the scalars", SetUpProgress::Scalars);
   std::size_t replaced = 0;
   in.FieldArray = nullptr;
   in.Components.clear();
