@@ -125,7 +125,7 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
   // The phases: the volumes' fields and ray functions; then for the camera the ray image's
   // view, the depth of other geometry, each volume's PARC passes, one cast of all volumes
-  // and Auto's bookkeeping (CastImage); last the image over the viewport.
+  // and Auto's bookkeeping (RenderRayImage); last the image over the viewport.
   vtkInternals& in = *this->Internals;
   if (parc::vtk::InsideDualDepthPeeling(ren))
   {
@@ -153,7 +153,7 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   if (this->PrepareVolumes(ren, vol))
   {
     this->InvokeEvent(vtkCommand::VolumeMapperRenderStartEvent, nullptr);
-    this->CastImage(ren);
+    this->RenderRayImage(ren);
     this->InvokeEvent(vtkCommand::VolumeMapperRenderEndEvent, nullptr);
     this->DisplayImage(ren, vol);
   }
@@ -268,7 +268,7 @@ int vtkPARCVolumeMapper::IsRenderSupported(vtkRenderWindow*, vtkVolumeProperty*)
 //------------------------------------------------------------------------------
 
 //------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::CastImage(vtkRenderer* ren)
+void vtkPARCVolumeMapper::RenderRayImage(vtkRenderer* ren)
 {
   vtkInternals& in = *this->Internals;
   vtkPARCRasterizer::View view;

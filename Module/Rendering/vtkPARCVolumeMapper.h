@@ -189,10 +189,9 @@ public:
    * on the CPU (blocks of 4^3 supercells, empty ones crossed several at a time) from its
    * front and its back to where it first and last may meet one, and is cast between (one
    * segment, as DepthBuffer, usually tighter); shadow rays walk the same way instead of
-   * passes from the lights. It needs no GL pass, but costs 0.1-0.7 microseconds a ray: on
-   * this project's machine (2 cores, llvmpipe) it is 1.0-1.1x None on the dense MRI head
-   * and its isosurface, 2.9x on the embryo's bone (DepthBuffer 3.0x), and 0.8-1.0x on the
-   * small iron protein, where the depth pass takes 2 ms; Auto does not try it. Auto picks
+   * passes from the lights. It needs no GL pass, but walking costs each ray about as much
+   * as tens of empty samples, so it pays on large, sparse volumes and rarely beats a
+   * depth pass; Auto does not try it (Documentation/Features.md gives measurements). Auto picks
    * per volume, ray function and view: no pass when every
    * supercell may contribute (none can help), no sample when none may, and otherwise the
    * fastest of DepthBuffer, ColorBuffer, Both and None, measured: DepthBuffer first, then
@@ -340,10 +339,9 @@ public:
    * they are subcells): larger supercells mean fewer polygons to project, smaller ones
    * fewer samples in empty space (paper, section 2). Default 4 x 4 x 4: composite rays
    * leave out the samples of empty cells themselves, so samples in empty space cost little
-   * and the passes' polygons dominate. In a sweep on this machine (Auto, 400^2, sample
-   * distance 0.5) 4 was within 3-14% of the fastest size on the MRI head, the embryo, the
-   * tooth, the iron protein and the poship isosurface, and 2 up to 1.8x slower; on large
-   * volumes (10^8 voxels and more) larger supercells pay, which AutoSupercellSize finds.
+   * and the passes' polygons dominate; on large volumes (10^8 voxels and more) larger
+   * supercells pay, which AutoSupercellSize finds (the benchmark's supercell sweep shows
+   * the trade-off).
    * Setting a size turns AutoSupercellSize off: a size the user sets is kept.
    */
   virtual void SetSupercellSize(double x, double y, double z);
@@ -723,7 +721,7 @@ protected:
    * Render's middle phases for the renderer's camera: the ray image's view, the depth of
    * other geometry, each volume's PARC passes, the cast, Auto's measurements.
    */
-  void CastImage(vtkRenderer* ren);
+  void RenderRayImage(vtkRenderer* ren);
   /** Classifies and builds the volume's polygon models when their inputs changed. */
   bool PrepareModels(vtkVolumeState& volume, vtkVolume* prop);
   /**
