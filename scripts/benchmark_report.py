@@ -40,9 +40,12 @@ def column(values):
     return array
 
 
-def draw(series, out, title, xlabel, ylabel, log_x=False, log_y=False):
+AXIS_MARGIN = 1.15  # the axes' room beyond the values drawn (a factor on log axes)
+
+
+def draw(series, out, title, xlabel, ylabel, log_x=False, log_y=False, legend_left=False):
     """series: list of (name, xs, ys, colour, dashed), each drawn in its order. Writes a PNG
-    plot to out."""
+    plot to out, the legend at the top right (or left, where the lines rise to the right)."""
     view = vtkContextView()
     window = view.GetRenderWindow()
     window.SetOffScreenRendering(1)
@@ -53,12 +56,16 @@ def draw(series, out, title, xlabel, ylabel, log_x=False, log_y=False):
     chart.SetTitle(title)
     chart.SetShowLegend(True)
     chart.GetLegend().SetVerticalAlignment(vtkChartLegend.TOP)
-    chart.GetLegend().SetHorizontalAlignment(vtkChartLegend.RIGHT)
+    chart.GetLegend().SetHorizontalAlignment(vtkChartLegend.LEFT if legend_left else vtkChartLegend.RIGHT)
     tables = []  # the plots keep references, the tables must live until the render
+    shown = ([], [])  # every value drawn along x and y: the axes hold them all
     for name, xs, ys, colour, dashed in series:
         pairs = [(x, y) for x, y in zip(xs, ys) if (x > 0 or not log_x) and (y > 0 or not log_y)]
         if not pairs:
             continue
+        for p in pairs:
+            shown[0].append(p[0])
+            shown[1].append(p[1])
         table = vtkTable()
         xa, ya = column(p[0] for p in pairs), column(p[1] for p in pairs)
         xa.SetName(xlabel)
@@ -77,9 +84,16 @@ def draw(series, out, title, xlabel, ylabel, log_x=False, log_y=False):
         if dashed:  # a variant of the series before it, which the legend names
             plot.GetPen().SetLineType(vtkPen.DASH_LINE)
             plot.SetLegendVisibility(False)
-    for axis, label, log in ((vtkAxis.BOTTOM, xlabel, log_x), (vtkAxis.LEFT, ylabel, log_y)):
+    for axis, label, log, values in ((vtkAxis.BOTTOM, xlabel, log_x, shown[0]),
+                                     (vtkAxis.LEFT, ylabel, log_y, shown[1])):
         chart.GetAxis(axis).SetTitle(label)
         chart.GetAxis(axis).SetLogScale(log)
+        if values:  # VTK's automatic range can leave the largest points out
+            lo, hi = min(values), max(values)
+            lo, hi = (lo / AXIS_MARGIN, hi * AXIS_MARGIN) if log else (
+                lo - (AXIS_MARGIN - 1) * (hi - lo), hi + (AXIS_MARGIN - 1) * (hi - lo))
+            chart.GetAxis(axis).SetBehavior(vtkAxis.FIXED)
+            chart.GetAxis(axis).SetUnscaledRange(lo, hi)  # data values, also on log axes
     view.Render()
     grab = vtkWindowToImageFilter()
     grab.SetInput(window)

@@ -342,7 +342,8 @@ def plots(outdir, rows, images):
                                    lambda r, key=key: r["first_" + key], colour, True))
         name = "volume-size-time-%s.png" % kind
         title = "%s: warm frame (median) and first frame against volume size, %d^2" % (kind, images[0])
-        draw(series, os.path.join(outdir, name), title, "voxels", "seconds", True, True)
+        draw(series, os.path.join(outdir, name), title, "voxels", "seconds", True, True,
+             legend_left=True)
         print("![%s](%s)\n" % (title, name))
     series = []
     for i, (shade, shading) in enumerate(((0, "unshaded"), (1, "shaded"))):
@@ -357,7 +358,8 @@ def plots(outdir, rows, images):
                            lambda r: r["memory_size_parc"] / 2**20, PALETTE[4], kind != kinds[0]))
     title = "Memory a render adds against volume size (%s solid, %s dashed)" % (
         kinds[0], ", ".join(kinds[1:]) or "-")
-    draw(series, os.path.join(outdir, "volume-size-memory.png"), title, "voxels", "MiB", True, True)
+    draw(series, os.path.join(outdir, "volume-size-memory.png"), title, "voxels", "MiB", True, True,
+         legend_left=True)
     print("![%s](volume-size-memory.png)\n" % title)
     with open(os.path.join(outdir, "volume-size.csv"), "w") as f:
         f.write("series,x,y\n")

@@ -67,7 +67,6 @@ struct Session
 {
   const Settings& Options;
   vtkRenderWindow* Window;
-  vtkRenderer* Renderer;
   vtkPARCVolumeMapper* Mapper;
   vtkVolumeProperty* Property;
   State& Current;
@@ -234,7 +233,7 @@ std::string Help()
 Frames Run(const Settings& settings, vtkRenderWindow* window, vtkRenderer* renderer,
   vtkPARCVolumeMapper* mapper, vtkVolumeProperty* property, State& state)
 {
-  Session session{ settings, window, renderer, mapper, property, state, {}, {}, 0, 0, 0 };
+  Session session{ settings, window, mapper, property, state, {}, {}, 0, 0, 0 };
   session.Apply();
   session.Status->GetTextProperty()->SetFontSize(StatusFontSize);
   session.Status->GetTextProperty()->SetColor(1.0, 1.0, 0.6);
