@@ -190,10 +190,10 @@ public:
    * front and its back to where it first and last may meet one, and is cast between (one
    * segment, as DepthBuffer, usually tighter); shadow rays walk the same way instead of
    * passes from the lights. It needs no GL pass, but walking costs each ray about as much
-   * as tens of empty samples, so it pays on large, sparse volumes and rarely beats a
-   * depth pass; Auto does not try it (Documentation/Features.md gives measurements). Auto picks
-   * per volume, ray function and view: no pass when every
-   * supercell may contribute (none can help), no sample when none may, and otherwise the
+   * as tens of empty samples, so it pays on large, sparse volumes and rarely beats a depth
+   * pass; Auto does not try it (Documentation/Features.md gives measurements). Auto picks
+   * per volume, ray function and view: no pass when every supercell may contribute (none
+   * can help), no sample when none may, and otherwise the
    * fastest of DepthBuffer, ColorBuffer, Both and None, measured: DepthBuffer first, then
    * a mode is tried on a still frame only when the measured frames predict it faster
    * (GetAutoTrialsRemaining; interactive frames of a render-time budget try none). None is
