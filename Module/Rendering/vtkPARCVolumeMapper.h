@@ -701,40 +701,40 @@ protected:
    * Updates the input of the volume's port and converts its scalars when they changed;
    * false on bad input.
    */
-  bool PrepareField(vtkVolumeState& volume, vtkVolume* prop);
+  bool PrepareField(vtkVolumeState& state, vtkVolume* prop);
   /** Wraps the mask for port 0's volume, with a label map's functions (their fixes added
    * to fixes); false (nothing drawn) on a bad mask. */
-  bool PrepareMask(vtkVolumeState& volume, vtkVolumeProperty* property, std::string& fixes);
+  bool PrepareMask(vtkVolumeState& state, vtkVolumeProperty* property, std::string& fixes);
   /**
    * Converts the property and transform of prop (the vtkVolume of the volume's port) and
    * the renderer's lights into the caster's parameters.
    */
-  bool PrepareParameters(vtkVolumeState& volume, vtkRenderer* ren, vtkVolume* prop);
+  bool PrepareParameters(vtkVolumeState& state, vtkRenderer* ren, vtkVolume* prop);
   /// The range the colour table of a component spans (ColorRangeType): range, the data's,
   /// or the colour function's own when NATIVE asks for it and it has one.
   void ColorTableRange(vtkVolumeProperty* property, int component, double range[2]) const;
   /// The parameters and casters of the independent components after the first (from the
   /// first one's, prepared), given to the first one's caster; their transfer-function
   /// fixes are added to fixes.
-  bool PrepareComponents(vtkVolumeState& volume, vtkVolumeProperty* property, std::string& fixes);
+  bool PrepareComponents(vtkVolumeState& state, vtkVolumeProperty* property, std::string& fixes);
   /**
    * Render's middle phases for the renderer's camera: the ray image's view, the depth of
    * other geometry, each volume's PARC passes, the cast, Auto's measurements.
    */
   void RenderRayImage(vtkRenderer* ren);
   /** Classifies and builds the volume's polygon models when their inputs changed. */
-  bool PrepareModels(vtkVolumeState& volume, vtkVolume* prop);
+  bool PrepareModels(vtkVolumeState& state, vtkVolume* prop);
   /**
    * The supercell size of the volume's next classification: SupercellSize, scaled by
    * Auto's search (ACCELERATION_AUTO with AutoSupercellSize).
    */
-  void SupercellSizeOf(const vtkVolumeState& volume, double size[3]) const;
+  void SupercellSizeOf(const vtkVolumeState& state, double size[3]) const;
   /**
    * Classifies the volume's cells for its caster when their inputs changed (composite
    * volumes of one component, linear interpolation), in every acceleration mode: the
    * caster leaves out the samples of cells that cannot contribute.
    */
-  void PrepareCells(vtkVolumeState& volume, vtkVolume* prop);
+  void PrepareCells(vtkVolumeState& state, vtkVolume* prop);
   /**
    * A set-up step of this render begins (with ReportProgress): the progress text names it
    * and the progress (ProgressEvent) is `progress`; the render's casting then reports

@@ -150,31 +150,31 @@ void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
 int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   const vtkPARCVolumeMapper* self, int requested, const parc::Camera& camera)
 {
-  vtkVolumeState& in = *this;
+  vtkVolumeState& state = *this;
   if (requested != ACCELERATION_AUTO)
   {
     return requested;
   }
-  const parc::SupercellGrid& grid = in.Plan.GetGrid();
+  const parc::SupercellGrid& grid = state.Plan.GetGrid();
   const std::size_t pc = grid.GetNumberOfContributing();
   if (pc == grid.GetNumberOfSupercells())
   {
-    in.ModeSettledByClassification = true;
+    state.ModeSettledByClassification = true;
     return ACCELERATION_NONE; // every supercell may contribute: no pass can help
   }
   // Which pass pays off, if any, depends on the GL implementation (software GL makes the
   // passes dear), the data, the ray function and the view: measure.
-  const int* dims = in.Field.GetDimensions();
-  const parc::Vec3 centre = in.IndexToFrame.TransformPoint( // the eye is the frame's origin
+  const int* dims = state.Field.GetDimensions();
+  const parc::Vec3 centre = state.IndexToFrame.TransformPoint( // the eye is the frame's origin
     { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
-  in.Plan.Auto.SetView(camera.Direction, parc::Length(centre));
-  if (self->AutoSupercellSize && in.Plan.Sizes.IsSearching())
+  state.Plan.Auto.SetView(camera.Direction, parc::Length(centre));
+  if (self->AutoSupercellSize && state.Plan.Sizes.IsSearching())
   {
-    return AutoCandidates[in.Plan.Sizes.GetCandidate()]; // the search's frames take its pass
+    return AutoCandidates[state.Plan.Sizes.GetCandidate()]; // the search's frames take its pass
   }
   // No trial during interaction: a trial of a slow mode would break the frame budget.
-  return AutoCandidates[in.Plan.Auto.Choose(
-    in.Plan.GetModelVersion(), pc, camera.Width, camera.Height, !self->LastInteractive)];
+  return AutoCandidates[state.Plan.Auto.Choose(
+    state.Plan.GetModelVersion(), pc, camera.Width, camera.Height, !self->LastInteractive)];
 }
 
 //------------------------------------------------------------------------------
@@ -182,103 +182,104 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   vtkPARCVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
   const vtkPARCRasterizer::View& passView)
 {
-  vtkVolumeState& in = *this;
+  vtkVolumeState& state = *this;
   const int requested = self->AccelerationMode;
   vtkRenderWindow* window = ren->GetRenderWindow();
-  in.LastMode = ACCELERATION_NONE;
-  in.ModeSettledByClassification = false;
+  state.LastMode = ACCELERATION_NONE;
+  state.ModeSettledByClassification = false;
   // A slice takes one sample a ray and asks for no segments: no pass can pay off.
-  if (requested == ACCELERATION_NONE || in.Parameters.Blend == parc::BlendMode::Slice ||
-    !self->PrepareModels(in, vol))
+  if (requested == ACCELERATION_NONE || state.Parameters.Blend == parc::BlendMode::Slice ||
+    !self->PrepareModels(state, vol))
   {
-    in.ReleaseUnusedPasses(window, false, false);
-    return in.WholeRays;
+    state.ReleaseUnusedPasses(window, false, false);
+    return state.WholeRays;
   }
-  const parc::SupercellGrid& grid = in.Plan.GetGrid();
+  const parc::SupercellGrid& grid = state.Plan.GetGrid();
   if (grid.GetNumberOfContributing() == 0)
   {
-    in.LastMode = requested;
-    in.ModeSettledByClassification = true;
-    in.ReleaseUnusedPasses(window, false, false);
-    return in.NoRays; // nothing can show: no pass, no sample
+    state.LastMode = requested;
+    state.ModeSettledByClassification = true;
+    state.ReleaseUnusedPasses(window, false, false);
+    return state.NoRays; // nothing can show: no pass, no sample
   }
-  const int* dims = in.Field.GetDimensions();
-  if (!passView.Camera.MayMeetBox(
-        in.IndexToFrame, parc::Vec3{ 0, 0, 0 }, parc::Vec3(dims[0] - 1, dims[1] - 1, dims[2] - 1)))
+  const int* dims = state.Field.GetDimensions();
+  if (!passView.Camera.MayMeetBox(state.IndexToFrame, parc::Vec3{ 0, 0, 0 },
+        parc::Vec3(dims[0] - 1, dims[1] - 1, dims[2] - 1)))
   {
-    in.LastMode = requested;
-    return in.NoRays; // outside the view (another volume of the scene is not): no pass
+    state.LastMode = requested;
+    return state.NoRays; // outside the view (another volume of the scene is not): no pass
   }
-  const int mode = in.ChooseMode(self, requested, passView.Camera);
+  const int mode = state.ChooseMode(self, requested, passView.Camera);
   if (mode == ACCELERATION_NONE)
   {
-    in.ReleaseUnusedPasses(window, false, false);
-    return in.WholeRays;
+    state.ReleaseUnusedPasses(window, false, false);
+    return state.WholeRays;
   }
   if (mode == ACCELERATION_SUPERCELL_WALK)
   {
-    in.LastMode = mode;
-    in.ReleaseUnusedPasses(window, false, false, true);
-    return in.Plan.GetWalk(in.CoreVolume.WorldToIndex);
+    state.LastMode = mode;
+    state.ReleaseUnusedPasses(window, false, false, true);
+    return state.Plan.GetWalk(state.CoreVolume.WorldToIndex);
   }
-  const parc::Matrix4& indexToWorld = in.IndexToFrame;
+  const parc::Matrix4& indexToWorld = state.IndexToFrame;
   const bool depth = mode == ACCELERATION_DEPTH_BUFFER || mode == ACCELERATION_BOTH;
   const bool color = mode == ACCELERATION_COLOR_BUFFER || mode == ACCELERATION_BOTH;
   bool ok = true;
   if (depth)
   {
-    const std::uint64_t version = in.Plan.GetModelVersion();
-    const parc::PolygonModel& model =
-      in.Plan.GetDepthModel(in.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Depth, version));
-    std::vector<float> nearFar = in.DepthSource.ReleaseBuffer();
-    ok = in.Rasterizer->RenderDepth(window, model, version, indexToWorld, passView, nearFar);
-    if (in.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Depth, version))
+    const std::uint64_t version = state.Plan.GetModelVersion();
+    const parc::PolygonModel& model = state.Plan.GetDepthModel(
+      state.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Depth, version));
+    std::vector<float> nearFar = state.DepthSource.ReleaseBuffer();
+    ok = state.Rasterizer->RenderDepth(window, model, version, indexToWorld, passView, nearFar);
+    if (state.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Depth, version))
     {
-      in.Plan.ReleaseDepthVertices();
+      state.Plan.ReleaseDepthVertices();
     }
-    in.DepthSource.Set(passView.Camera, std::move(nearFar), &grid, in.CoreVolume.WorldToIndex);
-    in.PolygonCount += static_cast<vtkIdType>(in.Plan.GetDepthQuads());
+    state.DepthSource.Set(
+      passView.Camera, std::move(nearFar), &grid, state.CoreVolume.WorldToIndex);
+    state.PolygonCount += static_cast<vtkIdType>(state.Plan.GetDepthQuads());
   }
   if (ok && color)
   {
     const int axis = MajorAxis(indexToWorld, passView.Camera.Direction);
-    const std::uint64_t version = in.Plan.GetColorModelVersion(axis);
-    const parc::PolygonModel& model =
-      in.Plan.GetColorModel(axis, in.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Planes, version));
-    std::vector<std::uint32_t> bits = in.PlaneSource.ReleaseBuffer();
+    const std::uint64_t version = state.Plan.GetColorModelVersion(axis);
+    const parc::PolygonModel& model = state.Plan.GetColorModel(
+      axis, state.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Planes, version));
+    std::vector<std::uint32_t> bits = state.PlaneSource.ReleaseBuffer();
     int words = 0;
     std::vector<parc::Vec3> starts, directions;
-    passView.Camera.RayBounds(in.CoreVolume.WorldToIndex, starts, directions);
-    ok = in.Rasterizer->RenderPlanes(window, model, version, indexToWorld, passView,
-      parc::RayAxisSign(model, starts, directions), bits, words, in.PassCount);
-    if (in.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Planes, version))
+    passView.Camera.RayBounds(state.CoreVolume.WorldToIndex, starts, directions);
+    ok = state.Rasterizer->RenderPlanes(window, model, version, indexToWorld, passView,
+      parc::RayAxisSign(model, starts, directions), bits, words, state.PassCount);
+    if (state.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Planes, version))
     {
-      in.Plan.ReleaseColorVertices(axis);
+      state.Plan.ReleaseColorVertices(axis);
     }
-    in.PlaneSource.Set(passView.Camera, std::move(bits), words, &grid, axis, model.FirstPlane,
-      in.CoreVolume.WorldToIndex);
-    in.PlaneCount = model.PlaneCount;
-    in.PolygonCount += static_cast<vtkIdType>(in.Plan.GetColorQuads(axis));
+    state.PlaneSource.Set(passView.Camera, std::move(bits), words, &grid, axis, model.FirstPlane,
+      state.CoreVolume.WorldToIndex);
+    state.PlaneCount = model.PlaneCount;
+    state.PolygonCount += static_cast<vtkIdType>(state.Plan.GetColorQuads(axis));
   }
   if (!ok)
   {
-    if (!in.FallbackWarned)
+    if (!state.FallbackWarned)
     {
       vtkWarningWithObjectMacro(self, "PARC passes are not available ("
-          << in.Rasterizer->GetLastError() << "); casting unaccelerated.");
-      in.FallbackWarned = true;
+          << state.Rasterizer->GetLastError() << "); casting unaccelerated.");
+      state.FallbackWarned = true;
     }
-    in.PolygonCount = 0;
-    in.PlaneCount = in.PassCount = 0;
-    return in.WholeRays;
+    state.PolygonCount = 0;
+    state.PlaneCount = state.PassCount = 0;
+    return state.WholeRays;
   }
-  in.LastMode = mode;
-  in.ReleaseUnusedPasses(window, depth, color);
+  state.LastMode = mode;
+  state.ReleaseUnusedPasses(window, depth, color);
   if (mode == ACCELERATION_BOTH)
   {
-    return in.Both;
+    return state.Both;
   }
-  return depth ? static_cast<const parc::SegmentSource&>(in.DepthSource) : in.PlaneSource;
+  return depth ? static_cast<const parc::SegmentSource&>(state.DepthSource) : state.PlaneSource;
 }
 
 //------------------------------------------------------------------------------
@@ -286,15 +287,15 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   vtkRenderWindow* window, const std::vector<parc::Light>& lights, std::size_t index,
   const parc::Vec3& frame, bool planes, LightPassWork& work)
 {
-  vtkVolumeState& in = *this;
-  const parc::SupercellGrid& grid = in.Plan.GetGrid();
+  vtkVolumeState& state = *this;
+  const parc::SupercellGrid& grid = state.Plan.GetGrid();
   if (grid.GetNumberOfContributing() == 0)
   {
-    return &in.NoRays; // nothing in this volume can block a light
+    return &state.NoRays; // nothing in this volume can block a light
   }
   const parc::Light& light = lights[index];
   parc::LightFrame frameOfLight;
-  if (!parc::MakeLightFrame(light, in.IndexToFrame, in.Field.GetDimensions(), frameOfLight))
+  if (!parc::MakeLightFrame(light, state.IndexToFrame, state.Field.GetDimensions(), frameOfLight))
   {
     return nullptr;
   }
@@ -310,7 +311,7 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   };
   const int axis = planes ? MajorAxis(frameOfLight.IndexToLight, towardsCentre()) : -1;
   const std::uint64_t version =
-    axis < 0 ? in.Plan.GetModelVersion() : in.Plan.GetColorModelVersion(axis);
+    axis < 0 ? state.Plan.GetModelVersion() : state.Plan.GetColorModelVersion(axis);
   // What the passes depend on, in world coordinates.
   std::vector<double> key = { light.Positional ? 1.0 : 0.0, static_cast<double>(version),
     static_cast<double>(LightBufferSize), static_cast<double>(axis) };
@@ -322,14 +323,14 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   {
     for (int c = 0; c < 4; ++c)
     {
-      key.push_back(in.IndexToFrame(r, c) + (c == 3 ? frame[r] : 0.0));
+      key.push_back(state.IndexToFrame(r, c) + (c == 3 ? frame[r] : 0.0));
     }
   }
-  if (in.LightBuffers.size() < lights.size())
+  if (state.LightBuffers.size() < lights.size())
   {
-    in.LightBuffers.resize(lights.size());
+    state.LightBuffers.resize(lights.size());
   }
-  LightPasses& passes = in.LightBuffers[index];
+  LightPasses& passes = state.LightBuffers[index];
   passes.Source.Offset = -1.0 * eye; // render frame -> the light's frame (eye at 0)
   // The same world quantities come back through the render frame with rounding.
   const auto same = [](double a, double b) {
@@ -342,11 +343,11 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   }
   const double start = vtkTimerLog::GetUniversalTime();
   passes.Key.clear();
-  const bool uploaded = in.LightRasterizer->HasModel(
+  const bool uploaded = state.LightRasterizer->HasModel(
     window, planes ? vtkPARCRasterizer::Pass::Planes : vtkPARCRasterizer::Pass::Depth, version);
   const parc::PolygonModel& model =
-    planes ? in.Plan.GetColorModel(axis, uploaded) : in.Plan.GetDepthModel(uploaded);
-  const bool ok = in.LightRasterizer->RenderLight(
+    planes ? state.Plan.GetColorModel(axis, uploaded) : state.Plan.GetDepthModel(uploaded);
+  const bool ok = state.LightRasterizer->RenderLight(
     window, model, version, frameOfLight, LightBufferSize, &grid, passes.Source);
   work.Time += vtkTimerLog::GetUniversalTime() - start;
   work.Frusta += static_cast<int>(passes.Source.GetFrustumCount());
@@ -359,40 +360,40 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
 }
 
 //------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::PrepareCells(vtkVolumeState& in, vtkVolume* vol)
+void vtkPARCVolumeMapper::PrepareCells(vtkVolumeState& state, vtkVolume* vol)
 {
-  if (!in.Caster.ReadsContributingCells())
+  if (!state.Caster.ReadsContributingCells())
   {
-    in.Caster.SetContributingCells(nullptr);
-    in.Plan.ReleaseCells();
-    in.CellsClassified = ClassificationKey();
+    state.Caster.SetContributingCells(nullptr);
+    state.Plan.ReleaseCells();
+    state.CellsClassified = ClassificationKey();
     return;
   }
-  ClassificationKey key = in.Key(this, vol);
+  ClassificationKey key = state.Key(this, vol);
   std::fill_n(key.Size, 3, 0.0); // cells do not depend on the supercells
-  if (!(key == in.CellsClassified))
+  if (!(key == state.CellsClassified))
   {
-    in.CellsClassified = key;
+    state.CellsClassified = key;
     this->ReportSetUp("classifying the cells", SetUpProgress::Cells);
     parc::ContributionRule rule;
-    rule.Set(in.Parameters, in.Field.GetRange());
-    in.Plan.ClassifyCells(in.Field, in.FieldVersion, rule);
+    rule.Set(state.Parameters, state.Field.GetRange());
+    state.Plan.ClassifyCells(state.Field, state.FieldVersion, rule);
   }
-  in.Caster.SetContributingCells(&in.Plan.GetContributingCells());
+  state.Caster.SetContributingCells(&state.Plan.GetContributingCells());
 }
 
 //------------------------------------------------------------------------------
 ClassificationKey vtkPARCVolumeMapper::vtkVolumeState::Key(
   vtkPARCVolumeMapper* self, vtkVolume* vol) const
 {
-  const vtkVolumeState& in = *this;
+  const vtkVolumeState& state = *this;
   ClassificationKey key;
-  key.FieldVersion = in.FieldVersion;
+  key.FieldVersion = state.FieldVersion;
   key.Property = vol->GetProperty();
   key.PropertyTime = vol->GetProperty()->GetMTime();
-  key.Blend = self->GetInputBlendMode(in.Port);
-  key.Labels = in.Parameters.Labels.size();
-  for (const parc::LabelFunctions& label : in.Parameters.Labels)
+  key.Blend = self->GetInputBlendMode(state.Port);
+  key.Labels = state.Parameters.Labels.size();
+  for (const parc::LabelFunctions& label : state.Parameters.Labels)
   {
     if (vtkPiecewiseFunction* opacity = vol->GetProperty()->GetLabelScalarOpacity(label.Label))
     {
@@ -400,33 +401,34 @@ ClassificationKey vtkPARCVolumeMapper::vtkVolumeState::Key(
     }
   }
   std::copy_n(self->AverageIPScalarRange, 2, key.Average);
-  self->SupercellSizeOf(in, key.Size);
+  self->SupercellSizeOf(state, key.Size);
   return key;
 }
 
 //------------------------------------------------------------------------------
-bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
+bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& state, vtkVolume* vol)
 {
-  const ClassificationKey key = in.Key(this, vol);
-  if (key == in.Classified)
+  const ClassificationKey key = state.Key(this, vol);
+  if (key == state.Classified)
   {
-    return in.Plan.GetGrid().GetNumberOfSupercells() > 0; // empty after a failed one
+    return state.Plan.GetGrid().GetNumberOfSupercells() > 0; // empty after a failed one
   }
-  in.Classified = key;
+  state.Classified = key;
   this->ReportSetUp("classifying the supercells", SetUpProgress::Supercells);
   // One rule per component: a supercell is PC where any component may contribute.
-  std::vector<const parc::ScalarField*> fields{ &in.Field };
-  std::vector<parc::ContributionRule> rules(1 + in.Components.size());
-  rules[0].Set(in.Parameters, in.Field.GetRange());
-  for (std::size_t c = 0; c < in.Components.size(); ++c)
+  std::vector<const parc::ScalarField*> fields{ &state.Field };
+  std::vector<parc::ContributionRule> rules(1 + state.Components.size());
+  rules[0].Set(state.Parameters, state.Field.GetRange());
+  for (std::size_t c = 0; c < state.Components.size(); ++c)
   {
-    const vtkVolumeState::ComponentState& component = *in.Components[c];
+    const vtkVolumeState::ComponentState& component = *state.Components[c];
     fields.push_back(&component.Field);
     rules[c + 1].Set(component.Parameters, component.Field.GetRange());
   }
   double requested[3], size[3];
-  this->SupercellSizeOf(in, requested);
-  if (!in.Plan.Classify(fields, in.FieldVersion, rules, in.Parameters.Interp, requested, size))
+  this->SupercellSizeOf(state, requested);
+  if (!state.Plan.Classify(
+        fields, state.FieldVersion, rules, state.Parameters.Interp, requested, size))
   {
     vtkErrorMacro("Invalid supercell size (" << requested[0] << ", " << requested[1] << ", "
                                              << requested[2] << "): casting unaccelerated.");
@@ -436,7 +438,7 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
   {
     vtkWarningMacro("Supercell size (" << requested[0] << ", " << requested[1] << ", "
       << requested[2] << ") would make "
-      << parc::SupercellGrid::CountSupercells(in.Plan.GetGrid().GetCellDimensions(), requested)
+      << parc::SupercellGrid::CountSupercells(state.Plan.GetGrid().GetCellDimensions(), requested)
       << " supercells, more than the " << parc::SupercellGrid::MaxSupercells
       << " allowed: using (" << size[0] << ", " << size[1] << ", " << size[2] << ").");
   }
@@ -444,10 +446,10 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& in, vtkVolume* vol)
 }
 
 //------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::SupercellSizeOf(const vtkVolumeState& in, double size[3]) const
+void vtkPARCVolumeMapper::SupercellSizeOf(const vtkVolumeState& state, double size[3]) const
 {
   const double scale = this->AccelerationMode == ACCELERATION_AUTO && this->AutoSupercellSize
-    ? in.Plan.Sizes.GetScale()
+    ? state.Plan.Sizes.GetScale()
     : 1.0;
   for (int a = 0; a < 3; ++a)
   {

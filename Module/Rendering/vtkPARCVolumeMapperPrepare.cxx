@@ -163,15 +163,15 @@ std::vector<std::pair<int, vtkVolume*>> CollectInputs(vtkPARCVolumeMapper* mappe
 
 //------------------------------------------------------------------------------
 bool vtkPARCVolumeMapper::PrepareMask(
-  vtkVolumeState& in, vtkVolumeProperty* property, std::string& fixes)
+  vtkVolumeState& state, vtkVolumeProperty* property, std::string& fixes)
 {
-  parc::CastParameters& p = in.Parameters;
+  parc::CastParameters& p = state.Parameters;
   const bool labelMap = this->MaskType == LabelMapMaskType;
   if (labelMap && this->MaskBlendFactor == 0.f)
   {
     return true; // the default functions everywhere, as VTK's GPU mapper draws it
   }
-  if (labelMap && (p.Blend != parc::BlendMode::Composite || !in.Components.empty()))
+  if (labelMap && (p.Blend != parc::BlendMode::Composite || !state.Components.empty()))
   {
     vtkErrorMacro("A label-map mask applies to composite blending of one component; "
                   "nothing is drawn.");
@@ -186,7 +186,7 @@ bool vtkPARCVolumeMapper::PrepareMask(
     return false;
   }
   vtkDataArray* values = this->MaskInput->GetPointData()->GetScalars();
-  const int* fieldDims = in.Field.GetDimensions();
+  const int* fieldDims = state.Field.GetDimensions();
   int dims[3];
   this->MaskInput->GetDimensions(dims);
   if (!values || !std::equal(dims, dims + 3, fieldDims))
@@ -197,24 +197,24 @@ bool vtkPARCVolumeMapper::PrepareMask(
     return false;
   }
   const vtkMTimeType time = std::max(this->MaskInput->GetMTime(), values->GetMTime());
-  if (values != in.MaskArray || time != in.MaskTime)
+  if (values != state.MaskArray || time != state.MaskTime)
   {
     std::size_t replaced = 0;
     std::string error;
-    if (!parc::vtk::WrapScalars(values, dims, in.Mask, replaced, error))
+    if (!parc::vtk::WrapScalars(values, dims, state.Mask, replaced, error))
     {
       vtkErrorMacro("The mask: " << error << " Nothing is drawn.");
-      in.MaskArray = nullptr;
+      state.MaskArray = nullptr;
       return false;
     }
-    in.MaskArray = values;
-    in.MaskTime = time;
+    state.MaskArray = values;
+    state.MaskTime = time;
   }
-  p.Mask = &in.Mask;
+  p.Mask = &state.Mask;
   if (labelMap)
   {
     const std::string own = parc::vtk::ConvertLabels(
-      property, in.Field.GetRange(), p, p.Labels, in.GradientUnit);
+      property, state.Field.GetRange(), p, p.Labels, state.GradientUnit);
     parc::vtk::AppendSentence(fixes, own);
     p.MaskBlendFactor = this->MaskBlendFactor;
     if (p.Labels.empty())
@@ -256,9 +256,9 @@ bool vtkPARCVolumeMapper::PrepareVolumes(vtkRenderer* ren, vtkVolume* vol)
 }
 
 //------------------------------------------------------------------------------
-bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
+bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& state, vtkVolume* prop)
 {
-  const int port = in.Port;
+  const int port = state.Port;
   vtkAlgorithm* producer =
     this->GetNumberOfInputConnections(port) > 0 ? this->GetInputAlgorithm(port, 0) : nullptr;
   if (!producer)
@@ -303,8 +303,8 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
     vtkErrorMacro(<< (cellFlag ? "The image's cells: " : "") << error << " Nothing is drawn.");
     return false;
   }
-  in.CellOffset = cellFlag ? 0.5 : 0.0;
-  in.GradientUnit = parc::vtk::GradientUnit(image);
+  state.CellOffset = cellFlag ? 0.5 : 0.0;
+  state.GradientUnit = parc::vtk::GradientUnit(image);
   // Dependent components (vtkVolumeProperty::IndependentComponentsOff): opacity and
   // gradient from the last component, colour from the others.
   const int components = scalars->GetNumberOfComponents();
@@ -328,28 +328,28 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
   }
   const int component = dependent ? components - 1 : 0;
   const vtkMTimeType time = std::max(image->GetMTime(), scalars->GetMTime());
-  if (scalars == in.FieldArray && time == in.FieldTime && component == in.FieldComponent)
+  if (scalars == state.FieldArray && time == state.FieldTime && component == state.FieldComponent)
   {
     return true;
   }
   this->ReportSetUp("reading the scalars", SetUpProgress::Scalars);
   std::size_t replaced = 0;
-  in.FieldArray = nullptr;
-  in.Components.clear();
-  if (!parc::vtk::WrapScalars(scalars, dims, in.Field, replaced, error, component))
+  state.FieldArray = nullptr;
+  state.Components.clear();
+  if (!parc::vtk::WrapScalars(scalars, dims, state.Field, replaced, error, component))
   {
     vtkErrorMacro(<< error << " Nothing is drawn.");
     return false;
   }
-  bool copied = in.Field.GetMemorySize() > 0;
+  bool copied = state.Field.GetMemorySize() > 0;
   for (int c = 1; !dependent && c < components; ++c)
   {
-    in.Components.push_back(std::make_unique<vtkVolumeState::ComponentState>());
+    state.Components.push_back(std::make_unique<vtkVolumeState::ComponentState>());
     std::size_t others = 0;
-    if (!parc::vtk::WrapScalars(scalars, dims, in.Components.back()->Field, others, error, c))
+    if (!parc::vtk::WrapScalars(scalars, dims, state.Components.back()->Field, others, error, c))
     {
       vtkErrorMacro(<< error << " Nothing is drawn.");
-      in.Components.clear();
+      state.Components.clear();
       return false;
     }
     copied = copied || others > 0;
@@ -358,7 +358,7 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
   {
     vtkErrorMacro("Several components with non-finite values are not supported (a replaced "
                   "copy holds one component); nothing is drawn.");
-    in.Components.clear();
+    state.Components.clear();
     return false;
   }
   if (replaced > 0)
@@ -367,18 +367,18 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& in, vtkVolume* prop)
                     << " non-finite scalars were replaced: NaN and -inf by the smallest, +inf "
                        "by the largest finite value.");
   }
-  parc::vtk::OwnedCellBox(image, in.CellOffset, in.OwnedLo, in.OwnedHi);
-  in.FieldArray = scalars;
-  in.FieldTime = time;
-  in.FieldComponent = component;
-  in.DependentComponents = dependent ? components : 0;
-  ++in.FieldVersion;
+  parc::vtk::OwnedCellBox(image, state.CellOffset, state.OwnedLo, state.OwnedHi);
+  state.FieldArray = scalars;
+  state.FieldTime = time;
+  state.FieldComponent = component;
+  state.DependentComponents = dependent ? components : 0;
+  ++state.FieldVersion;
   int cells[3]; // another volume: another best size
   for (int a = 0; a < 3; ++a)
   {
-    cells[a] = in.Field.GetDimensions()[a] - 1;
+    cells[a] = state.Field.GetDimensions()[a] - 1;
   }
-  in.Plan.Sizes.Begin(cells, this->SupercellSize);
+  state.Plan.Sizes.Begin(cells, this->SupercellSize);
   return true;
 }
 
@@ -426,10 +426,11 @@ bool ConvertSlicePlane(
 }
 
 //------------------------------------------------------------------------------
-bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren, vtkVolume* vol)
+bool vtkPARCVolumeMapper::PrepareParameters(
+  vtkVolumeState& state, vtkRenderer* ren, vtkVolume* vol)
 {
-  parc::CastParameters& p = in.Parameters;
-  const int blend = this->GetInputBlendMode(in.Port);
+  parc::CastParameters& p = state.Parameters;
+  const int blend = this->GetInputBlendMode(state.Port);
   if (!parc::vtk::ConvertBlendMode(blend, p.Blend))
   {
     vtkErrorMacro("Blend mode " << blend << " is not supported; nothing is drawn.");
@@ -438,18 +439,18 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   vtkVolumeProperty* property = vol->GetProperty();
   if (!property)
   {
-    vtkErrorMacro("The volume of port " << in.Port << " has no property; nothing is drawn.");
+    vtkErrorMacro("The volume of port " << state.Port << " has no property; nothing is drawn.");
     return false;
   }
   // With 2 dependent components the colour function maps the first one's range.
   double colorRange[2];
-  std::copy_n(in.Field.GetRange(), 2, colorRange);
-  if (in.DependentComponents == 2)
+  std::copy_n(state.Field.GetRange(), 2, colorRange);
+  if (state.DependentComponents == 2)
   {
-    in.FieldArray->GetRange(colorRange, 0);
+    state.FieldArray->GetRange(colorRange, 0);
   }
   this->ColorTableRange(property, 0, colorRange);
-  if (!in.Components.empty() &&
+  if (!state.Components.empty() &&
     !(p.Blend == parc::BlendMode::Composite || p.Blend == parc::BlendMode::MaximumIntensity ||
       p.Blend == parc::BlendMode::MinimumIntensity))
   {
@@ -458,10 +459,10 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
                   << blend << "; nothing is drawn.");
     return false;
   }
-  std::string fixes = parc::vtk::ConvertProperty(property, colorRange, p, 0, in.GradientUnit);
-  p.ComponentWeight = in.Components.empty() ? 1.0 : property->GetComponentWeight(0);
+  std::string fixes = parc::vtk::ConvertProperty(property, colorRange, p, 0, state.GradientUnit);
+  p.ComponentWeight = state.Components.empty() ? 1.0 : property->GetComponentWeight(0);
   constexpr float UnsignedCharToUnit = 1.f / 255.f;
-  p.ColorShiftCount = in.DependentComponents == 0 ? 0 : in.DependentComponents - 1;
+  p.ColorShiftCount = state.DependentComponents == 0 ? 0 : state.DependentComponents - 1;
   for (int c = 0; c < p.ColorShiftCount; ++c)
   {
     p.ColorShifts[c] = c - p.ColorShiftCount; // the components before the opacity's
@@ -489,22 +490,22 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   }
   p.AverageRange[0] = this->AverageIPScalarRange[0];
   p.AverageRange[1] = this->AverageIPScalarRange[1];
-  std::copy_n(in.Field.GetRange(), 2, p.IntensityRange);
+  std::copy_n(state.Field.GetRange(), 2, p.IntensityRange);
   p.TerminationOpacity = this->TerminationOpacity;
   p.Mask = nullptr;
   p.Labels.clear();
-  if (in.Port == 0 && this->MaskInput && !this->PrepareMask(in, property, fixes))
+  if (state.Port == 0 && this->MaskInput && !this->PrepareMask(state, property, fixes))
   {
     return false;
   }
 
   // The core sees world coordinates minus the camera position, as the passes' views do.
   const parc::Vec3 frame = parc::vtk::FrameOrigin(ren);
-  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(in.Port, 0));
-  in.IndexToFrame = IndexToFrame(image, vol, frame, in.CellOffset);
-  const parc::Matrix4& indexToWorld = in.IndexToFrame;
-  in.CoreVolume = { &in.Field, &p };
-  if (!in.CoreVolume.SetIndexToWorld(indexToWorld))
+  vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(state.Port, 0));
+  state.IndexToFrame = IndexToFrame(image, vol, frame, state.CellOffset);
+  const parc::Matrix4& indexToWorld = state.IndexToFrame;
+  state.CoreVolume = { &state.Field, &p };
+  if (!state.CoreVolume.SetIndexToWorld(indexToWorld))
   {
     vtkErrorMacro("The volume's index-to-world transform is singular (zero scale?).");
     return false;
@@ -514,13 +515,13 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
   p.SampleDistance = this->SampleDistance > 0.0 ? this->SampleDistance : 0.5 * smallestStep;
   if (this->LockSampleDistanceToInputSpacing)
   {
-    p.SampleDistance = SpacingLockedSampleDistance(indexToWorld, in.Field.GetNumberOfValues());
+    p.SampleDistance = SpacingLockedSampleDistance(indexToWorld, state.Field.GetNumberOfValues());
   }
   if (this->LastInteractive && this->InteractiveSampleDistance > p.SampleDistance)
   {
     p.SampleDistance = this->InteractiveSampleDistance;
   }
-  const double diagonal = VolumeDiagonal(indexToWorld, in.Field.GetDimensions());
+  const double diagonal = VolumeDiagonal(indexToWorld, state.Field.GetDimensions());
   if (std::isnan(this->SampleDistance) || !std::isfinite(p.SampleDistance) ||
     p.SampleDistance * MaxSamplesPerDiagonal < diagonal)
   {
@@ -532,7 +533,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
                                        "drawn.");
     return false;
   }
-  if (in.Port == 0)
+  if (state.Port == 0)
   {
     this->LastSampleDistance = p.SampleDistance;
   }
@@ -543,12 +544,12 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
                   "normal as the property's SliceFunction; nothing is drawn.");
     return false;
   }
-  p.OwnedLo = in.OwnedLo;
-  p.OwnedHi = in.OwnedHi;
+  p.OwnedLo = state.OwnedLo;
+  p.OwnedHi = state.OwnedHi;
   p.Crop.Enabled = this->Cropping != 0;
   if (p.Crop.Enabled)
   {
-    ConvertCropping(image, in.CellOffset, this->CroppingRegionPlanes,
+    ConvertCropping(image, state.CellOffset, this->CroppingRegionPlanes,
       this->CroppingRegionFlags, p.Crop);
   }
   if (p.Shade)
@@ -565,9 +566,9 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
     p.Lights.clear();
   }
   // The quantized normals are of one component: several are shaded exactly.
-  in.PrepareShadingModel(
-    this->ShadingModel == SHADING_QUANTIZED_NORMALS && in.Components.empty(), ren);
-  if (!in.Caster.Prepare(in.CoreVolume) || !this->PrepareComponents(in, property, fixes))
+  state.PrepareShadingModel(
+    this->ShadingModel == SHADING_QUANTIZED_NORMALS && state.Components.empty(), ren);
+  if (!state.Caster.Prepare(state.CoreVolume) || !this->PrepareComponents(state, property, fixes))
   {
     vtkErrorMacro("Invalid rendering parameters (sample distance " << p.SampleDistance
                                                                    << ", opacity unit distance "
@@ -575,44 +576,44 @@ bool vtkPARCVolumeMapper::PrepareParameters(vtkVolumeState& in, vtkRenderer* ren
                                                                    << ").");
     return false;
   }
-  if (!fixes.empty() && property->GetMTime() != in.FixesWarnedTime)
+  if (!fixes.empty() && property->GetMTime() != state.FixesWarnedTime)
   {
     vtkWarningMacro(<< fixes);
-    in.FixesWarnedTime = property->GetMTime();
+    state.FixesWarnedTime = property->GetMTime();
   }
   return true;
 }
 
 //------------------------------------------------------------------------------
 bool vtkPARCVolumeMapper::PrepareComponents(
-  vtkVolumeState& in, vtkVolumeProperty* property, std::string& fixes)
+  vtkVolumeState& state, vtkVolumeProperty* property, std::string& fixes)
 {
   std::vector<parc::RayCaster::Component> others;
-  for (std::size_t i = 0; i < in.Components.size(); ++i)
+  for (std::size_t i = 0; i < state.Components.size(); ++i)
   {
     const int c = static_cast<int>(i) + 1;
-    vtkVolumeState::ComponentState& component = *in.Components[i];
+    vtkVolumeState::ComponentState& component = *state.Components[i];
     // Component 0's settings, with the component's own transfer functions and shading.
     parc::CastParameters& q = component.Parameters;
-    q = in.Parameters;
+    q = state.Parameters;
     const double* range = component.Field.GetRange();
     double colorRange[2] = { range[0], range[1] };
     this->ColorTableRange(property, c, colorRange);
     const std::string own =
-      parc::vtk::ConvertProperty(property, colorRange, q, c, in.GradientUnit);
+      parc::vtk::ConvertProperty(property, colorRange, q, c, state.GradientUnit);
     if (!own.empty())
     {
       parc::vtk::AppendSentence(fixes, "Component " + std::to_string(c) + ": " + own);
     }
     q.ComponentWeight = property->GetComponentWeight(c);
     std::copy_n(range, 2, q.IntensityRange);
-    if (!component.Caster.Prepare({ &component.Field, &q, in.CoreVolume.WorldToIndex }))
+    if (!component.Caster.Prepare({ &component.Field, &q, state.CoreVolume.WorldToIndex }))
     {
       return false;
     }
     others.push_back({ &component.Caster, c });
   }
-  return in.Caster.SetComponents(std::move(others));
+  return state.Caster.SetComponents(std::move(others));
 }
 
 //------------------------------------------------------------------------------
