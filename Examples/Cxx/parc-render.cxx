@@ -566,6 +566,13 @@ int main(int argc, char* argv[])
     light->SetIntensity(1.0 / o.Lights.size());
     renderer->AddLight(light);
   }
+  // VTK's render windows here are X windows, also off screen: without a display VTK aborts.
+  const char* display = std::getenv("DISPLAY");
+  if (!display || !*display)
+  {
+    Fail("no X display (DISPLAY is not set): run it on a desktop or under Xvfb "
+         "(scripts/xvfb.sh parc-render ...)");
+  }
   vtkNew<vtkRenderWindow> window;
   window->SetOffScreenRendering(1);
   window->SetMultiSamples(o.MultiSamples);
