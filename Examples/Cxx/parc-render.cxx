@@ -329,6 +329,18 @@ Options Parse(int argc, char* argv[])
   {
     Fail("--resample takes a positive factor");
   }
+  if (!o.Playback.empty() && !o.Interactive)
+  {
+    Fail("--playback plays an interaction: it needs --interactive");
+  }
+  if (!o.Playback.empty() && !std::filesystem::is_regular_file(o.Playback))
+  {
+    Fail("no such interaction log: " + o.Playback);
+  }
+  if (o.ImageSampleDistance != 0.0 && !(o.ImageSampleDistance >= 1.0))
+  {
+    Fail("--image-sample-distance takes a distance of at least 1 pixel");
+  }
   if (o.BudgetRate < 0.0)
   {
     Fail("--budget takes a positive rate in frames per second");
