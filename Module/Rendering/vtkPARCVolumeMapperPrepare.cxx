@@ -171,15 +171,13 @@ bool vtkPARCVolumeMapper::PrepareMask(
   {
     return true; // the default functions everywhere, as VTK's GPU mapper draws it
   }
-  if (labelMap && (p.Blend != parc::BlendMode::Composite || !state.Components.empty()))
+  if (labelMap && (!parc::TraitsOf(p.Blend).AppliesLabels || !state.Components.empty()))
   {
     vtkErrorMacro("A label-map mask applies to composite blending of one component; "
                   "nothing is drawn.");
     return false;
   }
-  if (!labelMap &&
-    !(p.Blend == parc::BlendMode::Composite || p.Blend == parc::BlendMode::IsoSurface ||
-      p.Blend == parc::BlendMode::Additive))
+  if (!labelMap && !parc::TraitsOf(p.Blend).AppliesMask)
   {
     vtkErrorMacro("A binary mask applies to composite, isosurface and additive blending; "
                   "nothing is drawn.");
@@ -450,9 +448,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(
     state.FieldArray->GetRange(colorRange, 0);
   }
   this->ColorTableRange(property, 0, colorRange);
-  if (!state.Components.empty() &&
-    !(p.Blend == parc::BlendMode::Composite || p.Blend == parc::BlendMode::MaximumIntensity ||
-      p.Blend == parc::BlendMode::MinimumIntensity))
+  if (!state.Components.empty() && !parc::TraitsOf(p.Blend).CombinesComponents)
   {
     vtkErrorMacro("Independent components are rendered with composite, maximum or minimum "
                   "intensity blending, not blend mode "

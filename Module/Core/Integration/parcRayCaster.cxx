@@ -155,7 +155,7 @@ bool RayCaster::Prepare(const Volume& volume)
     return a.Label < b.Label;
   };
   if (!labels.empty() &&
-    (!parameters->Mask || parameters->Blend != BlendMode::Composite ||
+    (!parameters->Mask || !TraitsOf(parameters->Blend).AppliesLabels ||
       !std::is_sorted(labels.begin(), labels.end(), byLabel) || !(labels[0].Label > 0)))
   {
     return false; // a label map, for composite blending
@@ -167,11 +167,10 @@ bool RayCaster::Prepare(const Volume& volume)
   }
   if (const ScalarField* mask = parameters->Mask)
   {
-    // A mask of the field's dimensions, for the ray functions that composite samples (a
-    // slice does not apply it).
+    // A mask of the field's dimensions, for the ray functions that apply it (a slice takes
+    // one and ignores it).
     if (!std::equal(dims, dims + 3, mask->GetDimensions()) ||
-      !(blend == BlendMode::Composite || blend == BlendMode::IsoSurface ||
-        blend == BlendMode::Additive || blend == BlendMode::Slice))
+      !(TraitsOf(blend).AppliesMask || blend == BlendMode::Slice))
     {
       return false;
     }
@@ -179,8 +178,7 @@ bool RayCaster::Prepare(const Volume& volume)
   RenderConstants& k = this->Constants;
   const auto perUnit =
     static_cast<float>(parameters->SampleDistance / parameters->OpacityUnitDistance);
-  const bool uncorrected = blend == BlendMode::Additive || blend == BlendMode::AverageIntensity;
-  k.OpacityExponent = uncorrected ? 1.f : perUnit;
+  k.OpacityExponent = TraitsOf(blend).CorrectsOpacity ? perUnit : 1.f;
   k.OpacityRoots = 0;
   for (int m = 1; m <= RenderConstants::MaxOpacityRoots; ++m)
   {
@@ -189,7 +187,7 @@ bool RayCaster::Prepare(const Volume& volume)
       k.OpacityRoots = m;
     }
   }
-  k.OpacityScale = blend == BlendMode::Additive ? perUnit : 1.f;
+  k.OpacityScale = TraitsOf(blend).ScalesOpacity ? perUnit : 1.f;
   k.ComponentWeight = static_cast<float>(parameters->ComponentWeight);
   double constant = 1.0;
   k.GradientOpacityConstant =
@@ -288,9 +286,7 @@ bool RayCaster::SetComponents(std::vector<Component> components)
   {
     return true;
   }
-  if (!p || components.size() >= MaxComponents ||
-    !(p->Blend == BlendMode::Composite || p->Blend == BlendMode::MaximumIntensity ||
-      p->Blend == BlendMode::MinimumIntensity))
+  if (!p || components.size() >= MaxComponents || !TraitsOf(p->Blend).CombinesComponents)
   {
     return false;
   }

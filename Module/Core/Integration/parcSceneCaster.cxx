@@ -15,18 +15,6 @@ namespace
 /// still cast (SceneCaster::CastRay).
 constexpr double StopMarginSteps = 2.0;
 
-/// Whether a volume of this ray function can stop a ray by its own opacity.
-bool CanStopRay(BlendMode blend)
-{
-  return blend == BlendMode::Composite || blend == BlendMode::IsoSurface;
-}
-
-/// Where a volume of this ray function comes in SceneCaster's cast order.
-int CastRank(BlendMode blend)
-{
-  return blend == BlendMode::IsoSurface ? 0 : blend == BlendMode::Composite ? 2 : 1;
-}
-
 /// The first lattice index k of member `member` (sample distance dt) whose sample at ray
 /// parameter k dt comes after an event at t of member `from` in the merge by (ray
 /// parameter, member index); the lattice position is computed as the caster computes it.
@@ -61,7 +49,7 @@ bool SceneCaster::SetMembers(std::vector<Member> members, double terminationOpac
   this->CastOrder.resize(this->Members.size());
   std::iota(this->CastOrder.begin(), this->CastOrder.end(), std::size_t(0));
   const auto rank = [this](std::size_t v) {
-    return CastRank(this->Members[v].Caster->GetParameters()->Blend);
+    return TraitsOf(this->Members[v].Caster->GetParameters()->Blend).CastRank;
   };
   std::stable_sort(this->CastOrder.begin(), this->CastOrder.end(),
     [&rank](std::size_t a, std::size_t b) { return rank(a) < rank(b); });
@@ -137,7 +125,7 @@ void SceneCaster::CastRay(const RayQuery& query, std::vector<Segment>& segments,
   // at or before it, and the sample after it that an isosurface crossing before it is
   // found with. The others give their whole-ray result.
   auto clampFor = [&](const CastParameters& p) {
-    clamped.Path.TMax = CanStopRay(p.Blend)
+    clamped.Path.TMax = TraitsOf(p.Blend).StopsRays
       ? std::min(query.Path.TMax, stop + StopMarginSteps * p.SampleDistance)
       : query.Path.TMax;
   };
@@ -153,7 +141,7 @@ void SceneCaster::CastRay(const RayQuery& query, std::vector<Segment>& segments,
     clampFor(p);
     m.Caster->CastRay(
       clamped, *m.Source, segments, ranges, own, stats[v], nullptr, &events[v], shadows);
-    if (CanStopRay(p.Blend) && !events[v].empty() && !(own[3] < p.TerminationOpacity))
+    if (TraitsOf(p.Blend).StopsRays && !events[v].empty() && !(own[3] < p.TerminationOpacity))
     {
       stop = std::min(stop, events[v].back().T);
     }

@@ -32,6 +32,51 @@ enum class BlendMode
   Slice
 };
 
+/// What the casters and the mapper need to know of a ray function, in one table
+/// (TraitsOf): a new blend mode is a row here, besides its ray function, its contribution
+/// rule and its VTK conversion.
+struct BlendTraits
+{
+  /// Its own opacity can stop a ray (composite, isosurface); in a scene, for every volume.
+  bool StopsRays;
+  /// Where a volume of it comes in a scene's cast order: isosurfaces first (their opacity
+  /// stops rays soonest and cheapest), the whole-ray functions next, composite last.
+  int CastRank;
+  /// Its opacity is corrected for the sample distance, 1 - (1 - a)^(dt / unit distance)
+  /// (not additive or average intensity).
+  bool CorrectsOpacity;
+  /// Its opacity is scaled by dt / unit distance instead (additive).
+  bool ScalesOpacity;
+  /// It combines independent components (composite, maximum and minimum intensity).
+  bool CombinesComponents;
+  /// A binary mask hides its samples (composite, isosurface, additive).
+  bool AppliesMask;
+  /// A label map's functions apply to its samples (composite).
+  bool AppliesLabels;
+};
+
+constexpr BlendTraits TraitsOf(BlendMode blend)
+{
+  //             stops  rank  corrects  scales  components  mask   labels
+  switch (blend)
+  {
+    case BlendMode::Composite:
+      return { true, 2, true, false, true, true, true };
+    case BlendMode::MaximumIntensity:
+    case BlendMode::MinimumIntensity:
+      return { false, 1, true, false, true, false, false };
+    case BlendMode::AverageIntensity:
+      return { false, 1, false, false, false, false, false };
+    case BlendMode::Additive:
+      return { false, 1, false, true, false, true, false };
+    case BlendMode::IsoSurface:
+      return { true, 0, true, false, false, true, false };
+    case BlendMode::Slice:
+      return { false, 1, true, false, false, false, false };
+  }
+  return {};
+}
+
 /// How shaded samples are lit (see CastParameters::Shading).
 enum class ShadingModel
 {
