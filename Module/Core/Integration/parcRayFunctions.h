@@ -124,7 +124,9 @@ struct ExtremeFunction
     if (this->Found)
     {
       a = this->C.P.Opacity.Evaluate(this->Extreme);
-      this->C.P.Color.Lookup(this->Extreme, rgb);
+      // The colour of the extreme sample: from the colour function, or for dependent
+      // components from the other components there (as VTK's mappers colour it).
+      this->C.DefaultColor(NotALatticeSample, this->ExtremeAt, this->Extreme, rgb);
       this->C.Stats.ContributingSamples += (a > 0.f) ? 1 : 0;
     }
     Premultiply(rgb, a, rgba);
