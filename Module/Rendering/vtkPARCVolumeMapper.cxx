@@ -173,11 +173,14 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 //------------------------------------------------------------------------------
 void vtkPARCVolumeMapper::ReportSetUp(const char* step, double progress)
 {
-  this->Internals->SetUpReported = true;
+  vtkInternals& in = *this->Internals;
+  // Several volumes repeat the steps: the render's progress never goes back.
+  in.SetUpProgress = in.SetUpReported ? std::max(in.SetUpProgress, progress) : progress;
+  in.SetUpReported = true;
   if (this->ReportProgress)
   {
     this->SetProgressText(step);
-    this->UpdateProgress(progress);
+    this->UpdateProgress(in.SetUpProgress);
   }
 }
 

@@ -269,6 +269,7 @@ public:
   /// Whether this render has set something up (ReportSetUp): its casting then reports
   /// the second half of the render's progress.
   bool SetUpReported = false;
+  double SetUpProgress = 0.0; ///< the progress ReportSetUp last reported in this render
   double ProjectionTime = 0.0;
   LightPassWork LightPasses; ///< the shadow rays' light passes (part of the render)
   double RenderTime = 0.0;

@@ -4,13 +4,26 @@ a render that sets nothing up reports casting alone, from 0 to 1. The casting fr
 also arrive as VTK's VolumeMapperRenderProgressEvent, from 0 to 1."""
 import unittest
 
-from parc import vtkPARCVolumeMapper
+from parc import vtkPARCMultiVolume, vtkPARCVolumeMapper
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
 from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
-from vtkmodules.vtkRenderingCore import vtkColorTransferFunction, vtkVolumeProperty
+from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderWindow, vtkRenderer,
+                                         vtkVolume, vtkVolumeProperty)
 
 from parctesthelpers import offscreen_window
+
+
+def wavelet_property():
+    opacity, color = vtkPiecewiseFunction(), vtkColorTransferFunction()
+    opacity.AddPoint(150, 0.0)
+    opacity.AddPoint(280, 0.3)
+    color.AddRGBPoint(0, 1, 1, 1)
+    prop = vtkVolumeProperty()
+    prop.SetScalarOpacity(opacity)
+    prop.SetColor(color)
+    prop.SetInterpolationTypeToLinear()
+    return prop
 
 
 class TestPARCProgress(unittest.TestCase):
@@ -20,15 +33,7 @@ class TestPARCProgress(unittest.TestCase):
         mapper = vtkPARCVolumeMapper()
         mapper.SetInputConnection(source.GetOutputPort())
         mapper.SetAccelerationModeToDepthBuffer()
-        opacity, color = vtkPiecewiseFunction(), vtkColorTransferFunction()
-        opacity.AddPoint(150, 0.0)
-        opacity.AddPoint(280, 0.3)
-        color.AddRGBPoint(0, 1, 1, 1)
-        prop = vtkVolumeProperty()
-        prop.SetScalarOpacity(opacity)
-        prop.SetColor(color)
-        prop.SetInterpolationTypeToLinear()
-        window = offscreen_window(mapper, prop, 256)
+        window = offscreen_window(mapper, wavelet_property(), 256)
         reports, casting = [], []
         mapper.AddObserver(vtkCommand.ProgressEvent, lambda m, e: reports.append(
             (m.GetProgressText(), m.GetProgress())))
@@ -52,6 +57,34 @@ class TestPARCProgress(unittest.TestCase):
         self.assertLess(reports[0][1], 0.5)
         self.assertEqual(reports[-1][1], 1.0)
         self.assertGreater(len(casting), 0)
+
+    def test_several_volumes_never_go_back(self):
+        mapper = vtkPARCVolumeMapper()
+        multi = vtkPARCMultiVolume()
+        multi.SetMapper(mapper)
+        for port, extent in enumerate((20, 30)):
+            source = vtkRTAnalyticSource()
+            source.SetWholeExtent(-extent, extent, -extent, extent, -extent, extent)
+            mapper.SetInputConnection(port, source.GetOutputPort())
+            volume = vtkVolume()
+            volume.SetProperty(wavelet_property())
+            multi.SetVolume(volume, port)
+        renderer = vtkRenderer()
+        renderer.AddVolume(multi)
+        window = vtkRenderWindow()
+        window.SetOffScreenRendering(1)
+        window.SetSize(128, 128)
+        window.AddRenderer(renderer)
+        renderer.ResetCamera()
+        reports = []
+        mapper.AddObserver(vtkCommand.ProgressEvent, lambda m, e: reports.append(
+            (m.GetProgressText(), m.GetProgress())))
+        window.Render()
+        self.assertEqual([t for t, _ in reports].count("reading the scalars"), 2)
+        # The render's own reports (the pipeline's update of the mapper reports 0 and 1
+        # without a text before them).
+        progress = [p for t, p in reports if t]
+        self.assertEqual(progress, sorted(progress), "the progress only grows")
 
 
 if __name__ == "__main__":
