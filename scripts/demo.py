@@ -16,6 +16,7 @@ the image equals the unaccelerated one bit for bit, and the errors.
   demo.py OUTDIR [--size N] [--rounds R] [--only SCENE,...]
 """
 import argparse
+import functools
 import os
 import statistics
 import sys
@@ -240,11 +241,17 @@ def new_mapper(kind, spacing):
     return mapper
 
 
+@functools.lru_cache(maxsize=None)
+def scene_members(scene):
+    """The scene's volumes (read once, shared by its views) and its camera set-up."""
+    return SCENES[scene][2]()
+
+
 class View:
     """One scene in an offscreen window, drawn by a mapper of one kind."""
 
     def __init__(self, scene, kind, size, distance_divisor=1):
-        members, set_up_camera = SCENES[scene][2]()
+        members, set_up_camera = scene_members(scene)
         spacing = min(members[0][0].GetSpacing())
         self.mapper = new_mapper(kind, spacing / distance_divisor)
         renderer = vtkRenderer()
@@ -339,11 +346,12 @@ def run_scene(scene, size, rounds):
         "mode": mapper.GetAccelerationModeAsString(mapper.GetLastAccelerationMode()),
         "samples": mapper.GetLastSampleCount(), "samples_none": none.mapper.GetLastSampleCount(),
         "exact": bool(np.array_equal(parc.ray_image(), none.ray_image())),
-        "parc_error": rmse(parc.pixels(), truths["none"]),
-        "other_error": rmse(other.pixels(), truths[reference]),
     }
+    mine, theirs = parc.pixels(), other.pixels()
+    row["parc_error"] = rmse(mine, truths["none"])
+    row["other_error"] = rmse(theirs, truths[reference])
     row["ratio"] = row["other_s"] / row["parc_s"]
-    return row, parc.pixels(), other.pixels()
+    return row, mine, theirs
 
 
 def write_picture(path, row, mine, theirs):
