@@ -136,7 +136,7 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   this->SetAbortExecute(0); // like an algorithm's execution, each render starts un-aborted
   in.Stats = parc::CastStatistics();
   in.CastingTime = in.ProjectionTime = 0.0;
-  in.SetUpReported = false;
+  in.SetUpProgress = 0.0;
   in.ImageSize[0] = in.ImageSize[1] = 0; // no image until a cast fills one
   in.Budget = vol->GetAllocatedRenderTime();
   // The renderer's last render holds this mapper's last one and what else it drew then.
@@ -175,8 +175,7 @@ void vtkPARCVolumeMapper::ReportSetUp(const char* step, double progress)
 {
   vtkInternals& in = *this->Internals;
   // Several volumes repeat the steps: the render's progress never goes back.
-  in.SetUpProgress = in.SetUpReported ? std::max(in.SetUpProgress, progress) : progress;
-  in.SetUpReported = true;
+  in.SetUpProgress = std::max(in.SetUpProgress, progress);
   if (this->ReportProgress)
   {
     this->SetProgressText(step);
@@ -364,7 +363,7 @@ bool vtkPARCVolumeMapper::vtkInternals::Cast(vtkPARCVolumeMapper* self, vtkRende
     {
       self->InvokeEvent(vtkCommand::VolumeMapperRenderProgressEvent, &fraction);
       self->SetProgressText(CastingProgressText);
-      self->UpdateProgress(self->Internals->SetUpReported ? 0.5 + 0.5 * fraction : fraction);
+      self->UpdateProgress(self->Internals->SetUpProgress > 0.0 ? 0.5 + 0.5 * fraction : fraction);
     }
     return !self->GetAbortExecute() && !window->CheckAbortStatus();
   };

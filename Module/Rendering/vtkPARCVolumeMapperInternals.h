@@ -266,10 +266,9 @@ public:
   std::vector<unsigned char> Display;
   parc::CastStatistics Stats; ///< summed over the rendered volumes
   double CastingTime = 0.0;
-  /// Whether this render has set something up (ReportSetUp): its casting then reports
-  /// the second half of the render's progress.
-  bool SetUpReported = false;
-  double SetUpProgress = 0.0; ///< the progress ReportSetUp last reported in this render
+  /// The progress ReportSetUp last reported in this render, 0 while nothing was set up;
+  /// once something was, casting reports the second half of the render's progress.
+  double SetUpProgress = 0.0;
   double ProjectionTime = 0.0;
   LightPassWork LightPasses; ///< the shadow rays' light passes (part of the render)
   double RenderTime = 0.0;
