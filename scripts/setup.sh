@@ -6,6 +6,7 @@ here=$(cd "$(dirname "$0")/.." && pwd)
 build=${1:-"$here/build"}
 
 packages=(build-essential cmake ninja-build libvtk9-dev python3-vtk9 python3-numpy
+  python3-matplotlib
   xvfb xauth libosmesa6-dev mesa-utils libgtest-dev mricron-data libvolpack1-dev)
 missing=()
 for p in "${packages[@]}"; do

@@ -1,10 +1,11 @@
 // RayContext: the per-ray state the ray functions (parcRayFunctions.h) share over a
 // render's constants: the ray's lattice, the block of samples taken last, opacity,
-// colour, gradients and shading, hits, events and counts. Internal to the casters.
+// colour, gradients, hits, events and counts. Its shading is defined in parcRayShading.h, the
+// composite function's staged block in parcCompositeBlock.h. Internal to the casters.
 #ifndef parc_RayContext_h
 #define parc_RayContext_h
 
-#include "parcRayShading.h"
+#include "parcRayCaster.h"
 
 #include <algorithm>
 #include <array>
@@ -15,6 +16,13 @@
 
 namespace parc::casting
 {
+
+/// Appends an event, out of the sample loops (only several volumes keep events).
+PARC_NOINLINE inline void AppendEvent(
+  std::vector<RayEvent>& events, double t, const float rgb[3], float a, bool premultiplied)
+{
+  events.push_back({ t, { rgb[0], rgb[1], rgb[2] }, a, premultiplied });
+}
 
 /// Lattice samples taken together along a ray; a ray that stops early has taken at most
 /// this many - 1 in vain.
@@ -333,73 +341,7 @@ struct RayContext
   /// order (unshaded samples without events: CompositeUnshadedBlock). The same bits, events
   /// and counts as ContributingSamples with SampleColor, ShadeSample and Over; returns false
   /// (visited set) when the ray stops.
-  PARC_HOT_INLINE bool CompositeBlock(long k0, int n, int& visited, EventCompositor& out)
-  {
-#if defined(__SSE2__)
-    if (!this->P.Shade && !this->Events)
-    {
-      return this->CompositeUnshadedBlock(k0, n, visited, out);
-    }
-#endif
-    const unsigned sampled = this->SampleBlock(k0, n);
-    const unsigned lanes = this->LaneOpacities(this->MayContribute(n) & sampled);
-    LaneBatch& b = this->Batch;
-    b.Count = 0;
-    bool stops = false;
-    // EventCompositor::AddSample lane by lane: the weights now, the colours below.
-    EventCompositor left = out;
-    for (unsigned m = lanes; m != 0; m &= m - 1)
-    {
-      const int j = CountTrailingZeros(m);
-      b.Weight[b.Count] = left.Absorb(this->Opacities[j]);
-      b.Lane[b.Count++] = j;
-      if (!left.Below(this->P.TerminationOpacity))
-      {
-        stops = true;
-        visited = j + 1;
-        break;
-      }
-    }
-    this->Stats.ContributingSamples += static_cast<std::uint64_t>(b.Count);
-    this->CountEmptyCells(sampled, stops ? visited : n);
-    if (b.Count > 0)
-    {
-      this->RecordHit((k0 + b.Lane[0]) * this->Dt); // the first is the nearest
-    }
-#if defined(__SSE2__)
-    if (!this->Events && this->InterpolatesNormalShading())
-    {
-      this->AddNormalShadedColors(out);
-    }
-    else
-#endif
-    {
-      this->BatchColors();
-      if (this->P.Shade)
-      {
-        this->ShadeBatch(k0);
-      }
-      for (int i = 0; i < b.Count; ++i)
-      {
-        for (int c = 0; c < 3; ++c)
-        {
-          out.Rgb[c] += b.Weight[i] * b.Rgb[c][i];
-        }
-      }
-    }
-    out.Alpha = left.Alpha;
-    out.Transparency = left.Transparency;
-    if (this->Events)
-    {
-      for (int i = 0; i < b.Count; ++i)
-      {
-        const float rgb[3] = { b.Rgb[0][i], b.Rgb[1][i], b.Rgb[2][i] };
-        AppendEvent(*this->Events, (k0 + b.Lane[i]) * this->Dt, rgb,
-          this->Opacities[b.Lane[i]], false);
-      }
-    }
-    return !stops;
-  }
+  PARC_HOT_INLINE bool CompositeBlock(long k0, int n, int& visited, EventCompositor& out);
   /// Whether shaded samples interpolate the shading of their cells' quantized normals.
   bool InterpolatesNormalShading() const
   {
@@ -409,182 +351,27 @@ struct RayContext
   /// Adds the weighted colours of the lanes of Batch, shaded by quantized normals
   /// (InterpolatesNormalShading), to out, as BatchColors, ShadeBatch and CompositeBlock's
   /// sums do (the same bits) without turning lanes into channels.
-  PARC_HOT_INLINE void AddNormalShadedColors(EventCompositor& out)
-  {
-    const LaneBatch& b = this->Batch;
-    __m128 sum = ColourSums(out);
-    for (int i = 0; i < b.Count; i += 4)
-    {
-      __m128 c[4];
-      this->P.Color.LookupFour(this->BatchValues(i), c);
-      for (int l = 0; l < std::min(4, b.Count - i); ++l)
-      {
-        const __m128 rgb = this->ShadeByNormals(b.Lane[i + l], c[l]);
-        sum = _mm_add_ps(sum, _mm_mul_ps(_mm_set1_ps(b.Weight[i + l]), rgb));
-      }
-    }
-    SetColourSums(out, sum);
-  }
+  PARC_HOT_INLINE void AddNormalShadedColors(EventCompositor& out);
   /// ShadeQuantized of lane j of the block, colour (red, green, blue, 0) rgb, in a register.
-  PARC_HOT_INLINE __m128 ShadeByNormals(int j, __m128 rgb) const
-  {
-    const LatticeBlock& block = this->Block;
-    const int cell[3] = { block.Cell[0][j], block.Cell[1][j], block.Cell[2][j] };
-    const float f[3] = { block.Fractions[0][j], block.Fractions[1][j], block.Fractions[2][j] };
-    std::uint16_t codes[8];
-    this->P.Normals->CellCorners(cell, codes);
-    __m128 diffuse, specular;
-    this->InterpolateNormalFactors(codes, f, diffuse, specular);
-    const __m128 ambient = _mm_load_ps(this->K.Ambient); // red, green, blue, 0
-    const __m128 lit = _mm_add_ps(_mm_mul_ps(rgb, _mm_add_ps(ambient, diffuse)), specular);
-    return _mm_min_ps(_mm_set1_ps(1.f), lit); // std::min(lit, 1.f), NaN kept
-  }
+  PARC_HOT_INLINE __m128 ShadeByNormals(int j, __m128 rgb) const;
   /// The diffuse and specular factors (red, green, blue; the fourth lane is not one)
   /// interpolated at fractions f from the normals of a cell's corners (codes) with the
   /// render's table.
   PARC_HOT_INLINE void InterpolateNormalFactors(
-    const std::uint16_t codes[8], const float f[3], __m128& diffuse, __m128& specular) const
-  {
-    if (!this->K.GreyNormalShading.empty())
-    {
-      const __m128 pair = InterpolateGreyFactors(this->K.GreyNormalShading.data(), codes, f);
-      diffuse = _mm_shuffle_ps(pair, pair, 0x00);
-      specular = _mm_shuffle_ps(pair, pair, 0x55);
-      return;
-    }
-    alignas(16) float d[4], s[4];
-    InterpolateFactors(this->K.NormalShading.data(), codes, f, d, s);
-    diffuse = _mm_load_ps(d);
-    specular = _mm_load_ps(s);
-  }
+    const std::uint16_t codes[8], const float f[3], __m128& diffuse, __m128& specular) const;
   /// The values of lanes i .. i + 3 of Batch (its last lane repeated past Count).
-  PARC_HOT_INLINE __m128 BatchValues(int i) const
-  {
-    const LaneBatch& b = this->Batch;
-    const auto value = [&](int l) { return this->Value(b.Lane[std::min(i + l, b.Count - 1)]); };
-    return _mm_setr_ps(value(0), value(1), value(2), value(3));
-  }
+  PARC_HOT_INLINE __m128 BatchValues(int i) const;
   /// CompositeBlock of unshaded samples without events, the same bits and counts, over
   /// every lane rather than those gathered into Batch: a lane of opacity 0 changes nothing
   /// (its weight is 0 and the transparency is multiplied by 1), and its weight times its
   /// colour adds 0.
   PARC_HOT_INLINE bool CompositeUnshadedBlock(
-    long k0, int n, int& visited, EventCompositor& out)
-  {
-    const unsigned sampled = this->SampleBlock(k0, n);
-    const unsigned lanes = this->LaneOpacities(this->MayContribute(n) & sampled);
-    if (lanes == 0)
-    {
-      this->CountEmptyCells(sampled, n);
-      return true;
-    }
-    alignas(16) float weight[LatticeBlock::Size];
-    EventCompositor left = out;
-    int end = n; // the lanes composited: those before end
-    bool stops = false;
-    for (int j = 0; j < n; ++j)
-    {
-      weight[j] = left.Absorb(this->Opacities[j]);
-      if (!left.Below(this->P.TerminationOpacity))
-      {
-        stops = true;
-        end = j + 1;
-        break;
-      }
-    }
-    const unsigned composited = lanes & ((1u << end) - 1u);
-    this->Stats.ContributingSamples += static_cast<std::uint64_t>(PopCount(composited));
-    this->CountEmptyCells(sampled, end);
-    this->RecordHit((k0 + CountTrailingZeros(composited)) * this->Dt);
-    __m128 sum = ColourSums(out);
-    for (int first = 0; first < end; first += LatticeBlock::Lanes)
-    {
-      if (((composited >> first) & ((1u << LatticeBlock::Lanes) - 1u)) == 0)
-      {
-        continue;
-      }
-      __m128 c[4];
-      this->P.Color.LookupFour(_mm_loadu_ps(this->Block.Values + first), c);
-      for (int l = 0; l < std::min(4, end - first); ++l)
-      {
-        sum = _mm_add_ps(sum, _mm_mul_ps(_mm_set1_ps(weight[first + l]), c[l]));
-      }
-    }
-    SetColourSums(out, sum);
-    out.Alpha = left.Alpha;
-    out.Transparency = left.Transparency;
-    if (stops)
-    {
-      visited = end;
-    }
-    return !stops;
-  }
+    long k0, int n, int& visited, EventCompositor& out);
 #endif
   /// The colours of the lanes of Batch (see CompositeBlock).
-  PARC_HOT_INLINE void BatchColors()
-  {
-    LaneBatch& b = this->Batch;
-#if defined(__SSE2__)
-    for (int i = 0; i < b.Count; i += 4)
-    {
-      // Four lanes' (red, green, blue, 0), turned into channels of four lanes.
-      __m128 c[4];
-      this->P.Color.LookupFour(this->BatchValues(i), c);
-      _MM_TRANSPOSE4_PS(c[0], c[1], c[2], c[3]);
-      for (int ch = 0; ch < 3; ++ch)
-      {
-        _mm_store_ps(b.Rgb[ch] + i, c[ch]);
-      }
-    }
-#else
-    for (int i = 0; i < b.Count; ++i)
-    {
-      float rgb[3];
-      this->P.Color.Lookup(this->Value(b.Lane[i]), rgb);
-      for (int ch = 0; ch < 3; ++ch)
-      {
-        b.Rgb[ch][i] = rgb[ch];
-      }
-    }
-#endif
-  }
+  PARC_HOT_INLINE void BatchColors();
   /// Shades the colours of Batch in place (see CompositeBlock).
-  PARC_HOT_INLINE void ShadeBatch(long k0)
-  {
-    LaneBatch& b = this->Batch;
-    if (!this->K.ShadeLanesTogether)
-    {
-      for (int i = 0; i < b.Count; ++i)
-      {
-        float rgb[3] = { b.Rgb[0][i], b.Rgb[1][i], b.Rgb[2][i] };
-        this->ShadeSample(rgb, (k0 + b.Lane[i]) * this->Dt, b.Lane[i], Vec3f(), false);
-        for (int c = 0; c < 3; ++c)
-        {
-          b.Rgb[c][i] = rgb[c];
-        }
-      }
-      return;
-    }
-    for (int i = 0; i < b.Count; ++i)
-    {
-#if defined(__SSE2__)
-      alignas(16) float world[4];
-      if (this->InteriorWorldGradient(b.Lane[i], world))
-      {
-        for (int a = 0; a < 3; ++a)
-        {
-          b.Gradient[a][i] = world[a];
-        }
-        continue;
-      }
-#endif
-      const Vec3f g = this->WorldGradient((k0 + b.Lane[i]) * this->Dt, b.Lane[i]);
-      b.Gradient[0][i] = g.X;
-      b.Gradient[1][i] = g.Y;
-      b.Gradient[2][i] = g.Z;
-    }
-    this->ShadeLanes();
-  }
+  PARC_HOT_INLINE void ShadeBatch(long k0);
   /// Shade for the lanes of Batch together (RenderConstants::ShadeLanesTogether): the same
   /// operations in the same order, lane by lane, so the same bits.
   void ShadeLanes();
@@ -784,12 +571,7 @@ struct RayContext
     }
     return 1.f - std::pow(transparency, exponent);
   }
-  float SpecularTerm(float ndh) const
-  {
-    return this->K.IntegerSpecularPower >= 0
-      ? IntegerPower(ndh, this->K.IntegerSpecularPower)
-      : std::pow(ndh, static_cast<float>(this->P.SpecularPower));
-  }
+  float SpecularTerm(float ndh) const;
   Vec3 WorldPosition(double t) const { return this->WorldRay.Origin + t * this->WorldRay.Direction; }
   /// The factor of the terms of light `index` at world point x, for a light whose shadow
   /// attenuation is attenuation: 1 - attenuation (1 - T), T the transmittance from x
@@ -817,227 +599,6 @@ struct RayContext
   /// Adds the positional lights' terms at ray parameter t for unit normal n.
   void AddPositionalLights(double t, const Vec3f& n, float diffuse[3], float specular[3]) const;
 };
-
-template <class View>
-PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f& g) const
-{
-  float diffuse[3] = { 0.f, 0.f, 0.f };
-  float specular[3] = { 0.f, 0.f, 0.f };
-  const float length = Length(g);
-  if (length > 0.f)
-  {
-    // The normal faces the eye (two-sided lighting).
-    const Vec3f n = FlipUnlessPositive(1.f / length, Dot(g, this->ToEye)) * g;
-    const RayCaster::DirectionalLight* lights = this->K.DirectionalLights.data();
-    const std::size_t count = this->K.DirectionalLights.size();
-    for (std::size_t i = 0; i < count; ++i)
-    {
-      const RayCaster::DirectionalLight& light = lights[i];
-      float ndl = Dot(n, light.ToLight);
-      if (ndl > 0.f)
-      {
-        const float ndh =
-          Dot(n, i < MaxHoistedLights ? this->HalfVectors[i] : this->HalfVector(light.ToLight));
-        float spec = ndh > 0.f ? this->SpecularTerm(ndh) : 0.f;
-        if (light.ShadowAttenuation > 0.f && this->Shadows)
-        {
-          const float v = this->Visibility(this->WorldPosition(t), light.ShadowDirection,
-            std::numeric_limits<double>::infinity(), light.Index, light.ShadowAttenuation);
-          ndl *= v;
-          spec *= v;
-        }
-        for (int c = 0; c < 3; ++c)
-        {
-          diffuse[c] += ndl * (&light.Diffuse.X)[c];
-          specular[c] += spec * (&light.Specular.X)[c];
-        }
-      }
-    }
-    if (!this->K.PositionalLights.empty())
-    {
-      this->AddPositionalLights(t, n, diffuse, specular);
-    }
-  }
-  for (int c = 0; c < 3; ++c)
-  {
-    rgb[c] = std::min(rgb[c] * (this->K.Ambient[c] + diffuse[c]) + specular[c], 1.f);
-  }
-}
-
-template <class View>
-void RayContext<View>::ShadeLanes()
-{
-  LaneBatch& b = this->Batch;
-#if defined(__SSE2__)
-  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.f);
-  const __m128 signBit = _mm_set1_ps(-0.f);
-  auto dot = [](__m128 ax, __m128 ay, __m128 az, const Vec3f& v) {
-    const __m128 x = _mm_mul_ps(ax, _mm_set1_ps(v.X)), y = _mm_mul_ps(ay, _mm_set1_ps(v.Y));
-    return _mm_add_ps(_mm_add_ps(x, y), _mm_mul_ps(az, _mm_set1_ps(v.Z)));
-  };
-  const RayCaster::DirectionalLight* lights = this->K.DirectionalLights.data();
-  const std::size_t count = this->K.DirectionalLights.size();
-  const int channels = this->K.GreyLights ? 1 : 3;
-  for (int i = 0; i < b.Count; i += 4)
-  {
-    const __m128 gx = _mm_load_ps(b.Gradient[0] + i), gy = _mm_load_ps(b.Gradient[1] + i);
-    const __m128 gz = _mm_load_ps(b.Gradient[2] + i);
-    const __m128 length = _mm_sqrt_ps(_mm_add_ps(
-      _mm_add_ps(_mm_mul_ps(gx, gx), _mm_mul_ps(gy, gy)), _mm_mul_ps(gz, gz)));
-    const __m128 valid = _mm_cmpgt_ps(length, zero);
-    // FlipUnlessPositive: the normal faces the eye.
-    const __m128 back = _mm_cmpngt_ps(dot(gx, gy, gz, this->ToEye), zero);
-    const __m128 scale = _mm_xor_ps(_mm_div_ps(one, length), _mm_and_ps(back, signBit));
-    const __m128 nx = _mm_mul_ps(scale, gx), ny = _mm_mul_ps(scale, gy);
-    const __m128 nz = _mm_mul_ps(scale, gz);
-    __m128 diffuse[3] = { zero, zero, zero }, specular[3] = { zero, zero, zero };
-    for (std::size_t l = 0; l < count; ++l)
-    {
-      const RayCaster::DirectionalLight& light = lights[l];
-      const __m128 ndl = dot(nx, ny, nz, light.ToLight);
-      const __m128 lit = _mm_and_ps(valid, _mm_cmpgt_ps(ndl, zero));
-      const __m128 ndh = dot(nx, ny, nz, this->HalfVectors[l]);
-      // IntegerPower, lane by lane.
-      __m128 power = one, x = ndh;
-      for (int e = this->K.IntegerSpecularPower; e > 0; e >>= 1)
-      {
-        if (e & 1)
-        {
-          power = _mm_mul_ps(power, x);
-        }
-        x = _mm_mul_ps(x, x);
-      }
-      const __m128 spec = _mm_and_ps(_mm_cmpgt_ps(ndh, zero), power);
-      for (int c = 0; c < channels; ++c)
-      {
-        const __m128 d = _mm_set1_ps((&light.Diffuse.X)[c]);
-        const __m128 sc = _mm_set1_ps((&light.Specular.X)[c]);
-        diffuse[c] = Select(lit, _mm_add_ps(diffuse[c], _mm_mul_ps(ndl, d)), diffuse[c]);
-        specular[c] = Select(lit, _mm_add_ps(specular[c], _mm_mul_ps(spec, sc)), specular[c]);
-      }
-    }
-    for (int c = channels; c < 3; ++c) // white lights: the same as red
-    {
-      diffuse[c] = diffuse[0];
-      specular[c] = specular[0];
-    }
-    for (int c = 0; c < 3; ++c)
-    {
-      const __m128 rgb = _mm_load_ps(b.Rgb[c] + i);
-      const __m128 ambient = _mm_set1_ps(this->K.Ambient[c]);
-      const __m128 shaded =
-        _mm_add_ps(_mm_mul_ps(rgb, _mm_add_ps(ambient, diffuse[c])), specular[c]);
-      _mm_store_ps(b.Rgb[c] + i, _mm_min_ps(one, shaded)); // std::min(shaded, 1.f)
-    }
-  }
-#else
-  for (int i = 0; i < b.Count; ++i)
-  {
-    // No shadows here: Shade needs no ray parameter.
-    float rgb[3] = { b.Rgb[0][i], b.Rgb[1][i], b.Rgb[2][i] };
-    this->Shade(rgb, 0.0, Vec3f(b.Gradient[0][i], b.Gradient[1][i], b.Gradient[2][i]));
-    for (int c = 0; c < 3; ++c)
-    {
-      b.Rgb[c][i] = rgb[c];
-    }
-  }
-#endif
-}
-
-template <class View>
-void RayContext<View>::ShadeQuantized(float rgb[3], double t, int j) const
-{
-  const NormalVolume& normals = *this->P.Normals;
-  alignas(16) float diffuse[4], specular[4];
-  if (this->P.Interp == Interpolation::Nearest)
-  {
-    int voxel[3];
-    NearestVoxel(this->IndexPosition(t), normals.GetDimensions(), voxel);
-    const std::uint16_t code = normals.At(voxel[0], voxel[1], voxel[2]);
-    if (!this->K.GreyNormalShading.empty())
-    {
-      const float* pair = &this->K.GreyNormalShading[2 * static_cast<std::size_t>(code)];
-      std::fill_n(diffuse, 3, pair[0]);
-      std::fill_n(specular, 3, pair[1]);
-    }
-    else
-    {
-      std::copy_n(this->K.NormalShading[code].Diffuse, 3, diffuse);
-      std::copy_n(this->K.NormalShading[code].Specular, 3, specular);
-    }
-  }
-  else
-  {
-    const SampleLocation w = j != NotALatticeSample
-      ? this->Block.Location(j)
-      : this->Field.LocationOf(this->IndexPosition(t));
-    std::uint16_t codes[8];
-    normals.CellCorners(w.Cell, codes);
-#if defined(__SSE2__)
-    __m128 d, s;
-    this->InterpolateNormalFactors(codes, w.Fractions, d, s);
-    _mm_store_ps(diffuse, d);
-    _mm_store_ps(specular, s);
-#else
-    InterpolateFactors(this->K.NormalShading.data(), codes, w.Fractions, diffuse, specular);
-#endif
-  }
-  for (int c = 0; c < 3; ++c)
-  {
-    rgb[c] = std::min(rgb[c] * (this->K.Ambient[c] + diffuse[c]) + specular[c], 1.f);
-  }
-}
-
-template <class View>
-void RayContext<View>::AddPositionalLights(
-  double t, const Vec3f& n, float diffuse[3], float specular[3]) const
-{
-  const Vec3 x = this->WorldRay.Origin + t * this->WorldRay.Direction;
-  const Vec3 normal(n.X, n.Y, n.Z);
-  for (const RayCaster::PositionalLight& positional : this->K.PositionalLights)
-  {
-    const Light* light = positional.Source;
-    const Vec3 toLight = light->Position - x;
-    const double dist = Length(toLight);
-    const Vec3 l = Normalized(toLight);
-    const double denom =
-      light->Attenuation.X + dist * (light->Attenuation.Y + dist * light->Attenuation.Z);
-    double attenuation = denom > 0.0 ? 1.0 / denom : 1.0;
-    if (light->ConeAngle < 90.0)
-    {
-      const double c = Dot(-l, positional.SpotDirection);
-      attenuation *=
-        (c < positional.CosCone) ? 0.0 : std::pow(std::max(c, 0.0), light->Exponent);
-    }
-    const double ndl = Dot(normal, l);
-    if (ndl > 0.0 && attenuation != 0.0)
-    {
-      if (light->ShadowAttenuation > 0.0 && this->Shadows)
-      {
-        attenuation *= this->Visibility(
-          x, l, dist, positional.Index, static_cast<float>(light->ShadowAttenuation));
-      }
-      const double ndh = Dot(normal, Normalized(l - this->WorldRay.Direction));
-      const double spec = ndh > 0.0 ? this->SpecularTerm(static_cast<float>(ndh)) : 0.0;
-      for (int c = 0; c < 3; ++c)
-      {
-        const double color = attenuation * light->Color[c];
-        const double specularColor = attenuation * light->SpecularColor[c];
-        diffuse[c] += static_cast<float>(this->P.Diffuse * color * ndl);
-        specular[c] += static_cast<float>(this->P.Specular * specularColor * spec);
-      }
-    }
-  }
-}
-
-template <class View>
-float RayContext<View>::Visibility(const Vec3& x, const Vec3& toLight, double tLight,
-  std::size_t index, float attenuation) const
-{
-  const Ray shadowRay{ x, toLight, 0.0, tLight };
-  const float t = this->Shadows->Transmittance(shadowRay, index, *this->ShadowSpace, this->Stats);
-  return 1.f - attenuation * (1.f - t);
-}
 
 } // namespace parc::casting
 

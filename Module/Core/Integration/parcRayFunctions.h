@@ -4,7 +4,7 @@
 #ifndef parc_RayFunctions_h
 #define parc_RayFunctions_h
 
-#include "parcRayContext.h"
+#include "parcCompositeBlock.h"
 
 namespace parc::casting
 {

@@ -1,10 +1,11 @@
-// The casters' shading arithmetic shared by the ray context (parcRayContext.h): sign flips,
-// whole powers, the interpolation of quantized-normal shading factors and the colour sums
-// in registers. Internal to the casters.
+// The ray context's shading (parcRayContext.h): Blinn-Phong for one sample and for the
+// lanes of a block, shading by quantized normals, positional lights and shadow visibility,
+// over the arithmetic they share (sign flips, whole powers, the interpolation of
+// quantized-normal shading factors, colour sums in registers). Internal to the casters.
 #ifndef parc_RayShading_h
 #define parc_RayShading_h
 
-#include "parcRayCaster.h"
+#include "parcRayContext.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -128,12 +129,270 @@ PARC_HOT_INLINE void SetColourSums(EventCompositor& out, __m128 sums)
 }
 #endif
 
-/// Appends an event, out of the sample loops (only several volumes keep events).
-PARC_NOINLINE inline void AppendEvent(
-  std::vector<RayEvent>& events, double t, const float rgb[3], float a, bool premultiplied)
+template <class View>
+inline float RayContext<View>::SpecularTerm(float ndh) const
 {
-  events.push_back({ t, { rgb[0], rgb[1], rgb[2] }, a, premultiplied });
+  return this->K.IntegerSpecularPower >= 0
+    ? IntegerPower(ndh, this->K.IntegerSpecularPower)
+    : std::pow(ndh, static_cast<float>(this->P.SpecularPower));
 }
+
+template <class View>
+PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f& g) const
+{
+  float diffuse[3] = { 0.f, 0.f, 0.f };
+  float specular[3] = { 0.f, 0.f, 0.f };
+  const float length = Length(g);
+  if (length > 0.f)
+  {
+    // The normal faces the eye (two-sided lighting).
+    const Vec3f n = FlipUnlessPositive(1.f / length, Dot(g, this->ToEye)) * g;
+    const RayCaster::DirectionalLight* lights = this->K.DirectionalLights.data();
+    const std::size_t count = this->K.DirectionalLights.size();
+    for (std::size_t i = 0; i < count; ++i)
+    {
+      const RayCaster::DirectionalLight& light = lights[i];
+      float ndl = Dot(n, light.ToLight);
+      if (ndl > 0.f)
+      {
+        const float ndh =
+          Dot(n, i < MaxHoistedLights ? this->HalfVectors[i] : this->HalfVector(light.ToLight));
+        float spec = ndh > 0.f ? this->SpecularTerm(ndh) : 0.f;
+        if (light.ShadowAttenuation > 0.f && this->Shadows)
+        {
+          const float v = this->Visibility(this->WorldPosition(t), light.ShadowDirection,
+            std::numeric_limits<double>::infinity(), light.Index, light.ShadowAttenuation);
+          ndl *= v;
+          spec *= v;
+        }
+        for (int c = 0; c < 3; ++c)
+        {
+          diffuse[c] += ndl * (&light.Diffuse.X)[c];
+          specular[c] += spec * (&light.Specular.X)[c];
+        }
+      }
+    }
+    if (!this->K.PositionalLights.empty())
+    {
+      this->AddPositionalLights(t, n, diffuse, specular);
+    }
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    rgb[c] = std::min(rgb[c] * (this->K.Ambient[c] + diffuse[c]) + specular[c], 1.f);
+  }
+}
+
+template <class View>
+void RayContext<View>::ShadeLanes()
+{
+  LaneBatch& b = this->Batch;
+#if defined(__SSE2__)
+  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.f);
+  const __m128 signBit = _mm_set1_ps(-0.f);
+  auto dot = [](__m128 ax, __m128 ay, __m128 az, const Vec3f& v) {
+    const __m128 x = _mm_mul_ps(ax, _mm_set1_ps(v.X)), y = _mm_mul_ps(ay, _mm_set1_ps(v.Y));
+    return _mm_add_ps(_mm_add_ps(x, y), _mm_mul_ps(az, _mm_set1_ps(v.Z)));
+  };
+  const RayCaster::DirectionalLight* lights = this->K.DirectionalLights.data();
+  const std::size_t count = this->K.DirectionalLights.size();
+  const int channels = this->K.GreyLights ? 1 : 3;
+  for (int i = 0; i < b.Count; i += 4)
+  {
+    const __m128 gx = _mm_load_ps(b.Gradient[0] + i), gy = _mm_load_ps(b.Gradient[1] + i);
+    const __m128 gz = _mm_load_ps(b.Gradient[2] + i);
+    const __m128 length = _mm_sqrt_ps(_mm_add_ps(
+      _mm_add_ps(_mm_mul_ps(gx, gx), _mm_mul_ps(gy, gy)), _mm_mul_ps(gz, gz)));
+    const __m128 valid = _mm_cmpgt_ps(length, zero);
+    // FlipUnlessPositive: the normal faces the eye.
+    const __m128 back = _mm_cmpngt_ps(dot(gx, gy, gz, this->ToEye), zero);
+    const __m128 scale = _mm_xor_ps(_mm_div_ps(one, length), _mm_and_ps(back, signBit));
+    const __m128 nx = _mm_mul_ps(scale, gx), ny = _mm_mul_ps(scale, gy);
+    const __m128 nz = _mm_mul_ps(scale, gz);
+    __m128 diffuse[3] = { zero, zero, zero }, specular[3] = { zero, zero, zero };
+    for (std::size_t l = 0; l < count; ++l)
+    {
+      const RayCaster::DirectionalLight& light = lights[l];
+      const __m128 ndl = dot(nx, ny, nz, light.ToLight);
+      const __m128 lit = _mm_and_ps(valid, _mm_cmpgt_ps(ndl, zero));
+      const __m128 ndh = dot(nx, ny, nz, this->HalfVectors[l]);
+      // IntegerPower, lane by lane.
+      __m128 power = one, x = ndh;
+      for (int e = this->K.IntegerSpecularPower; e > 0; e >>= 1)
+      {
+        if (e & 1)
+        {
+          power = _mm_mul_ps(power, x);
+        }
+        x = _mm_mul_ps(x, x);
+      }
+      const __m128 spec = _mm_and_ps(_mm_cmpgt_ps(ndh, zero), power);
+      for (int c = 0; c < channels; ++c)
+      {
+        const __m128 d = _mm_set1_ps((&light.Diffuse.X)[c]);
+        const __m128 sc = _mm_set1_ps((&light.Specular.X)[c]);
+        diffuse[c] = Select(lit, _mm_add_ps(diffuse[c], _mm_mul_ps(ndl, d)), diffuse[c]);
+        specular[c] = Select(lit, _mm_add_ps(specular[c], _mm_mul_ps(spec, sc)), specular[c]);
+      }
+    }
+    for (int c = channels; c < 3; ++c) // white lights: the same as red
+    {
+      diffuse[c] = diffuse[0];
+      specular[c] = specular[0];
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      const __m128 rgb = _mm_load_ps(b.Rgb[c] + i);
+      const __m128 ambient = _mm_set1_ps(this->K.Ambient[c]);
+      const __m128 shaded =
+        _mm_add_ps(_mm_mul_ps(rgb, _mm_add_ps(ambient, diffuse[c])), specular[c]);
+      _mm_store_ps(b.Rgb[c] + i, _mm_min_ps(one, shaded)); // std::min(shaded, 1.f)
+    }
+  }
+#else
+  for (int i = 0; i < b.Count; ++i)
+  {
+    // No shadows here: Shade needs no ray parameter.
+    float rgb[3] = { b.Rgb[0][i], b.Rgb[1][i], b.Rgb[2][i] };
+    this->Shade(rgb, 0.0, Vec3f(b.Gradient[0][i], b.Gradient[1][i], b.Gradient[2][i]));
+    for (int c = 0; c < 3; ++c)
+    {
+      b.Rgb[c][i] = rgb[c];
+    }
+  }
+#endif
+}
+
+template <class View>
+void RayContext<View>::ShadeQuantized(float rgb[3], double t, int j) const
+{
+  const NormalVolume& normals = *this->P.Normals;
+  alignas(16) float diffuse[4], specular[4];
+  if (this->P.Interp == Interpolation::Nearest)
+  {
+    int voxel[3];
+    NearestVoxel(this->IndexPosition(t), normals.GetDimensions(), voxel);
+    const std::uint16_t code = normals.At(voxel[0], voxel[1], voxel[2]);
+    if (!this->K.GreyNormalShading.empty())
+    {
+      const float* pair = &this->K.GreyNormalShading[2 * static_cast<std::size_t>(code)];
+      std::fill_n(diffuse, 3, pair[0]);
+      std::fill_n(specular, 3, pair[1]);
+    }
+    else
+    {
+      std::copy_n(this->K.NormalShading[code].Diffuse, 3, diffuse);
+      std::copy_n(this->K.NormalShading[code].Specular, 3, specular);
+    }
+  }
+  else
+  {
+    const SampleLocation w = j != NotALatticeSample
+      ? this->Block.Location(j)
+      : this->Field.LocationOf(this->IndexPosition(t));
+    std::uint16_t codes[8];
+    normals.CellCorners(w.Cell, codes);
+#if defined(__SSE2__)
+    __m128 d, s;
+    this->InterpolateNormalFactors(codes, w.Fractions, d, s);
+    _mm_store_ps(diffuse, d);
+    _mm_store_ps(specular, s);
+#else
+    InterpolateFactors(this->K.NormalShading.data(), codes, w.Fractions, diffuse, specular);
+#endif
+  }
+  for (int c = 0; c < 3; ++c)
+  {
+    rgb[c] = std::min(rgb[c] * (this->K.Ambient[c] + diffuse[c]) + specular[c], 1.f);
+  }
+}
+
+template <class View>
+void RayContext<View>::AddPositionalLights(
+  double t, const Vec3f& n, float diffuse[3], float specular[3]) const
+{
+  const Vec3 x = this->WorldRay.Origin + t * this->WorldRay.Direction;
+  const Vec3 normal(n.X, n.Y, n.Z);
+  for (const RayCaster::PositionalLight& positional : this->K.PositionalLights)
+  {
+    const Light* light = positional.Source;
+    const Vec3 toLight = light->Position - x;
+    const double dist = Length(toLight);
+    const Vec3 l = Normalized(toLight);
+    const double denom =
+      light->Attenuation.X + dist * (light->Attenuation.Y + dist * light->Attenuation.Z);
+    double attenuation = denom > 0.0 ? 1.0 / denom : 1.0;
+    if (light->ConeAngle < 90.0)
+    {
+      const double c = Dot(-l, positional.SpotDirection);
+      attenuation *=
+        (c < positional.CosCone) ? 0.0 : std::pow(std::max(c, 0.0), light->Exponent);
+    }
+    const double ndl = Dot(normal, l);
+    if (ndl > 0.0 && attenuation != 0.0)
+    {
+      if (light->ShadowAttenuation > 0.0 && this->Shadows)
+      {
+        attenuation *= this->Visibility(
+          x, l, dist, positional.Index, static_cast<float>(light->ShadowAttenuation));
+      }
+      const double ndh = Dot(normal, Normalized(l - this->WorldRay.Direction));
+      const double spec = ndh > 0.0 ? this->SpecularTerm(static_cast<float>(ndh)) : 0.0;
+      for (int c = 0; c < 3; ++c)
+      {
+        const double color = attenuation * light->Color[c];
+        const double specularColor = attenuation * light->SpecularColor[c];
+        diffuse[c] += static_cast<float>(this->P.Diffuse * color * ndl);
+        specular[c] += static_cast<float>(this->P.Specular * specularColor * spec);
+      }
+    }
+  }
+}
+
+template <class View>
+float RayContext<View>::Visibility(const Vec3& x, const Vec3& toLight, double tLight,
+  std::size_t index, float attenuation) const
+{
+  const Ray shadowRay{ x, toLight, 0.0, tLight };
+  const float t = this->Shadows->Transmittance(shadowRay, index, *this->ShadowSpace, this->Stats);
+  return 1.f - attenuation * (1.f - t);
+}
+
+#if defined(__SSE2__)
+template <class View>
+PARC_HOT_INLINE __m128 RayContext<View>::ShadeByNormals(int j, __m128 rgb) const
+{
+  const LatticeBlock& block = this->Block;
+  const int cell[3] = { block.Cell[0][j], block.Cell[1][j], block.Cell[2][j] };
+  const float f[3] = { block.Fractions[0][j], block.Fractions[1][j], block.Fractions[2][j] };
+  std::uint16_t codes[8];
+  this->P.Normals->CellCorners(cell, codes);
+  __m128 diffuse, specular;
+  this->InterpolateNormalFactors(codes, f, diffuse, specular);
+  const __m128 ambient = _mm_load_ps(this->K.Ambient); // red, green, blue, 0
+  const __m128 lit = _mm_add_ps(_mm_mul_ps(rgb, _mm_add_ps(ambient, diffuse)), specular);
+  return _mm_min_ps(_mm_set1_ps(1.f), lit); // std::min(lit, 1.f), NaN kept
+}
+
+template <class View>
+PARC_HOT_INLINE void RayContext<View>::InterpolateNormalFactors(
+  const std::uint16_t codes[8], const float f[3], __m128& diffuse, __m128& specular) const
+{
+  if (!this->K.GreyNormalShading.empty())
+  {
+    const __m128 pair = InterpolateGreyFactors(this->K.GreyNormalShading.data(), codes, f);
+    diffuse = _mm_shuffle_ps(pair, pair, 0x00);
+    specular = _mm_shuffle_ps(pair, pair, 0x55);
+    return;
+  }
+  alignas(16) float d[4], s[4];
+  InterpolateFactors(this->K.NormalShading.data(), codes, f, d, s);
+  diffuse = _mm_load_ps(d);
+  specular = _mm_load_ps(s);
+}
+#endif
+
+
 
 } // namespace parc::casting
 
