@@ -145,6 +145,7 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
   in.AdjustSampleDistances = this->AutoAdjustSampleDistances ||
     (this->InteractiveAdjustSampleDistances && interactive);
   this->LastInteractive = in.AdjustSampleDistances && interactive;
+  this->TakeSettings(ren);
   if (this->UseJittering && !in.JitteringWarned)
   {
     vtkWarningMacro("UseJittering is not supported: rays sample one exact lattice; ignored.");
@@ -181,6 +182,37 @@ void vtkPARCVolumeMapper::ReportSetUp(const char* step, double progress)
     this->SetProgressText(step);
     this->UpdateProgress(in.SetUpProgress);
   }
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCVolumeMapper::TakeSettings(vtkRenderer* ren)
+{
+  RenderSettings& settings = this->Internals->Settings;
+  settings.AccelerationMode = this->AccelerationMode;
+  settings.SearchSupercellSize =
+    this->AccelerationMode == ACCELERATION_AUTO && this->AutoSupercellSize;
+  std::copy_n(this->SupercellSize, 3, settings.SupercellSize);
+  std::copy_n(this->AverageIPScalarRange, 2, settings.AverageIPScalarRange);
+  settings.Interactive = this->LastInteractive;
+  settings.TerminationOpacity = this->TerminationOpacity;
+  settings.NumberOfThreads = this->NumberOfThreads;
+  settings.Reporter = this;
+  settings.SetUpStep = [this](const char* step, double progress) {
+    this->ReportSetUp(step, progress);
+  };
+  vtkRenderWindow* window = ren->GetRenderWindow();
+  settings.CastProgress = [this, window](double fraction) {
+    // As VTK's ray cast mappers report it (call data: the fraction done), and as an
+    // algorithm does.
+    if (this->ReportProgress)
+    {
+      this->InvokeEvent(vtkCommand::VolumeMapperRenderProgressEvent, &fraction);
+      this->SetProgressText(CastingProgressText);
+      this->UpdateProgress(
+        this->Internals->SetUpProgress > 0.0 ? 0.5 + 0.5 * fraction : fraction);
+    }
+    return !this->GetAbortExecute() && !window->CheckAbortStatus();
+  };
 }
 
 //------------------------------------------------------------------------------
@@ -273,8 +305,9 @@ int vtkPARCVolumeMapper::IsRenderSupported(vtkRenderWindow*, vtkVolumeProperty*)
 void vtkPARCVolumeMapper::RenderRayImage(vtkRenderer* ren)
 {
   vtkInternals& in = *this->Internals;
+  this->LastImageSampleDistance = this->ChooseImageSampleDistance();
   vtkPARCRasterizer::View view;
-  if (!in.MakeView(this, ren, view))
+  if (!in.MakeView(ren, this->LastImageSampleDistance, view))
   {
     return;
   }
@@ -282,17 +315,16 @@ void vtkPARCVolumeMapper::RenderRayImage(vtkRenderer* ren)
     ? in.ReadGeometryDepth(ren, view.Camera)
     : nullptr;
   const std::vector<vtkInternals::SetUpWork> before = in.CountSetUpWork();
-  const std::vector<parc::SceneCaster::Member> members = in.RunPasses(this, ren, view);
-  in.SetUpShadows(this, ren);
-  const bool completed = in.Cast(this, ren, view.Camera, depth, members);
-  in.RecordAuto(before, completed,
-    this->AccelerationMode == ACCELERATION_AUTO && this->AutoSupercellSize &&
-      !this->LastInteractive);
+  const std::vector<parc::SceneCaster::Member> members = in.RunPasses(ren, view);
+  in.SetUpShadows(ren);
+  const bool completed = in.Cast(view.Camera, depth, members);
+  this->LastNumberOfThreads = in.CastThreads;
+  in.RecordAuto(before, completed, in.Settings.SearchSupercellSize && !in.Settings.Interactive);
 }
 
 //------------------------------------------------------------------------------
 bool vtkPARCVolumeMapper::vtkInternals::MakeView(
-  vtkPARCVolumeMapper* self, vtkRenderer* ren, vtkPARCRasterizer::View& view)
+  vtkRenderer* ren, double step, vtkPARCRasterizer::View& view)
 {
   int width, height;
   ren->GetTiledSize(&width, &height);
@@ -300,12 +332,10 @@ bool vtkPARCVolumeMapper::vtkInternals::MakeView(
   {
     return false;
   }
-  const double step = self->ChooseImageSampleDistance();
-  self->LastImageSampleDistance = step;
   if (!parc::vtk::MakePassView(ren, std::max(1, static_cast<int>(width / step)),
         std::max(1, static_cast<int>(height / step)), view))
   {
-    vtkErrorWithObjectMacro(self, "The camera's projection is singular.");
+    vtkErrorWithObjectMacro(this->Settings.Reporter, "The camera's projection is singular.");
     return false;
   }
   return true;
@@ -348,52 +378,41 @@ vtkPARCVolumeMapper::vtkInternals::CountSetUpWork() const
 }
 
 //------------------------------------------------------------------------------
-bool vtkPARCVolumeMapper::vtkInternals::Cast(vtkPARCVolumeMapper* self, vtkRenderer* ren,
-  const parc::Camera& rays, const float* depth,
+bool vtkPARCVolumeMapper::vtkInternals::Cast(const parc::Camera& rays, const float* depth,
   const std::vector<parc::SceneCaster::Member>& members)
 {
   this->Image.resize(4 * static_cast<std::size_t>(rays.Width) * rays.Height);
   this->ImageSize[0] = rays.Width;
   this->ImageSize[1] = rays.Height;
-  vtkRenderWindow* window = ren->GetRenderWindow();
-  auto progress = [self, window](double fraction) {
-    // As VTK's ray cast mappers report it (call data: the fraction done), and as an
-    // algorithm does.
-    if (self->ReportProgress)
-    {
-      self->InvokeEvent(vtkCommand::VolumeMapperRenderProgressEvent, &fraction);
-      self->SetProgressText(CastingProgressText);
-      self->UpdateProgress(self->Internals->SetUpProgress > 0.0 ? 0.5 + 0.5 * fraction : fraction);
-    }
-    return !self->GetAbortExecute() && !window->CheckAbortStatus();
-  };
   const double start = vtkTimerLog::GetUniversalTime();
   bool completed = false;
   auto cast = [&]() {
-    self->LastNumberOfThreads = vtkSMPTools::GetEstimatedNumberOfThreads();
+    this->CastThreads = vtkSMPTools::GetEstimatedNumberOfThreads();
     if (members.size() == 1)
     {
       vtkVolumeState& volume = *this->Rendered[0].first;
       completed = volume.Caster.CastImage(
-        rays, depth, *members[0].Source, this->Image.data(), volume.Stats, progress);
+        rays, depth, *members[0].Source, this->Image.data(), volume.Stats,
+        this->Settings.CastProgress);
       return;
     }
-    if (!this->Scene.SetMembers(members, self->TerminationOpacity))
+    if (!this->Scene.SetMembers(members, this->Settings.TerminationOpacity))
     {
-      vtkErrorWithObjectMacro(self, "" << members.size() << " volumes in one scene; at most "
+      vtkErrorWithObjectMacro(this->Settings.Reporter, "" << members.size() << " volumes in one scene; at most "
                                        << parc::MaxSceneVolumes << " render together.");
       std::fill(this->Image.begin(), this->Image.end(), 0.f);
       return;
     }
-    completed = this->Scene.CastImage(rays, depth, this->Image.data(), this->MemberStats, progress);
+    completed = this->Scene.CastImage(
+      rays, depth, this->Image.data(), this->MemberStats, this->Settings.CastProgress);
     for (std::size_t v = 0; v < members.size(); ++v)
     {
       this->Rendered[v].first->Stats = this->MemberStats[v];
     }
   };
-  if (self->NumberOfThreads > 0)
+  if (this->Settings.NumberOfThreads > 0)
   {
-    vtkSMPTools::LocalScope(vtkSMPTools::Config{ self->NumberOfThreads }, cast);
+    vtkSMPTools::LocalScope(vtkSMPTools::Config{ this->Settings.NumberOfThreads }, cast);
   }
   else
   {

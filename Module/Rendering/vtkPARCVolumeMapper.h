@@ -722,25 +722,14 @@ protected:
    * other geometry, each volume's PARC passes, the cast, Auto's measurements.
    */
   void RenderRayImage(vtkRenderer* ren);
-  /** Classifies and builds the volume's polygon models when their inputs changed. */
-  bool PrepareModels(vtkVolumeState& state, vtkVolume* prop);
-  /**
-   * The supercell size of the volume's next classification: SupercellSize, scaled by
-   * Auto's search (ACCELERATION_AUTO with AutoSupercellSize).
-   */
-  void SupercellSizeOf(const vtkVolumeState& state, double size[3]) const;
-  /**
-   * Classifies the volume's cells for its caster when their inputs changed (composite
-   * volumes of one component, linear interpolation), in every acceleration mode: the
-   * caster leaves out the samples of cells that cannot contribute.
-   */
-  void PrepareCells(vtkVolumeState& state, vtkVolume* prop);
   /**
    * A set-up step of this render begins (with ReportProgress): the progress text names it
    * and the progress (ProgressEvent) is `progress`; the render's casting then reports
    * from 0.5 to 1.
    */
   void ReportSetUp(const char* step, double progress);
+  /** What the render's phases read of this mapper (vtkInternals::Settings). */
+  void TakeSettings(vtkRenderer* ren);
 
   /**
    * The image sample distance of this render: ImageSampleDistance, or with

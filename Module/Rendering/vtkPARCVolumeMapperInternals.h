@@ -44,6 +44,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 #include <string>
 #if defined(__GLIBC__)
 #include <malloc.h>
@@ -91,6 +92,27 @@ struct ClassificationKey
   }
 };
 
+/// What the phases of one render read of the mapper, taken when the render begins: the
+/// per-volume state and the internals' phases receive these, never the mapper.
+struct RenderSettings
+{
+  int AccelerationMode = 0; ///< as requested (vtkPARCVolumeMapper::ACCELERATION_*)
+  /// Auto chooses the supercell size (ACCELERATION_AUTO with AutoSupercellSize).
+  bool SearchSupercellSize = false;
+  double SupercellSize[3] = { 0, 0, 0 }; ///< as requested, in cells
+  double AverageIPScalarRange[2] = { 0, 0 };
+  /// An interactive render whose sample distances are adjusted to its budget.
+  bool Interactive = false;
+  double TerminationOpacity = 1.0;
+  int NumberOfThreads = 0; ///< 0: vtkSMPTools' own
+  /// The object errors and warnings name (the mapper), never called otherwise.
+  vtkObject* Reporter = nullptr;
+  /// A set-up step begins: its name and the render's progress (see SetUpProgress).
+  std::function<void(const char* step, double progress)> SetUpStep;
+  /// The fraction of the rays cast so far; false when the render is to stop.
+  std::function<bool(double fraction)> CastProgress;
+};
+
 /// The lights' passes of one render: their time and the frusta rendered.
 struct LightPassWork
 {
@@ -103,6 +125,7 @@ struct LightPassWork
 using parc::mapper::AutoCandidates;
 using parc::mapper::ClassificationKey;
 using parc::mapper::LightPassWork;
+using parc::mapper::RenderSettings;
 using parc::mapper::CastingProgressText;
 namespace SetUpProgress = parc::mapper::SetUpProgress;
 
@@ -113,6 +136,8 @@ class vtkPARCVolumeMapper::vtkVolumeState
 {
 public:
   int Port = 0;
+  /// The port's blend mode (vtkVolumeMapper's), of the last PrepareParameters.
+  int InputBlend = -1;
   parc::ScalarField Field;
   /// 0.5 when Field holds cell scalars (its voxels at the cells' centres), else 0.
   double CellOffset = 0.0;
@@ -165,7 +190,20 @@ public:
   ClassificationKey Classified;
   ClassificationKey CellsClassified; ///< the key of the plan's contributing cells
   /// What the classification of this volume depends on, now.
-  ClassificationKey Key(vtkPARCVolumeMapper* self, vtkVolume* vol) const;
+  ClassificationKey Key(const RenderSettings& settings, vtkVolume* vol) const;
+  /**
+   * The supercell size of the volume's next classification: the requested one, scaled by
+   * Auto's search (RenderSettings::SearchSupercellSize).
+   */
+  void SupercellSizeOf(const RenderSettings& settings, double size[3]) const;
+  /**
+   * Classifies the volume's cells for its caster when their inputs changed (composite
+   * volumes of one component, linear interpolation), in every acceleration mode: the
+   * caster leaves out the samples of cells that cannot contribute.
+   */
+  void PrepareCells(const RenderSettings& settings, vtkVolume* vol);
+  /** Classifies and builds the volume's polygon models when their inputs changed. */
+  bool PrepareModels(const RenderSettings& settings, vtkVolume* vol);
   vtkNew<vtkPARCRasterizer> Rasterizer;
   parc::DepthBufferSource DepthSource;
   parc::PlaneBufferSource PlaneSource;
@@ -235,7 +273,7 @@ public:
   /// shaded for, or exact shading.
   void PrepareShadingModel(bool quantized, vtkRenderer* ren);
   /// The mode Auto resolves to for the current classification, ray function and view.
-  int ChooseMode(const vtkPARCVolumeMapper* self, int requested, const parc::Camera& camera);
+  int ChooseMode(const RenderSettings& settings, const parc::Camera& camera);
   /// The segment source of shadow rays towards light `index` (lit from lights, in the
   /// render frame whose world origin is frame): the light's plane passes (planes) or depth
   /// passes, run again only when the light, the volume's transform, its model or that kind
@@ -244,7 +282,7 @@ public:
     const std::vector<parc::Light>& lights, std::size_t index, const parc::Vec3& frame,
     bool planes, LightPassWork& work);
   /// Runs the PARC passes of the requested mode; the segment source the caster uses.
-  const parc::SegmentSource& RunPasses(vtkPARCVolumeMapper* self, vtkRenderer* ren,
+  const parc::SegmentSource& RunPasses(const RenderSettings& settings, vtkRenderer* ren,
     vtkVolume* vol, const vtkPARCRasterizer::View& view);
 };
 
@@ -252,6 +290,8 @@ public:
 class vtkPARCVolumeMapper::vtkInternals
 {
 public:
+  /// What this render reads of the mapper (the phases below read nothing else of it).
+  RenderSettings Settings;
   /// Per input port, made when the port is first rendered.
   std::vector<std::unique_ptr<vtkVolumeState>> Volumes;
   /// The volumes of the current render with their props, in port order.
@@ -297,9 +337,9 @@ public:
   std::vector<std::pair<const char*, std::size_t>> Memory() const;
 
   // The phases of a render after the volumes are prepared (see Render).
-  /// The ray image's view for the renderer's camera; false (nothing to cast) when the
-  /// viewport is empty or the projection singular.
-  bool MakeView(vtkPARCVolumeMapper* self, vtkRenderer* ren, vtkPARCRasterizer::View& view);
+  /// The ray image's view for the renderer's camera, step pixels to a ray; false (nothing
+  /// to cast) when the viewport is empty or the projection singular.
+  bool MakeView(vtkRenderer* ren, double step, vtkPARCRasterizer::View& view);
   /// The window depth of the other geometry under each ray-image pixel.
   const float* ReadGeometryDepth(vtkRenderer* ren, const parc::Camera& rays);
   /// What set-up work the volumes have done so far: a frame that did some does not count
@@ -312,13 +352,14 @@ public:
   std::vector<SetUpWork> CountSetUpWork() const;
   /// Runs each volume's PARC passes: the volumes with the segment source each casts with.
   std::vector<parc::SceneCaster::Member> RunPasses(
-    vtkPARCVolumeMapper* self, vtkRenderer* ren, const vtkPARCRasterizer::View& view);
+    vtkRenderer* ren, const vtkPARCRasterizer::View& view);
   /// Every rendered volume shadows every shaded one when a shaded volume has a light that
   /// casts shadows (each caster's occluders are set, or cleared).
-  void SetUpShadows(vtkPARCVolumeMapper* self, vtkRenderer* ren);
+  void SetUpShadows(vtkRenderer* ren);
   /// Casts the ray image; false when aborted.
-  bool Cast(vtkPARCVolumeMapper* self, vtkRenderer* ren, const parc::Camera& rays,
-    const float* depth, const std::vector<parc::SceneCaster::Member>& members);
+  bool Cast(const parc::Camera& rays, const float* depth,
+    const std::vector<parc::SceneCaster::Member>& members);
+  int CastThreads = 0; ///< the threads the last cast could use
   /// Gives each volume's Auto the times of this frame, and its supercell search when
   /// searchSizes (Auto chooses the size, and the frame is not interactive).
   void RecordAuto(const std::vector<SetUpWork>& before, bool completed, bool searchSizes);

@@ -34,7 +34,7 @@ int MajorAxis(const parc::Matrix4& indexToWorld, const parc::Vec3& direction)
 
 //------------------------------------------------------------------------------
 std::vector<parc::SceneCaster::Member> vtkPARCVolumeMapper::vtkInternals::RunPasses(
-  vtkPARCVolumeMapper* self, vtkRenderer* ren, const vtkPARCRasterizer::View& view)
+  vtkRenderer* ren, const vtkPARCRasterizer::View& view)
 {
   std::vector<parc::SceneCaster::Member> members;
   for (const auto& entry : this->Rendered)
@@ -42,8 +42,8 @@ std::vector<parc::SceneCaster::Member> vtkPARCVolumeMapper::vtkInternals::RunPas
     vtkVolumeState& volume = *entry.first;
     volume.Plan.Auto.Chosen = -1;
     const double start = vtkTimerLog::GetUniversalTime();
-    self->PrepareCells(volume, entry.second);
-    const parc::SegmentSource& source = volume.RunPasses(self, ren, entry.second, view);
+    volume.PrepareCells(this->Settings, entry.second);
+    const parc::SegmentSource& source = volume.RunPasses(this->Settings, ren, entry.second, view);
     volume.ProjectionTime = vtkTimerLog::GetUniversalTime() - start;
     this->ProjectionTime += volume.ProjectionTime;
     members.push_back({ &volume.Caster, &source });
@@ -52,8 +52,9 @@ std::vector<parc::SceneCaster::Member> vtkPARCVolumeMapper::vtkInternals::RunPas
 }
 
 //------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, vtkRenderer* ren)
+void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkRenderer* ren)
 {
+  const int mode = this->Settings.AccelerationMode;
   const auto castsShadows = [](const parc::Light& light) { return light.ShadowAttenuation > 0.0; };
   // Volumes of independent components neither cast nor receive shadows.
   const auto inShadows = [](const vtkVolumeState& volume) { return volume.Components.empty(); };
@@ -80,8 +81,8 @@ void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, 
     }
     parc::Occluders::Member member{ &volume.Caster, {} };
     // The walk answers any ray: shadow rays need no pass from the lights.
-    const bool walk = self->AccelerationMode == ACCELERATION_SUPERCELL_WALK;
-    for (std::size_t i = 0; shadows && self->AccelerationMode != ACCELERATION_NONE &&
+    const bool walk = mode == ACCELERATION_SUPERCELL_WALK;
+    for (std::size_t i = 0; shadows && mode != ACCELERATION_NONE &&
          volume.Plan.GetGrid().GetNumberOfSupercells() > 0 && i < lights->size();
          ++i)
     {
@@ -90,7 +91,7 @@ void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkPARCVolumeMapper* self, 
         member.LightSources.push_back(nullptr);
         continue;
       }
-      const bool planes = self->AccelerationMode == ACCELERATION_COLOR_BUFFER;
+      const bool planes = mode == ACCELERATION_COLOR_BUFFER;
       member.LightSources.push_back(walk
           ? &volume.Plan.GetWalk(volume.CoreVolume.WorldToIndex)
           : volume.LightSource(ren->GetRenderWindow(), *lights, i, frame, planes, this->LightPasses));
@@ -148,9 +149,10 @@ void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
 
 //------------------------------------------------------------------------------
 int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
-  const vtkPARCVolumeMapper* self, int requested, const parc::Camera& camera)
+  const RenderSettings& settings, const parc::Camera& camera)
 {
   vtkVolumeState& state = *this;
+  const int requested = settings.AccelerationMode;
   if (requested != ACCELERATION_AUTO)
   {
     return requested;
@@ -168,28 +170,28 @@ int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   const parc::Vec3 centre = state.IndexToFrame.TransformPoint( // the eye is the frame's origin
     { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
   state.Plan.Auto.SetView(camera.Direction, parc::Length(centre));
-  if (self->AutoSupercellSize && state.Plan.Sizes.IsSearching())
+  if (settings.SearchSupercellSize && state.Plan.Sizes.IsSearching())
   {
     return AutoCandidates[state.Plan.Sizes.GetCandidate()]; // the search's frames take its pass
   }
   // No trial during interaction: a trial of a slow mode would break the frame budget.
   return AutoCandidates[state.Plan.Auto.Choose(
-    state.Plan.GetModelVersion(), pc, camera.Width, camera.Height, !self->LastInteractive)];
+    state.Plan.GetModelVersion(), pc, camera.Width, camera.Height, !settings.Interactive)];
 }
 
 //------------------------------------------------------------------------------
 const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
-  vtkPARCVolumeMapper* self, vtkRenderer* ren, vtkVolume* vol,
+  const RenderSettings& settings, vtkRenderer* ren, vtkVolume* vol,
   const vtkPARCRasterizer::View& passView)
 {
   vtkVolumeState& state = *this;
-  const int requested = self->AccelerationMode;
+  const int requested = settings.AccelerationMode;
   vtkRenderWindow* window = ren->GetRenderWindow();
   state.LastMode = ACCELERATION_NONE;
   state.ModeSettledByClassification = false;
   // A slice takes one sample a ray and asks for no segments: no pass can pay off.
   if (requested == ACCELERATION_NONE || state.Parameters.Blend == parc::BlendMode::Slice ||
-    !self->PrepareModels(state, vol))
+    !state.PrepareModels(settings, vol))
   {
     state.ReleaseUnusedPasses(window, false, false);
     return state.WholeRays;
@@ -209,7 +211,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     state.LastMode = requested;
     return state.NoRays; // outside the view (another volume of the scene is not): no pass
   }
-  const int mode = state.ChooseMode(self, requested, passView.Camera);
+  const int mode = state.ChooseMode(settings, passView.Camera);
   if (mode == ACCELERATION_NONE)
   {
     state.ReleaseUnusedPasses(window, false, false);
@@ -265,7 +267,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   {
     if (!state.FallbackWarned)
     {
-      vtkWarningWithObjectMacro(self, "PARC passes are not available ("
+      vtkWarningWithObjectMacro(settings.Reporter, "PARC passes are not available ("
           << state.Rasterizer->GetLastError() << "); casting unaccelerated.");
       state.FallbackWarned = true;
     }
@@ -360,8 +362,10 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
 }
 
 //------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::PrepareCells(vtkVolumeState& state, vtkVolume* vol)
+void vtkPARCVolumeMapper::vtkVolumeState::PrepareCells(
+  const RenderSettings& settings, vtkVolume* vol)
 {
+  vtkVolumeState& state = *this;
   if (!state.Caster.ReadsContributingCells())
   {
     state.Caster.SetContributingCells(nullptr);
@@ -369,12 +373,12 @@ void vtkPARCVolumeMapper::PrepareCells(vtkVolumeState& state, vtkVolume* vol)
     state.CellsClassified = ClassificationKey();
     return;
   }
-  ClassificationKey key = state.Key(this, vol);
+  ClassificationKey key = state.Key(settings, vol);
   std::fill_n(key.Size, 3, 0.0); // cells do not depend on the supercells
   if (!(key == state.CellsClassified))
   {
     state.CellsClassified = key;
-    this->ReportSetUp("classifying the cells", SetUpProgress::Cells);
+    settings.SetUpStep("classifying the cells", SetUpProgress::Cells);
     parc::ContributionRule rule;
     rule.Set(state.Parameters, state.Field.GetRange());
     state.Plan.ClassifyCells(state.Field, state.FieldVersion, rule);
@@ -384,14 +388,14 @@ void vtkPARCVolumeMapper::PrepareCells(vtkVolumeState& state, vtkVolume* vol)
 
 //------------------------------------------------------------------------------
 ClassificationKey vtkPARCVolumeMapper::vtkVolumeState::Key(
-  vtkPARCVolumeMapper* self, vtkVolume* vol) const
+  const RenderSettings& settings, vtkVolume* vol) const
 {
   const vtkVolumeState& state = *this;
   ClassificationKey key;
   key.FieldVersion = state.FieldVersion;
   key.Property = vol->GetProperty();
   key.PropertyTime = vol->GetProperty()->GetMTime();
-  key.Blend = self->GetInputBlendMode(state.Port);
+  key.Blend = state.InputBlend;
   key.Labels = state.Parameters.Labels.size();
   for (const parc::LabelFunctions& label : state.Parameters.Labels)
   {
@@ -400,21 +404,23 @@ ClassificationKey vtkPARCVolumeMapper::vtkVolumeState::Key(
       key.LabelsTime = std::max(key.LabelsTime, opacity->GetMTime());
     }
   }
-  std::copy_n(self->AverageIPScalarRange, 2, key.Average);
-  self->SupercellSizeOf(state, key.Size);
+  std::copy_n(settings.AverageIPScalarRange, 2, key.Average);
+  state.SupercellSizeOf(settings, key.Size);
   return key;
 }
 
 //------------------------------------------------------------------------------
-bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& state, vtkVolume* vol)
+bool vtkPARCVolumeMapper::vtkVolumeState::PrepareModels(
+  const RenderSettings& settings, vtkVolume* vol)
 {
-  const ClassificationKey key = state.Key(this, vol);
+  vtkVolumeState& state = *this;
+  const ClassificationKey key = state.Key(settings, vol);
   if (key == state.Classified)
   {
     return state.Plan.GetGrid().GetNumberOfSupercells() > 0; // empty after a failed one
   }
   state.Classified = key;
-  this->ReportSetUp("classifying the supercells", SetUpProgress::Supercells);
+  settings.SetUpStep("classifying the supercells", SetUpProgress::Supercells);
   // One rule per component: a supercell is PC where any component may contribute.
   std::vector<const parc::ScalarField*> fields{ &state.Field };
   std::vector<parc::ContributionRule> rules(1 + state.Components.size());
@@ -426,17 +432,17 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& state, vtkVolume* vol)
     rules[c + 1].Set(component.Parameters, component.Field.GetRange());
   }
   double requested[3], size[3];
-  this->SupercellSizeOf(state, requested);
+  state.SupercellSizeOf(settings, requested);
   if (!state.Plan.Classify(
         fields, state.FieldVersion, rules, state.Parameters.Interp, requested, size))
   {
-    vtkErrorMacro("Invalid supercell size (" << requested[0] << ", " << requested[1] << ", "
+    vtkErrorWithObjectMacro(settings.Reporter, "Invalid supercell size (" << requested[0] << ", " << requested[1] << ", "
                                              << requested[2] << "): casting unaccelerated.");
     return false;
   }
   if (!std::equal(size, size + 3, requested))
   {
-    vtkWarningMacro("Supercell size (" << requested[0] << ", " << requested[1] << ", "
+    vtkWarningWithObjectMacro(settings.Reporter, "Supercell size (" << requested[0] << ", " << requested[1] << ", "
       << requested[2] << ") would make "
       << parc::SupercellGrid::CountSupercells(state.Plan.GetGrid().GetCellDimensions(), requested)
       << " supercells, more than the " << parc::SupercellGrid::MaxSupercells
@@ -446,13 +452,12 @@ bool vtkPARCVolumeMapper::PrepareModels(vtkVolumeState& state, vtkVolume* vol)
 }
 
 //------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::SupercellSizeOf(const vtkVolumeState& state, double size[3]) const
+void vtkPARCVolumeMapper::vtkVolumeState::SupercellSizeOf(
+  const RenderSettings& settings, double size[3]) const
 {
-  const double scale = this->AccelerationMode == ACCELERATION_AUTO && this->AutoSupercellSize
-    ? state.Plan.Sizes.GetScale()
-    : 1.0;
+  const double scale = settings.SearchSupercellSize ? this->Plan.Sizes.GetScale() : 1.0;
   for (int a = 0; a < 3; ++a)
   {
-    size[a] = scale * this->SupercellSize[a];
+    size[a] = scale * settings.SupercellSize[a];
   }
 }

@@ -429,6 +429,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(
 {
   parc::CastParameters& p = state.Parameters;
   const int blend = this->GetInputBlendMode(state.Port);
+  state.InputBlend = blend;
   if (!parc::vtk::ConvertBlendMode(blend, p.Blend))
   {
     vtkErrorMacro("Blend mode " << blend << " is not supported; nothing is drawn.");
