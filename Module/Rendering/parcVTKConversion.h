@@ -5,9 +5,13 @@
 
 #include "parcRayCaster.h"
 
+#include "vtkDataArray.h"
+#include "vtkSmartPointer.h"
+#include "vtkType.h"
+
+#include <cstdint>
 #include <string>
 
-class vtkDataArray;
 class vtkImageData;
 class vtkMatrix4x4;
 class vtkVolumeProperty;
@@ -31,6 +35,33 @@ bool ConvertBlendMode(int vtkBlendMode, BlendMode& out);
 /// little memory; replaced receives the number of non-finite values replaced.
 bool WrapScalars(vtkDataArray* scalars, const int dims[3], ScalarField& field,
   std::size_t& replaced, std::string& error, int component = 0);
+
+/// What a field was last wrapped from (WrapScalars): the array, the latest modification of
+/// it and its image, the component; Version counts the fields wrapped, what pyramids and
+/// classifications are keyed by (an array switched back can be older than the last one).
+struct WrappedScalars
+{
+  vtkSmartPointer<vtkDataArray> Array; ///< null while no field is wrapped
+  vtkMTimeType Time = 0;
+  int Component = 0;
+  std::uint64_t Version = 0;
+  /// Whether the field is wrapped from these scalars already.
+  bool Matches(vtkDataArray* scalars, vtkMTimeType time, int component = 0) const
+  {
+    return this->Array && scalars == this->Array && time == this->Time &&
+      component == this->Component;
+  }
+  /// The field was wrapped from these scalars: a new version.
+  void Wrapped(vtkDataArray* scalars, vtkMTimeType time, int component = 0)
+  {
+    this->Array = scalars;
+    this->Time = time;
+    this->Component = component;
+    ++this->Version;
+  }
+  /// The field is not wrapped (a wrap failed).
+  void Clear() { this->Array = nullptr; }
+};
 
 /// Whether WrapScalars takes scalars of this VTK type.
 bool IsSupportedScalarType(int vtkType);

@@ -36,10 +36,9 @@ class vtkPARCPolygonModelFilter::vtkInternals
 {
 public:
   parc::ScalarField Field;
-  std::uint64_t FieldVersion = 0; ///< counts the fields wrapped
-  parc::AccelerationPlan Plan;    ///< the pyramid is kept while the field is the same
-  vtkSmartPointer<vtkDataArray> FieldArray; ///< the values Field reads
-  vtkMTimeType FieldTime = 0;
+  parc::vtk::WrappedScalars Scalars; ///< what Field was wrapped from
+  /// The pyramid is kept while the field is the same, the classification while its key is.
+  parc::AccelerationPlan Plan;
   vtkNew<vtkVolumeProperty> DefaultProperty;
 };
 
@@ -104,20 +103,18 @@ int vtkPARCPolygonModelFilter::RequestData(
     return 1;
   }
   const vtkMTimeType time = std::max(image->GetMTime(), scalars->GetMTime());
-  if (scalars != in.FieldArray || time != in.FieldTime)
+  if (!in.Scalars.Matches(scalars, time))
   {
     int dims[3];
     image->GetDimensions(dims);
     std::size_t replaced = 0;
-    in.FieldArray = nullptr;
+    in.Scalars.Clear();
     if (!parc::vtk::WrapScalars(scalars, dims, in.Field, replaced, error))
     {
       vtkErrorMacro(<< error);
       return 1;
     }
-    ++in.FieldVersion;
-    in.FieldArray = scalars;
-    in.FieldTime = time;
+    in.Scalars.Wrapped(scalars, time);
   }
   this->UpdateProgress(0.25);
 
@@ -126,11 +123,23 @@ int vtkPARCPolygonModelFilter::RequestData(
   parc::vtk::ConvertProperty(property, in.Field.GetRange(), p, 0, parc::vtk::GradientUnit(image));
   p.AverageRange[0] = this->AverageIPScalarRange[0];
   p.AverageRange[1] = this->AverageIPScalarRange[1];
-  parc::ContributionRule rule;
-  rule.Set(p, in.Field.GetRange());
-  double size[3];
-  if (!in.Plan.Classify(in.Field, in.FieldVersion, rule, p.Interp, this->SupercellSize, size) ||
-    !std::equal(size, size + 3, this->SupercellSize))
+  parc::ClassificationKey key;
+  key.FieldVersion = in.Scalars.Version;
+  key.Functions = property;
+  key.FunctionsTime = property->GetMTime();
+  key.Blend = this->BlendMode;
+  std::copy_n(this->AverageIPScalarRange, 2, key.Average);
+  std::copy_n(this->SupercellSize, 3, key.Size);
+  if (!in.Plan.IsClassifiedFrom(key))
+  {
+    parc::ContributionRule rule;
+    rule.Set(p, in.Field.GetRange());
+    double fitted[3];
+    in.Plan.ClassifyFrom(key, { &in.Field }, { rule }, p.Interp, fitted);
+  }
+  const parc::SupercellGrid& grid = in.Plan.GetGrid();
+  if (grid.GetNumberOfSupercells() == 0 ||
+    !std::equal(this->SupercellSize, this->SupercellSize + 3, grid.GetSize()))
   {
     vtkErrorMacro("Invalid supercell size (" << this->SupercellSize[0] << ", "
                                              << this->SupercellSize[1] << ", "
@@ -182,6 +191,9 @@ int vtkPARCPolygonModelFilter::RequestData(
   AddStatistic(fd, "ContributingSupercells", static_cast<double>(stats.ContributingSupercells));
   AddStatistic(fd, "ContributingPercent", stats.ContributingPercent);
   AddStatistic(fd, "Polygons", static_cast<double>(stats.Polygons));
+  // The filter's work so far: a new model or axis of the same classification adds none.
+  AddStatistic(fd, "Classifications", static_cast<double>(in.Plan.GetClassifications()));
+  AddStatistic(fd, "PyramidBuilds", static_cast<double>(in.Plan.GetPyramidBuilds()));
   this->UpdateProgress(1.0);
   return 1;
 }

@@ -437,7 +437,7 @@ void vtkPARCVolumeMapper::vtkInternals::ReturnFreedMemory()
       const parc::AccelerationPlan& plan = volume->Plan;
       work += plan.GetPyramidBuilds() + plan.GetClassifications() + plan.GetModelBuilds() +
         plan.GetCellClassifications() + volume->Rasterizer->GetUploadCount() +
-        volume->FieldVersion;
+        volume->Scalars.Version;
     }
   }
   if (work != this->SetUpWorkReturned)

@@ -72,26 +72,6 @@ constexpr double Supercells = 0.35; ///< classifying the supercells, building th
 /// The progress text while rays are cast.
 constexpr const char* CastingProgressText = "casting rays";
 
-/// What a classification was made from: it is made again when any of it changes.
-struct ClassificationKey
-{
-  std::uint64_t FieldVersion = 0;
-  const void* Property = nullptr; ///< compared, never dereferenced
-  vtkMTimeType PropertyTime = 0;
-  int Blend = -1;
-  /// The label map's labels with functions, and the latest time of their opacities.
-  std::size_t Labels = 0;
-  vtkMTimeType LabelsTime = 0;
-  double Average[2] = { 0, 0 }, Size[3] = { 0, 0, 0 };
-  bool operator==(const ClassificationKey& o) const
-  {
-    return FieldVersion == o.FieldVersion && Property == o.Property &&
-      PropertyTime == o.PropertyTime && Blend == o.Blend && Labels == o.Labels &&
-      LabelsTime == o.LabelsTime &&
-      std::equal(Average, Average + 2, o.Average) && std::equal(Size, Size + 3, o.Size);
-  }
-};
-
 /// What the phases of one render read of the mapper, taken when the render begins: the
 /// per-volume state and the internals' phases receive these, never the mapper.
 struct RenderSettings
@@ -123,7 +103,6 @@ struct LightPassWork
 }
 
 using parc::mapper::AutoCandidates;
-using parc::mapper::ClassificationKey;
 using parc::mapper::LightPassWork;
 using parc::mapper::RenderSettings;
 using parc::mapper::CastingProgressText;
@@ -145,26 +124,22 @@ public:
   double GradientUnit = 1.0;
   /// The box of Field (voxel-index coordinates) that is not ghost cells.
   parc::Vec3 OwnedLo, OwnedHi;
-  int FieldComponent = 0; ///< the component of FieldArray that Field reads
   /// The number of dependent components (2 or 4: colour from the others), or 0.
   int DependentComponents = 0;
-  /// The binary mask's values (port 0), and the array and time they were wrapped from.
+  /// What Field was wrapped from (its Version: what the pyramid and the classification
+  /// were made from).
+  parc::vtk::WrappedScalars Scalars;
+  /// The binary mask's values (port 0), and what they were wrapped from.
   parc::ScalarField Mask;
-  vtkSmartPointer<vtkDataArray> MaskArray;
-  vtkMTimeType MaskTime = 0;
-  vtkMTimeType FieldTime = 0;
-  /// Counts the fields wrapped: what the pyramid and the classification were made from (an
-  /// array switched by SelectScalarArray or a scalar mode can be older than the last one).
-  std::uint64_t FieldVersion = 0;
+  parc::vtk::WrappedScalars MaskScalars;
   vtkMTimeType FixesWarnedTime = 0; ///< the property whose conversion fixes were reported
-  vtkSmartPointer<vtkDataArray> FieldArray; ///< the values Field reads
   /// The quantized normals of Field (ShadingModel QuantizedNormals), and the field
   /// version they were made from.
   parc::NormalVolume Normals;
   std::uint64_t NormalsVersion = 0;
   parc::CastParameters Parameters;
   /// Components 1, 2, ... of independent components (vtkVolumeProperty::
-  /// IndependentComponentsOn), each with its own field (FieldArray's values of that
+  /// IndependentComponentsOn), each with its own field (the values of that
   /// component), parameters and caster; empty for one component.
   struct ComponentState
   {
@@ -185,12 +160,11 @@ public:
   /// supercell, or every one, may contribute): no trial is to come.
   bool ModeSettledByClassification = false;
 
-  // PARC: the classification and models, remade only when their inputs change.
+  // PARC: the classification and models, remade only when their inputs (the plan's keys)
+  // change.
   parc::AccelerationPlan Plan;
-  ClassificationKey Classified;
-  ClassificationKey CellsClassified; ///< the key of the plan's contributing cells
   /// What the classification of this volume depends on, now.
-  ClassificationKey Key(const RenderSettings& settings, vtkVolume* vol) const;
+  parc::ClassificationKey Key(const RenderSettings& settings, vtkVolume* vol) const;
   /**
    * The supercell size of the volume's next classification: the requested one, scaled by
    * Auto's search (RenderSettings::SearchSupercellSize).

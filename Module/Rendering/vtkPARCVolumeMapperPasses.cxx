@@ -370,31 +370,29 @@ void vtkPARCVolumeMapper::vtkVolumeState::PrepareCells(
   {
     state.Caster.SetContributingCells(nullptr);
     state.Plan.ReleaseCells();
-    state.CellsClassified = ClassificationKey();
     return;
   }
-  ClassificationKey key = state.Key(settings, vol);
+  parc::ClassificationKey key = state.Key(settings, vol);
   std::fill_n(key.Size, 3, 0.0); // cells do not depend on the supercells
-  if (!(key == state.CellsClassified))
+  if (!state.Plan.AreCellsClassifiedFrom(key))
   {
-    state.CellsClassified = key;
     settings.SetUpStep("classifying the cells", SetUpProgress::Cells);
     parc::ContributionRule rule;
     rule.Set(state.Parameters, state.Field.GetRange());
-    state.Plan.ClassifyCells(state.Field, state.FieldVersion, rule);
+    state.Plan.ClassifyCellsFrom(key, state.Field, rule);
   }
   state.Caster.SetContributingCells(&state.Plan.GetContributingCells());
 }
 
 //------------------------------------------------------------------------------
-ClassificationKey vtkPARCVolumeMapper::vtkVolumeState::Key(
+parc::ClassificationKey vtkPARCVolumeMapper::vtkVolumeState::Key(
   const RenderSettings& settings, vtkVolume* vol) const
 {
   const vtkVolumeState& state = *this;
-  ClassificationKey key;
-  key.FieldVersion = state.FieldVersion;
-  key.Property = vol->GetProperty();
-  key.PropertyTime = vol->GetProperty()->GetMTime();
+  parc::ClassificationKey key;
+  key.FieldVersion = state.Scalars.Version;
+  key.Functions = vol->GetProperty();
+  key.FunctionsTime = vol->GetProperty()->GetMTime();
   key.Blend = state.InputBlend;
   key.Labels = state.Parameters.Labels.size();
   for (const parc::LabelFunctions& label : state.Parameters.Labels)
@@ -414,12 +412,11 @@ bool vtkPARCVolumeMapper::vtkVolumeState::PrepareModels(
   const RenderSettings& settings, vtkVolume* vol)
 {
   vtkVolumeState& state = *this;
-  const ClassificationKey key = state.Key(settings, vol);
-  if (key == state.Classified)
+  const parc::ClassificationKey key = state.Key(settings, vol);
+  if (state.Plan.IsClassifiedFrom(key))
   {
     return state.Plan.GetGrid().GetNumberOfSupercells() > 0; // empty after a failed one
   }
-  state.Classified = key;
   settings.SetUpStep("classifying the supercells", SetUpProgress::Supercells);
   // One rule per component: a supercell is PC where any component may contribute.
   std::vector<const parc::ScalarField*> fields{ &state.Field };
@@ -431,22 +428,23 @@ bool vtkPARCVolumeMapper::vtkVolumeState::PrepareModels(
     fields.push_back(&component.Field);
     rules[c + 1].Set(component.Parameters, component.Field.GetRange());
   }
-  double requested[3], size[3];
-  state.SupercellSizeOf(settings, requested);
-  if (!state.Plan.Classify(
-        fields, state.FieldVersion, rules, state.Parameters.Interp, requested, size))
+  const double* requested = key.Size;
+  double size[3];
+  if (!state.Plan.ClassifyFrom(key, fields, rules, state.Parameters.Interp, size))
   {
-    vtkErrorWithObjectMacro(settings.Reporter, "Invalid supercell size (" << requested[0] << ", " << requested[1] << ", "
-                                             << requested[2] << "): casting unaccelerated.");
+    vtkErrorWithObjectMacro(settings.Reporter,
+      "Invalid supercell size (" << requested[0] << ", " << requested[1] << ", " << requested[2]
+                                 << "): casting unaccelerated.");
     return false;
   }
   if (!std::equal(size, size + 3, requested))
   {
-    vtkWarningWithObjectMacro(settings.Reporter, "Supercell size (" << requested[0] << ", " << requested[1] << ", "
-      << requested[2] << ") would make "
-      << parc::SupercellGrid::CountSupercells(state.Plan.GetGrid().GetCellDimensions(), requested)
-      << " supercells, more than the " << parc::SupercellGrid::MaxSupercells
-      << " allowed: using (" << size[0] << ", " << size[1] << ", " << size[2] << ").");
+    vtkWarningWithObjectMacro(settings.Reporter,
+      "Supercell size (" << requested[0] << ", " << requested[1] << ", " << requested[2]
+        << ") would make "
+        << parc::SupercellGrid::CountSupercells(state.Plan.GetGrid().GetCellDimensions(), requested)
+        << " supercells, more than the " << parc::SupercellGrid::MaxSupercells
+        << " allowed: using (" << size[0] << ", " << size[1] << ", " << size[2] << ").");
   }
   return true;
 }

@@ -195,18 +195,17 @@ bool vtkPARCVolumeMapper::PrepareMask(
     return false;
   }
   const vtkMTimeType time = std::max(this->MaskInput->GetMTime(), values->GetMTime());
-  if (values != state.MaskArray || time != state.MaskTime)
+  if (!state.MaskScalars.Matches(values, time))
   {
     std::size_t replaced = 0;
     std::string error;
     if (!parc::vtk::WrapScalars(values, dims, state.Mask, replaced, error))
     {
       vtkErrorMacro("The mask: " << error << " Nothing is drawn.");
-      state.MaskArray = nullptr;
+      state.MaskScalars.Clear();
       return false;
     }
-    state.MaskArray = values;
-    state.MaskTime = time;
+    state.MaskScalars.Wrapped(values, time);
   }
   p.Mask = &state.Mask;
   if (labelMap)
@@ -326,13 +325,13 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& state, vtkVolume* prop)
   }
   const int component = dependent ? components - 1 : 0;
   const vtkMTimeType time = std::max(image->GetMTime(), scalars->GetMTime());
-  if (scalars == state.FieldArray && time == state.FieldTime && component == state.FieldComponent)
+  if (state.Scalars.Matches(scalars, time, component))
   {
     return true;
   }
   this->ReportSetUp("reading the scalars", SetUpProgress::Scalars);
   std::size_t replaced = 0;
-  state.FieldArray = nullptr;
+  state.Scalars.Clear();
   state.Components.clear();
   if (!parc::vtk::WrapScalars(scalars, dims, state.Field, replaced, error, component))
   {
@@ -366,11 +365,8 @@ bool vtkPARCVolumeMapper::PrepareField(vtkVolumeState& state, vtkVolume* prop)
                        "by the largest finite value.");
   }
   parc::vtk::OwnedCellBox(image, state.CellOffset, state.OwnedLo, state.OwnedHi);
-  state.FieldArray = scalars;
-  state.FieldTime = time;
-  state.FieldComponent = component;
+  state.Scalars.Wrapped(scalars, time, component);
   state.DependentComponents = dependent ? components : 0;
-  ++state.FieldVersion;
   int cells[3]; // another volume: another best size
   for (int a = 0; a < 3; ++a)
   {
@@ -446,7 +442,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(
   std::copy_n(state.Field.GetRange(), 2, colorRange);
   if (state.DependentComponents == 2)
   {
-    state.FieldArray->GetRange(colorRange, 0);
+    state.Scalars.Array->GetRange(colorRange, 0);
   }
   this->ColorTableRange(property, 0, colorRange);
   if (!state.Components.empty() && !parc::TraitsOf(p.Blend).CombinesComponents)
@@ -628,10 +624,10 @@ void vtkPARCVolumeMapper::vtkVolumeState::PrepareShadingModel(bool quantized, vt
   {
     return; // shaded exactly, or not at all
   }
-  if (this->Normals.IsEmpty() || this->NormalsVersion != this->FieldVersion)
+  if (this->Normals.IsEmpty() || this->NormalsVersion != this->Scalars.Version)
   {
     this->Normals.Build(this->Field);
-    this->NormalsVersion = this->FieldVersion;
+    this->NormalsVersion = this->Scalars.Version;
   }
   p.Normals = &this->Normals;
   // Towards the eye (the frame's origin) from the volume's centre; along the view

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -66,6 +67,48 @@ TEST(AccelerationPlan, AnInvalidSizeLeavesAnEmptyGrid)
   EXPECT_GT(plan.GetGrid().GetNumberOfSupercells(), 0u);
   EXPECT_FALSE(plan.Classify(field, 1, Rule(field, 50), parc::Interpolation::Linear, bad, fitted));
   EXPECT_EQ(plan.GetGrid().GetNumberOfSupercells(), 0u) << "no stale grid";
+}
+
+TEST(AccelerationPlan, KnowsWhatItsClassificationsWereMadeFrom)
+{
+  const parc::ScalarField field = parctest::Blobs();
+  const parc::ContributionRule rule = Rule(field, 50);
+  parc::AccelerationPlan plan;
+  parc::ClassificationKey key;
+  key.FieldVersion = 1;
+  std::fill_n(key.Size, 3, 2.0);
+  EXPECT_FALSE(plan.IsClassifiedFrom(key));
+  double fitted[3];
+  ASSERT_TRUE(plan.ClassifyFrom(key, { &field }, { rule }, parc::Interpolation::Linear, fitted));
+  EXPECT_TRUE(plan.IsClassifiedFrom(key));
+  EXPECT_EQ(plan.GetGrid().GetSize()[0], 2.0);
+  EXPECT_FALSE(plan.AreCellsClassifiedFrom(key)) << "the cells have a key of their own";
+
+  // Any part of the key changed is another classification.
+  parc::ClassificationKey changed = key;
+  changed.FunctionsTime = 7;
+  EXPECT_FALSE(plan.IsClassifiedFrom(changed));
+  changed = key;
+  changed.Size[2] = 4.0;
+  EXPECT_FALSE(plan.IsClassifiedFrom(changed));
+  changed = key;
+  changed.Blend = 1;
+  EXPECT_FALSE(plan.IsClassifiedFrom(changed));
+
+  // A failed classification is noted too: the caller does not retry it every frame.
+  parc::ClassificationKey bad = key;
+  bad.Size[0] = 0.0;
+  EXPECT_FALSE(plan.ClassifyFrom(bad, { &field }, { rule }, parc::Interpolation::Linear, fitted));
+  EXPECT_TRUE(plan.IsClassifiedFrom(bad));
+  EXPECT_EQ(plan.GetGrid().GetNumberOfSupercells(), 0u);
+
+  parc::ClassificationKey cells = key;
+  std::fill_n(cells.Size, 3, 0.0);
+  ASSERT_TRUE(plan.ClassifyCellsFrom(cells, field, rule));
+  EXPECT_TRUE(plan.AreCellsClassifiedFrom(cells));
+  EXPECT_EQ(plan.GetPyramidBuilds(), 1u);
+  plan.ReleaseCells();
+  EXPECT_FALSE(plan.AreCellsClassifiedFrom(cells)) << "released cells are made again";
 }
 
 TEST(AccelerationPlan, ColourModelsHaveVersionsOfTheirOwn)

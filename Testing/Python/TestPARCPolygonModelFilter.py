@@ -104,6 +104,35 @@ class TestPolygonModelFilter(unittest.TestCase):
         poly, _ = self.model()
         self.assertGreater(statistic(poly, "ContributingSupercells"), before)
 
+    def test_classifies_only_when_its_inputs_change(self):
+        poly, _ = self.model()
+        self.assertEqual(statistic(poly, "Classifications"), 1)
+        self.assertEqual(statistic(poly, "PyramidBuilds"), 1)
+        # Another model, axis or face merging of the same classification: none new.
+        self.filter.SetModelToColor()
+        for axis in range(3):
+            self.filter.SetMajorAxis(axis)
+            poly, _ = self.model()
+        self.filter.MergeFacesOn()
+        poly, _ = self.model()
+        self.assertEqual(statistic(poly, "Classifications"), 1)
+        # A transfer function, blend mode or supercell size: a new one, on the same pyramid.
+        self.opacity.AddPoint(230, 0.1)
+        poly, _ = self.model()
+        self.assertEqual(statistic(poly, "Classifications"), 2)
+        self.filter.SetBlendMode(vtkVolumeMapper.MAXIMUM_INTENSITY_BLEND)
+        poly, _ = self.model()
+        self.assertEqual(statistic(poly, "Classifications"), 3)
+        self.filter.SetSupercellSize(4, 4, 4)
+        poly, _ = self.model()
+        self.assertEqual(statistic(poly, "Classifications"), 4)
+        self.assertEqual(statistic(poly, "PyramidBuilds"), 1)
+        # New scalars: a new pyramid.
+        self.source.SetMaximum(300.0)
+        poly, _ = self.model()
+        self.assertEqual(statistic(poly, "Classifications"), 5)
+        self.assertEqual(statistic(poly, "PyramidBuilds"), 2)
+
     def test_isosurface_and_progress(self):
         self.property.GetIsoSurfaceValues().SetValue(0, 150.0)
         self.filter.SetBlendMode(vtkVolumeMapper.ISOSURFACE_BLEND)

@@ -346,6 +346,29 @@ bool AccelerationPlan::Classify(const std::vector<const ScalarField*>& fields,
   return true;
 }
 
+bool ClassificationKey::operator==(const ClassificationKey& o) const
+{
+  return FieldVersion == o.FieldVersion && Functions == o.Functions &&
+    FunctionsTime == o.FunctionsTime && Blend == o.Blend && Labels == o.Labels &&
+    LabelsTime == o.LabelsTime && std::equal(Average, Average + 2, o.Average) &&
+    std::equal(Size, Size + 3, o.Size);
+}
+
+bool AccelerationPlan::ClassifyFrom(const ClassificationKey& key,
+  const std::vector<const ScalarField*>& fields, const std::vector<ContributionRule>& rules,
+  Interpolation interpolation, double fitted[3])
+{
+  this->SupercellsKey = key;
+  return this->Classify(fields, key.FieldVersion, rules, interpolation, key.Size, fitted);
+}
+
+bool AccelerationPlan::ClassifyCellsFrom(
+  const ClassificationKey& key, const ScalarField& field, const ContributionRule& rule)
+{
+  this->CellsKey = key;
+  return this->ClassifyCells(field, key.FieldVersion, rule);
+}
+
 bool AccelerationPlan::ClassifyCells(
   const ScalarField& field, std::uint64_t fieldVersion, const ContributionRule& rule)
 {

@@ -3,11 +3,11 @@
 // the polygon models of the passes with their versions, and Auto's measurements. No GL:
 // the caller draws the models and says whether its GPU holds a model's version already.
 //
-// Pyramid and classification are remade only when asked: the pyramid when the field's
-// version changes, the classification on every Classify (the caller decides, from what
-// it knows of its inputs, when the ray function changed). Each classification makes a new
-// model version; a model's vertices are built once per version, and only while the caller
-// does not hold an uploaded copy.
+// The pyramid is remade when the field's version changes, the classification on every
+// Classify; ClassifyFrom notes what the caller made it from (a ClassificationKey), and
+// IsClassifiedFrom tells the caller whether its inputs changed since. Each classification
+// makes a new model version; a model's vertices are built once per version, and only
+// while the caller does not hold an uploaded copy.
 #ifndef parcAccelerationPlan_h
 #define parcAccelerationPlan_h
 
@@ -212,6 +212,24 @@ private:
   bool Growing = true;
 };
 
+/// What a classification is made from, as its caller sees its inputs (the field's
+/// version, the transfer functions, the ray function, the supercell size): a plan
+/// classifies again only when its key changes (AccelerationPlan::IsClassifiedFrom).
+struct ClassificationKey
+{
+  std::uint64_t FieldVersion = 0;
+  const void* Functions = nullptr; ///< what holds the transfer functions; compared only
+  std::uint64_t FunctionsTime = 0; ///< their latest modification
+  int Blend = -1;                  ///< the caller's blend mode
+  /// The label map's labels with functions, and the latest modification of their opacities.
+  std::size_t Labels = 0;
+  std::uint64_t LabelsTime = 0;
+  double Average[2] = { 0, 0 }; ///< the average-intensity range
+  double Size[3] = { 0, 0, 0 }; ///< the supercell size (0 for the cells' classification)
+  bool operator==(const ClassificationKey& o) const;
+  bool operator!=(const ClassificationKey& o) const { return !(*this == o); }
+};
+
 class AccelerationPlan
 {
 public:
@@ -242,7 +260,24 @@ public:
     const ScalarField& field, std::uint64_t fieldVersion, const ContributionRule& rule);
   /// The bits of the last ClassifyCells (empty after ReleaseCells).
   const std::vector<std::uint8_t>& GetContributingCells() const { return this->Cells; }
-  void ReleaseCells() { this->Cells = std::vector<std::uint8_t>(); }
+  void ReleaseCells()
+  {
+    this->Cells = std::vector<std::uint8_t>();
+    this->CellsKey = ClassificationKey();
+  }
+
+  /// Whether the supercells were classified last from key (ClassifyFrom), successfully or
+  /// not.
+  bool IsClassifiedFrom(const ClassificationKey& key) const { return key == this->SupercellsKey; }
+  /// Classify, noting key as what it was made from (key.FieldVersion and key.Size are its
+  /// field version and size).
+  bool ClassifyFrom(const ClassificationKey& key, const std::vector<const ScalarField*>& fields,
+    const std::vector<ContributionRule>& rules, Interpolation interpolation, double fitted[3]);
+  /// Whether the cells were classified last from key (ClassifyCellsFrom).
+  bool AreCellsClassifiedFrom(const ClassificationKey& key) const { return key == this->CellsKey; }
+  /// ClassifyCells, noting key as what it was made from.
+  bool ClassifyCellsFrom(
+    const ClassificationKey& key, const ScalarField& field, const ContributionRule& rule);
 
   const SupercellGrid& GetGrid() const { return this->Grid; }
   /// Counts the classifications: the version of the models.
@@ -311,6 +346,7 @@ private:
   std::uint64_t PyramidFieldVersion = 0;
   SupercellGrid Grid;
   std::vector<std::uint8_t> Cells; ///< ClassifyCells' bits
+  ClassificationKey SupercellsKey, CellsKey; ///< of ClassifyFrom and ClassifyCellsFrom
   PassModel Depth;
   PassModel Color[3]; ///< per major axis
   SupercellWalk Walk;
