@@ -62,6 +62,40 @@ constexpr int AutoCandidates[parc::AutoTrials::Count] = {
   vtkPARCVolumeMapper::ACCELERATION_BOTH, vtkPARCVolumeMapper::ACCELERATION_NONE
 };
 
+/// What an acceleration mode draws and walks, in one place: RunPasses draws its passes,
+/// ReleaseUnusedPasses frees the others, and SetUpShadows gives shadow rays its kind of
+/// light pass.
+struct AccelerationTraits
+{
+  bool Depth = false;  ///< draws the depth pass (near/far buffers)
+  bool Planes = false; ///< draws the colour planes pass (bit planes)
+  bool Walk = false;   ///< walks the supercells: no pass, for view and shadow rays alike
+  /// Shadow rays use passes from the lights (not for None): colour planes, else depth.
+  bool LightPasses = false;
+  bool LightPlanes = false;
+};
+
+/// The traits of an acceleration mode (vtkPARCVolumeMapper::ACCELERATION_*; Auto's are
+/// those of its light passes, its view passes being those of the mode it chooses).
+constexpr AccelerationTraits TraitsOf(int mode)
+{
+  switch (mode)
+  {
+    case vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER:
+      return { true, false, false, true, false };
+    case vtkPARCVolumeMapper::ACCELERATION_COLOR_BUFFER:
+      return { false, true, false, true, true };
+    case vtkPARCVolumeMapper::ACCELERATION_BOTH:
+      return { true, true, false, true, false };
+    case vtkPARCVolumeMapper::ACCELERATION_AUTO:
+      return { false, false, false, true, false };
+    case vtkPARCVolumeMapper::ACCELERATION_SUPERCELL_WALK:
+      return { false, false, true, false, false };
+    default: // ACCELERATION_NONE
+      return {};
+  }
+}
+
 /// The render's progress as each set-up step begins (vtkPARCVolumeMapper::ReportSetUp).
 namespace SetUpProgress
 {
@@ -103,6 +137,7 @@ struct LightPassWork
 }
 
 using parc::mapper::AutoCandidates;
+using parc::mapper::AccelerationTraits;
 using parc::mapper::LightPassWork;
 using parc::mapper::RenderSettings;
 using parc::mapper::CastingProgressText;
@@ -216,24 +251,24 @@ public:
     return this->Plan.GetSetUpTime() + this->Rasterizer->GetSetUpTime();
   }
   /// Frees the buffers and GL objects of the passes, and the walk's flags, that a settled
-  /// mode does not use (Auto keeps them while it still has modes to try).
-  void ReleaseUnusedPasses(vtkRenderWindow* window, bool depth, bool color, bool walk = false)
+  /// mode (used) does not use (Auto keeps them while it still has modes to try).
+  void ReleaseUnusedPasses(vtkRenderWindow* window, const AccelerationTraits& used)
   {
     if (this->Plan.Auto.Remaining() > 0 && this->Plan.Auto.Chosen >= 0)
     {
       return;
     }
-    if (!depth)
+    if (!used.Depth)
     {
       this->DepthSource.ReleaseBuffer();
       this->Rasterizer->ReleasePass(window, vtkPARCRasterizer::Pass::Depth);
     }
-    if (!color)
+    if (!used.Planes)
     {
       this->PlaneSource.ReleaseBuffer();
       this->Rasterizer->ReleasePass(window, vtkPARCRasterizer::Pass::Planes);
     }
-    if (!walk)
+    if (!used.Walk)
     {
       this->Plan.ReleaseWalk();
     }

@@ -54,7 +54,7 @@ std::vector<parc::SceneCaster::Member> vtkPARCVolumeMapper::vtkInternals::RunPas
 //------------------------------------------------------------------------------
 void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkRenderer* ren)
 {
-  const int mode = this->Settings.AccelerationMode;
+  const AccelerationTraits requested = parc::mapper::TraitsOf(this->Settings.AccelerationMode);
   const auto castsShadows = [](const parc::Light& light) { return light.ShadowAttenuation > 0.0; };
   // Volumes of independent components neither cast nor receive shadows.
   const auto inShadows = [](const vtkVolumeState& volume) { return volume.Components.empty(); };
@@ -81,8 +81,7 @@ void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkRenderer* ren)
     }
     parc::Occluders::Member member{ &volume.Caster, {} };
     // The walk answers any ray: shadow rays need no pass from the lights.
-    const bool walk = mode == ACCELERATION_SUPERCELL_WALK;
-    for (std::size_t i = 0; shadows && mode != ACCELERATION_NONE &&
+    for (std::size_t i = 0; shadows && (requested.Walk || requested.LightPasses) &&
          volume.Plan.GetGrid().GetNumberOfSupercells() > 0 && i < lights->size();
          ++i)
     {
@@ -91,10 +90,10 @@ void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkRenderer* ren)
         member.LightSources.push_back(nullptr);
         continue;
       }
-      const bool planes = mode == ACCELERATION_COLOR_BUFFER;
-      member.LightSources.push_back(walk
+      member.LightSources.push_back(requested.Walk
           ? &volume.Plan.GetWalk(volume.CoreVolume.WorldToIndex)
-          : volume.LightSource(ren->GetRenderWindow(), *lights, i, frame, planes, this->LightPasses));
+          : volume.LightSource(ren->GetRenderWindow(), *lights, i, frame, requested.LightPlanes,
+              this->LightPasses));
     }
     occluders.push_back(std::move(member));
   }
@@ -193,7 +192,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   if (requested == ACCELERATION_NONE || state.Parameters.Blend == parc::BlendMode::Slice ||
     !state.PrepareModels(settings, vol))
   {
-    state.ReleaseUnusedPasses(window, false, false);
+    state.ReleaseUnusedPasses(window, {});
     return state.WholeRays;
   }
   const parc::SupercellGrid& grid = state.Plan.GetGrid();
@@ -201,7 +200,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   {
     state.LastMode = requested;
     state.ModeSettledByClassification = true;
-    state.ReleaseUnusedPasses(window, false, false);
+    state.ReleaseUnusedPasses(window, {});
     return state.NoRays; // nothing can show: no pass, no sample
   }
   const int* dims = state.Field.GetDimensions();
@@ -214,18 +213,19 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   const int mode = state.ChooseMode(settings, passView.Camera);
   if (mode == ACCELERATION_NONE)
   {
-    state.ReleaseUnusedPasses(window, false, false);
+    state.ReleaseUnusedPasses(window, {});
     return state.WholeRays;
   }
-  if (mode == ACCELERATION_SUPERCELL_WALK)
+  const AccelerationTraits passes = parc::mapper::TraitsOf(mode);
+  if (passes.Walk)
   {
     state.LastMode = mode;
-    state.ReleaseUnusedPasses(window, false, false, true);
+    state.ReleaseUnusedPasses(window, passes);
     return state.Plan.GetWalk(state.CoreVolume.WorldToIndex);
   }
   const parc::Matrix4& indexToWorld = state.IndexToFrame;
-  const bool depth = mode == ACCELERATION_DEPTH_BUFFER || mode == ACCELERATION_BOTH;
-  const bool color = mode == ACCELERATION_COLOR_BUFFER || mode == ACCELERATION_BOTH;
+  const bool depth = passes.Depth;
+  const bool color = passes.Planes;
   bool ok = true;
   if (depth)
   {
@@ -276,8 +276,8 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     return state.WholeRays;
   }
   state.LastMode = mode;
-  state.ReleaseUnusedPasses(window, depth, color);
-  if (mode == ACCELERATION_BOTH)
+  state.ReleaseUnusedPasses(window, passes);
+  if (depth && color)
   {
     return state.Both;
   }
