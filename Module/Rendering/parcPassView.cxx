@@ -20,30 +20,36 @@ constexpr double AffineTolerance = 1e-12;
 }
 
 //------------------------------------------------------------------------------
-Vec3 FrameOrigin(vtkRenderer* ren)
+CameraFrame ReadCameraFrame(vtkRenderer* ren)
 {
-  const double* eye = ren->GetActiveCamera()->GetPosition();
-  return { eye[0], eye[1], eye[2] };
+  vtkCamera* camera = ren->GetActiveCamera();
+  const double* eye = camera->GetPosition();
+  const double* direction = camera->GetDirectionOfProjection();
+  CameraFrame frame;
+  frame.Origin = { eye[0], eye[1], eye[2] };
+  frame.Direction = Normalized({ direction[0], direction[1], direction[2] });
+  frame.Parallel = camera->GetParallelProjection() != 0;
+  return frame;
 }
 
 //------------------------------------------------------------------------------
-bool MakePassView(vtkRenderer* ren, int width, int height, PassView& view)
+bool MakePassView(
+  vtkRenderer* ren, const CameraFrame& frame, int width, int height, PassView& view)
 {
   vtkCamera* camera = ren->GetActiveCamera();
   // The view transform of the camera's frame: the translation by the camera position, large
   // far from the origin, cancels in double here (leaving at most a constant offset that the
   // rays and the passes share) and never enters float.
-  view.FrameOrigin = FrameOrigin(ren);
+  view.FrameOrigin = frame.Origin;
   const Matrix4 worldToView = ToMatrix4(camera->GetViewTransformMatrix());
   const Matrix4 frameToView =
     Translated(worldToView, worldToView.TransformVector(view.FrameOrigin));
   Camera& c = view.Camera;
   c.Width = width;
   c.Height = height;
-  c.Parallel = camera->GetParallelProjection() != 0;
+  c.Parallel = frame.Parallel;
   c.Eye = Vec3();
-  const double* direction = camera->GetDirectionOfProjection();
-  c.Direction = Normalized({ direction[0], direction[1], direction[2] });
+  c.Direction = frame.Direction;
   c.NearDistance = camera->GetClippingRange()[0];
   c.FarDistance = camera->GetClippingRange()[1];
   if (!c.SetProjection(Multiply(

@@ -28,12 +28,23 @@ struct PassView
   bool AffineRays = false; ///< false: the coefficients do not describe the rays
 };
 
-/// The world position of the frame's origin for the renderer's active camera: its position.
-Vec3 FrameOrigin(vtkRenderer* ren);
+/// The renderer's active camera as a render reads it once, when it begins: what its
+/// phases need of it before the ray image's view.
+struct CameraFrame
+{
+  Vec3 Origin; ///< the camera position: the world position of the render frame's origin
+  Vec3 Direction; ///< the direction of projection, unit length
+  bool Parallel = false;
+};
 
-/// The view of a width x height ray image of the renderer's active camera, in the
-/// camera's frame (see PassView; the eye is at 0). False when the projection is singular.
-bool MakePassView(vtkRenderer* ren, int width, int height, PassView& view);
+/// The frame of the renderer's active camera.
+CameraFrame ReadCameraFrame(vtkRenderer* ren);
+
+/// The view of a width x height ray image of the renderer's active camera (whose frame is
+/// frame), in the camera's frame (see PassView; the eye is at 0). False when the
+/// projection is singular.
+bool MakePassView(vtkRenderer* ren, const CameraFrame& frame, int width, int height,
+  PassView& view);
 
 /// Fills the ray coefficients of view from its camera.
 void SetRayCoefficients(PassView& view);

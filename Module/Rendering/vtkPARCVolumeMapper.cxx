@@ -146,6 +146,7 @@ void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
     (this->InteractiveAdjustSampleDistances && interactive);
   this->LastInteractive = in.AdjustSampleDistances && interactive;
   this->TakeSettings(ren);
+  in.Frame = parc::vtk::ReadCameraFrame(ren);
   if (this->UseJittering && !in.JitteringWarned)
   {
     vtkWarningMacro("UseJittering is not supported: rays sample one exact lattice; ignored.");
@@ -332,7 +333,7 @@ bool vtkPARCVolumeMapper::vtkInternals::MakeView(
   {
     return false;
   }
-  if (!parc::vtk::MakePassView(ren, std::max(1, static_cast<int>(width / step)),
+  if (!parc::vtk::MakePassView(ren, this->Frame, std::max(1, static_cast<int>(width / step)),
         std::max(1, static_cast<int>(height / step)), view))
   {
     vtkErrorWithObjectMacro(this->Settings.Reporter, "The camera's projection is singular.");

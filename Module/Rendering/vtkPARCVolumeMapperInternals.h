@@ -279,8 +279,8 @@ public:
 
   /// The shading model's part of Parameters (after the lights and IndexToFrame): the
   /// quantized normals (made again when the field changed) and the view direction they are
-  /// shaded for, or exact shading.
-  void PrepareShadingModel(bool quantized, vtkRenderer* ren);
+  /// shaded for (from the camera's frame), or exact shading.
+  void PrepareShadingModel(bool quantized, const parc::vtk::CameraFrame& frame);
   /// The mode Auto resolves to for the current classification, ray function and view.
   int ChooseMode(const RenderSettings& settings, const parc::Camera& camera);
   /// The segment source of shadow rays towards light `index` (lit from lights, in the
@@ -301,6 +301,9 @@ class vtkPARCVolumeMapper::vtkInternals
 public:
   /// What this render reads of the mapper (the phases below read nothing else of it).
   RenderSettings Settings;
+  /// The renderer's camera as this render began (its position is the render frame's
+  /// origin: every world quantity the core sees is in that frame).
+  parc::vtk::CameraFrame Frame;
   /// Per input port, made when the port is first rendered.
   std::vector<std::unique_ptr<vtkVolumeState>> Volumes;
   /// The volumes of the current render with their props, in port order.

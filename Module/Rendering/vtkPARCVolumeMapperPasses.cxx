@@ -71,7 +71,7 @@ void vtkPARCVolumeMapper::vtkInternals::SetUpShadows(vtkRenderer* ren)
   const bool shadows = lights != nullptr;
   this->LightPasses = LightPassWork();
   std::vector<parc::Occluders::Member> occluders;
-  const parc::Vec3 frame = parc::vtk::FrameOrigin(ren);
+  const parc::Vec3 frame = this->Frame.Origin;
   for (const auto& entry : this->Rendered)
   {
     vtkVolumeState& volume = *entry.first;

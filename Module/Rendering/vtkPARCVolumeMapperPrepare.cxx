@@ -493,7 +493,7 @@ bool vtkPARCVolumeMapper::PrepareParameters(
   }
 
   // The core sees world coordinates minus the camera position, as the passes' views do.
-  const parc::Vec3 frame = parc::vtk::FrameOrigin(ren);
+  const parc::Vec3 frame = this->Internals->Frame.Origin;
   vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(state.Port, 0));
   state.IndexToFrame = IndexToFrame(image, vol, frame, state.CellOffset);
   const parc::Matrix4& indexToWorld = state.IndexToFrame;
@@ -560,7 +560,8 @@ bool vtkPARCVolumeMapper::PrepareParameters(
   }
   // The quantized normals are of one component: several are shaded exactly.
   state.PrepareShadingModel(
-    this->ShadingModel == SHADING_QUANTIZED_NORMALS && state.Components.empty(), ren);
+    this->ShadingModel == SHADING_QUANTIZED_NORMALS && state.Components.empty(),
+    this->Internals->Frame);
   if (!state.Caster.Prepare(state.CoreVolume) || !this->PrepareComponents(state, property, fixes))
   {
     vtkErrorMacro("Invalid rendering parameters (sample distance " << p.SampleDistance
@@ -610,7 +611,8 @@ bool vtkPARCVolumeMapper::PrepareComponents(
 }
 
 //------------------------------------------------------------------------------
-void vtkPARCVolumeMapper::vtkVolumeState::PrepareShadingModel(bool quantized, vtkRenderer* ren)
+void vtkPARCVolumeMapper::vtkVolumeState::PrepareShadingModel(
+  bool quantized, const parc::vtk::CameraFrame& frame)
 {
   parc::CastParameters& p = this->Parameters;
   p.Shading = quantized ? parc::ShadingModel::QuantizedNormals : parc::ShadingModel::Exact;
@@ -632,13 +634,10 @@ void vtkPARCVolumeMapper::vtkVolumeState::PrepareShadingModel(bool quantized, vt
   p.Normals = &this->Normals;
   // Towards the eye (the frame's origin) from the volume's centre; along the view
   // direction for a parallel projection.
-  vtkCamera* camera = ren->GetActiveCamera();
   const int* dims = this->Field.GetDimensions();
   const parc::Vec3 centre = this->IndexToFrame.TransformPoint(
     parc::Vec3(0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1)));
-  const double* projection = camera->GetDirectionOfProjection();
-  const parc::Vec3 along = -parc::Vec3(projection[0], projection[1], projection[2]);
-  p.ShadingViewDirection = camera->GetParallelProjection() || !(parc::Length(centre) > 0.0)
-    ? parc::Normalized(along)
+  p.ShadingViewDirection = frame.Parallel || !(parc::Length(centre) > 0.0)
+    ? -frame.Direction
     : parc::Normalized(-centre);
 }

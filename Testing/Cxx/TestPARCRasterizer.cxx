@@ -266,7 +266,7 @@ bool CheckCamera(vtkRenderWindow* window, vtkRenderer* ren, vtkPARCRasterizer* r
   int size[2];
   ren->GetTiledSize(&size[0], &size[1]);
   vtkPARCRasterizer::View view;
-  if (!parc::vtk::MakePassView(ren, size[0], size[1], view))
+  if (!parc::vtk::MakePassView(ren, parc::vtk::ReadCameraFrame(ren), size[0], size[1], view))
   {
     std::cerr << name << ": singular camera\n";
     return false;
