@@ -5,6 +5,7 @@
 #ifndef parc_RayShading_h
 #define parc_RayShading_h
 
+#include "parcInterpolation.h"
 #include "parcRayContext.h"
 
 #include <algorithm>
@@ -56,18 +57,8 @@ PARC_HOT_INLINE void InterpolateFactors(const RayCaster::ShadingFactors* table,
     d[n] = _mm_load_ps(table[codes[n]].Diffuse);
     s[n] = _mm_load_ps(table[codes[n]].Specular);
   }
-  for (int n = 0; n < 8; n += 2) // along x
-  {
-    d[n] = _mm_add_ps(d[n], _mm_mul_ps(fx, _mm_sub_ps(d[n + 1], d[n])));
-    s[n] = _mm_add_ps(s[n], _mm_mul_ps(fx, _mm_sub_ps(s[n + 1], s[n])));
-  }
-  for (int n = 0; n < 8; n += 4) // along y
-  {
-    d[n] = _mm_add_ps(d[n], _mm_mul_ps(fy, _mm_sub_ps(d[n + 2], d[n])));
-    s[n] = _mm_add_ps(s[n], _mm_mul_ps(fy, _mm_sub_ps(s[n + 2], s[n])));
-  }
-  _mm_storeu_ps(diffuse, _mm_add_ps(d[0], _mm_mul_ps(fz, _mm_sub_ps(d[4], d[0]))));
-  _mm_storeu_ps(specular, _mm_add_ps(s[0], _mm_mul_ps(fz, _mm_sub_ps(s[4], s[0]))));
+  _mm_storeu_ps(diffuse, Trilinear(d, fx, fy, fz));
+  _mm_storeu_ps(specular, Trilinear(s, fx, fy, fz));
 #else
   for (int c = 0; c < 4; ++c)
   {
@@ -77,17 +68,8 @@ PARC_HOT_INLINE void InterpolateFactors(const RayCaster::ShadingFactors* table,
       d[n] = table[codes[n]].Diffuse[c];
       s[n] = table[codes[n]].Specular[c];
     }
-    for (int step = 1; step < 8; step *= 2) // along x, y, z
-    {
-      const float t = f[step == 1 ? 0 : step == 2 ? 1 : 2];
-      for (int n = 0; n < 8; n += 2 * step)
-      {
-        d[n] = d[n] + t * (d[n + step] - d[n]);
-        s[n] = s[n] + t * (s[n + step] - s[n]);
-      }
-    }
-    diffuse[c] = d[0];
-    specular[c] = s[0];
+    diffuse[c] = Trilinear(d, f);
+    specular[c] = Trilinear(s, f);
   }
 #endif
 }
@@ -104,9 +86,7 @@ PARC_HOT_INLINE __m128 InterpolateGreyFactors(
       _mm_loadl_pi(_mm_setzero_ps(), reinterpret_cast<const __m64*>(pairs + 2 * codes[a]));
     return _mm_loadh_pi(low, reinterpret_cast<const __m64*>(pairs + 2 * codes[b]));
   };
-  const auto lerp = [](__m128 a, __m128 b, float t) {
-    return _mm_add_ps(a, _mm_mul_ps(_mm_set1_ps(t), _mm_sub_ps(b, a)));
-  };
+  const auto lerp = [](__m128 a, __m128 b, float t) { return Lerp(a, b, _mm_set1_ps(t)); };
   const __m128 z0 = lerp(two(0, 2), two(1, 3), f[0]); // along x: corners 0 2 | z = 0
   const __m128 z1 = lerp(two(4, 6), two(5, 7), f[0]); // corners 4 6 | z = 1
   const __m128 y = lerp(_mm_movelh_ps(z0, z1), _mm_movehl_ps(z1, z0), f[1]); // z = 0 | 1

@@ -4,8 +4,10 @@
 #ifndef parcFieldView_h
 #define parcFieldView_h
 
+#include "parcInterpolation.h"
 #include "parcMath.h"
 #include "parcRayLattice.h"
+#include "parcTypedLoads.h"
 
 #include <algorithm>
 #include <cmath>
@@ -44,6 +46,9 @@ class FieldView
   /// as 32-bit ones (converted to float 4 lanes at a time, exactly), others as floats.
   using LaneValue =
     std::conditional_t<std::is_integral<T>::value && sizeof(T) <= 2, std::int32_t, float>;
+#if defined(__SSE2__)
+  using Loads = TypedLoads<T>;
+#endif
 
 public:
   FieldView(const T* data, const int dims[3], std::ptrdiff_t stride)
@@ -100,7 +105,7 @@ public:
     int cell[3];
     float f[3];
     this->Locate(p, cell, f);
-    return this->Trilinear(cell, f);
+    return this->InterpolateCell(cell, f);
   }
   /// The samples at the points lattice.Point(k dt) for k = k0 .. k0 + count - 1 (count <=
   /// LatticeBlock::Size) into block; lanes up to the next multiple of LatticeBlock::Lanes
@@ -165,15 +170,6 @@ public:
     }
     return lanes;
   }
-  /// Interpolates 8 corner values (x fastest) at fractions f.
-  static PARC_HOT_INLINE float Interpolate(const float c[8], const float f[3])
-  {
-    const float c00 = Lerp(c[0], c[1], f[0]);
-    const float c10 = Lerp(c[2], c[3], f[0]);
-    const float c01 = Lerp(c[4], c[5], f[0]);
-    const float c11 = Lerp(c[6], c[7], f[0]);
-    return Lerp(Lerp(c00, c10, f[1]), Lerp(c01, c11, f[1]), f[2]);
-  }
   /// The value of the nearest voxel to p (ties round up; clamped to the box).
   float SampleNearest(const Vec3& p) const
   {
@@ -237,7 +233,7 @@ public:
     {
       const float c[8] = { d[0][a], d[1][a], d[2][a], d[3][a], d[4][a], d[5][a], d[6][a],
         d[7][a] };
-      g[a] = 0.5f * Interpolate(c, w.Fractions);
+      g[a] = 0.5f * Trilinear(c, w.Fractions);
     }
 #endif
     return { g[0], g[1], g[2] };
@@ -249,17 +245,14 @@ public:
     const SampleLocation& w, CellDifferences& differences) const
   {
     this->EnsureDifferences(w, differences);
-    const float(*d)[4] = differences.Values;
-    auto lerp = [](__m128 a, __m128 b, __m128 t) {
-      return _mm_add_ps(a, _mm_mul_ps(t, _mm_sub_ps(b, a)));
-    };
+    __m128 c[8];
+    for (int n = 0; n < 8; ++n)
+    {
+      c[n] = _mm_load_ps(differences.Values[n]);
+    }
     const __m128 fx = _mm_set1_ps(w.Fractions[0]), fy = _mm_set1_ps(w.Fractions[1]);
     const __m128 fz = _mm_set1_ps(w.Fractions[2]);
-    const __m128 c00 = lerp(_mm_load_ps(d[0]), _mm_load_ps(d[1]), fx);
-    const __m128 c10 = lerp(_mm_load_ps(d[2]), _mm_load_ps(d[3]), fx);
-    const __m128 c01 = lerp(_mm_load_ps(d[4]), _mm_load_ps(d[5]), fx);
-    const __m128 c11 = lerp(_mm_load_ps(d[6]), _mm_load_ps(d[7]), fx);
-    return _mm_mul_ps(_mm_set1_ps(0.5f), lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz));
+    return _mm_mul_ps(_mm_set1_ps(0.5f), Trilinear(c, fx, fy, fz));
   }
 #endif
 
@@ -331,17 +324,10 @@ private:
     static_assert(LatticeBlock::Lanes == 4, "four lanes to an SSE register");
     __m128 c[8];
     this->LoadGroupCorners(offsets, corner, c);
-    auto lerp = [](__m128 a, __m128 b, __m128 t) {
-      return _mm_add_ps(a, _mm_mul_ps(t, _mm_sub_ps(b, a)));
-    };
     const __m128 fx = _mm_loadu_ps(block.Fractions[0] + first);
     const __m128 fy = _mm_loadu_ps(block.Fractions[1] + first);
     const __m128 fz = _mm_loadu_ps(block.Fractions[2] + first);
-    const __m128 c00 = lerp(c[0], c[1], fx);
-    const __m128 c10 = lerp(c[2], c[3], fx);
-    const __m128 c01 = lerp(c[4], c[5], fx);
-    const __m128 c11 = lerp(c[6], c[7], fx);
-    _mm_storeu_ps(block.Values + first, lerp(lerp(c00, c10, fy), lerp(c01, c11, fy), fz));
+    _mm_storeu_ps(block.Values + first, Trilinear(c, fx, fy, fz));
 #else
     for (int l = 0; l < LatticeBlock::Lanes; ++l)
     {
@@ -352,110 +338,30 @@ private:
       }
       const int j = first + l;
       const float f[3] = { block.Fractions[0][j], block.Fractions[1][j], block.Fractions[2][j] };
-      block.Values[j] = Interpolate(v, f);
+      block.Values[j] = Trilinear(v, f);
     }
 #endif
   }
 #if defined(__SSE2__)
-  /// Whether a cell's two x neighbours fit one 32-bit load (8- and 16-bit integers), so
-  /// that LoadGroupCorners may load them together when they are next to each other.
-  static constexpr bool PairedCorners = std::is_integral<T>::value && sizeof(T) <= 2;
-  /// Two neighbouring values as the bits of one integer (the first lowest, x86).
-  using Pair = std::conditional_t<sizeof(T) == 1, std::uint16_t, std::uint32_t>;
-  /// LoadGroupCorners of 8-bit values whose x neighbours are next to each other: the pairs
-  /// of corners of rows y = 0 and 1 (z = 0), then of y = 0 and 1 (z = 1), each into the
-  /// 16-bit words of one register (row after row, lane after lane), then split apart into
-  /// even and odd corners: the same values.
-  PARC_HOT_INLINE void LoadBytePairs(
-    const std::ptrdiff_t* offsets, const std::ptrdiff_t corner[8], __m128 c[8]) const
-  {
-    const T* base[4] = { this->Data + offsets[0], this->Data + offsets[1],
-      this->Data + offsets[2], this->Data + offsets[3] };
-    auto pair = [&](int l, int m) {
-      std::uint16_t p;
-      std::memcpy(&p, base[l] + corner[m], sizeof(p));
-      return static_cast<int>(p);
-    };
-    __m128i rows[2];
-    for (int z = 0; z < 2; ++z)
-    {
-      const int m = 4 * z;
-      __m128i w = _mm_cvtsi32_si128(pair(0, m));
-      w = _mm_insert_epi16(w, pair(1, m), 1);
-      w = _mm_insert_epi16(w, pair(2, m), 2);
-      w = _mm_insert_epi16(w, pair(3, m), 3);
-      w = _mm_insert_epi16(w, pair(0, m + 2), 4);
-      w = _mm_insert_epi16(w, pair(1, m + 2), 5);
-      w = _mm_insert_epi16(w, pair(2, m + 2), 6);
-      w = _mm_insert_epi16(w, pair(3, m + 2), 7);
-      rows[z] = w;
-    }
-    const __m128i zero = _mm_setzero_si128();
-    for (int z = 0; z < 2; ++z)
-    {
-      // The even corner's bits low (x86), as 16-bit words.
-      __m128i even, odd;
-      if (std::is_signed<T>::value)
-      {
-        even = _mm_srai_epi16(_mm_slli_epi16(rows[z], 8), 8);
-        odd = _mm_srai_epi16(rows[z], 8);
-      }
-      else
-      {
-        even = _mm_and_si128(rows[z], _mm_set1_epi16(0xFF));
-        odd = _mm_srli_epi16(rows[z], 8);
-      }
-      // Words to 32 bits (signed: the word in both halves, shifted down).
-      auto low = [&](__m128i v) {
-        return std::is_signed<T>::value ? _mm_srai_epi32(_mm_unpacklo_epi16(v, v), 16)
-                                        : _mm_unpacklo_epi16(v, zero);
-      };
-      auto high = [&](__m128i v) {
-        return std::is_signed<T>::value ? _mm_srai_epi32(_mm_unpackhi_epi16(v, v), 16)
-                                        : _mm_unpackhi_epi16(v, zero);
-      };
-      c[4 * z] = _mm_cvtepi32_ps(low(even));
-      c[4 * z + 1] = _mm_cvtepi32_ps(low(odd));
-      c[4 * z + 2] = _mm_cvtepi32_ps(high(even));
-      c[4 * z + 3] = _mm_cvtepi32_ps(high(odd));
-    }
-  }
   /// The corner values c[corner] of the cells at offsets[0 .. 3], lane by lane, as floats;
   /// held in registers (no store and load again). With x neighbours next to each other
   /// (Step[0] = 1) each pair of corners (x offsets 0 and 1) is loaded at once and split
-  /// apart four lanes at a time (8-bit values: LoadBytePairs): the same values as one load
+  /// apart four lanes at a time (TypedLoads): the same values as one load
   /// a corner.
   PARC_HOT_INLINE void LoadGroupCorners(
     const std::ptrdiff_t* offsets, const std::ptrdiff_t corner[8], __m128 c[8]) const
   {
-    if constexpr (PairedCorners)
+    if constexpr (Loads::PairedCorners)
     {
       if (this->Step[0] == 1)
       {
         if constexpr (sizeof(T) == 1)
         {
-          this->LoadBytePairs(offsets, corner, c);
-          return;
+          Loads::BytePairs(this->Data, offsets, corner, c);
         }
-        constexpr int bits = 8 * sizeof(T);
-        constexpr bool sign = std::is_signed<T>::value;
-        for (int m = 0; m < 8; m += 2)
+        else
         {
-          Pair p[4];
-          for (int l = 0; l < 4; ++l)
-          {
-            std::memcpy(p + l, this->Data + offsets[l] + corner[m], sizeof(Pair));
-          }
-          // The even corner's bits low (x86).
-          const __m128i pair = _mm_setr_epi32(static_cast<std::int32_t>(p[0]),
-            static_cast<std::int32_t>(p[1]), static_cast<std::int32_t>(p[2]),
-            static_cast<std::int32_t>(p[3]));
-          const __m128i low = _mm_slli_epi32(pair, 32 - bits);
-          const __m128i high = _mm_slli_epi32(pair, 32 - 2 * bits);
-          c[m] = _mm_cvtepi32_ps(
-            sign ? _mm_srai_epi32(low, 32 - bits) : _mm_srli_epi32(low, 32 - bits));
-          c[m + 1] = _mm_cvtepi32_ps(
-            sign ? _mm_srai_epi32(high, 32 - bits) : _mm_srli_epi32(high, 32 - bits));
+          Loads::CornerPairs(this->Data, offsets, corner, c);
         }
         return;
       }
@@ -475,7 +381,6 @@ private:
     LocateAxis(p.Y, this->Last[1], this->LastCell[1], cell[1], f[1]);
     LocateAxis(p.Z, this->Last[2], this->LastCell[2], cell[2], f[2]);
   }
-  static PARC_HOT_INLINE float Lerp(float a, float b, float t) { return a + t * (b - a); }
   std::ptrdiff_t CellOffset(const int cell[3]) const
   {
     return cell[0] * this->Step[0] + cell[1] * this->Step[1] + cell[2] * this->Step[2];
@@ -489,11 +394,11 @@ private:
       c[n] = static_cast<float>(v[corner[n]]);
     }
   }
-  float Trilinear(const int cell[3], const float f[3]) const
+  float InterpolateCell(const int cell[3], const float f[3]) const
   {
     float c[8];
     this->LoadCorners(this->CellPointer(cell), c);
-    return Interpolate(c, f);
+    return Trilinear(c, f);
   }
 
   Vec3 GradientLinear(
@@ -515,7 +420,7 @@ private:
   PARC_HOT_INLINE void LoadDifferences(const T* v, float d[8][4]) const
   {
 #if defined(__SSE2__)
-    if constexpr (PairedCorners)
+    if constexpr (Loads::PairedCorners)
     {
       if (this->Step[0] == 1)
       {
@@ -582,16 +487,16 @@ private:
     __m128i row[4];
     for (int r = 0; r < 4; ++r)
     {
-      row[r] = WidenFour(LoadFour(v - 1 + (r & 1) * sy + (r >> 1) * sz));
+      row[r] = Loads::WidenFour(Loads::LoadFour(v - 1 + (r & 1) * sy + (r >> 1) * sz));
     }
     // The corners (x = 0, 1) of rows (0, z) and (1, z), as lanes 0 1 2 3.
-    const __m128i centre[2] = { MiddlePairs(row[0], row[1]), MiddlePairs(row[2], row[3]) };
+    const __m128i centre[2] = { Loads::MiddlePairs(row[0], row[1]), Loads::MiddlePairs(row[2], row[3]) };
     // The outer voxels (x = 0, 1) before and after the cell along y, per z, and along z,
     // per y (as lanes 0 1 2 3: y or z = 0, then 1).
-    const __m128i yBefore = WidenFour(LoadPairs(v - sy, v - sy + sz));
-    const __m128i yAfter = WidenFour(LoadPairs(v + 2 * sy, v + 2 * sy + sz));
-    const __m128i zBefore = WidenFour(LoadPairs(v - sz, v + sy - sz));
-    const __m128i zAfter = WidenFour(LoadPairs(v + 2 * sz, v + sy + 2 * sz));
+    const __m128i yBefore = Loads::WidenFour(Loads::LoadPairs(v - sy, v - sy + sz));
+    const __m128i yAfter = Loads::WidenFour(Loads::LoadPairs(v + 2 * sy, v + 2 * sy + sz));
+    const __m128i zBefore = Loads::WidenFour(Loads::LoadPairs(v - sz, v + sy - sz));
+    const __m128i zAfter = Loads::WidenFour(Loads::LoadPairs(v + 2 * sz, v + sy + 2 * sz));
     for (int z = 0; z < 2; ++z)
     {
       // Corners 4 z .. 4 z + 3: (x, y) = (0, 0), (1, 0), (0, 1), (1, 1).
@@ -613,47 +518,6 @@ private:
       _mm_store_ps(d[4 * z + 3], zero);
     }
   }
-  /// Four values as the bits of one integer (the first lowest).
-  using Four = std::conditional_t<sizeof(T) == 1, std::uint32_t, std::uint64_t>;
-  static PARC_HOT_INLINE Four LoadFour(const T* p)
-  {
-    Four bits;
-    std::memcpy(&bits, p, sizeof(bits));
-    return bits;
-  }
-  /// Two values at a, then two at b, as the bits of one integer.
-  static PARC_HOT_INLINE Four LoadPairs(const T* a, const T* b)
-  {
-    Pair low, high;
-    std::memcpy(&low, a, sizeof(low));
-    std::memcpy(&high, b, sizeof(high));
-    return static_cast<Four>(low) | (static_cast<Four>(high) << (8 * sizeof(Pair)));
-  }
-  /// Four values (Four's bits) as 32-bit integers, exactly.
-  static PARC_HOT_INLINE __m128i WidenFour(Four bits)
-  {
-    constexpr int shift = 32 - 8 * static_cast<int>(sizeof(T));
-    // Each value repeated to fill its 32-bit lane (bytes twice, then 16 bits twice), so
-    // that its top bits are the value, shifted down with or without its sign.
-    __m128i x;
-    if constexpr (sizeof(T) == 1)
-    {
-      x = _mm_cvtsi32_si128(static_cast<int>(bits));
-      x = _mm_unpacklo_epi8(x, x);
-    }
-    else
-    {
-      x = _mm_set_epi64x(0, static_cast<long long>(bits));
-    }
-    x = _mm_unpacklo_epi16(x, x);
-    return std::is_signed<T>::value ? _mm_srai_epi32(x, shift) : _mm_srli_epi32(x, shift);
-  }
-  /// Lanes 1 and 2 of a, then of b (x = 0, 1 of two rows read from x = -1).
-  static PARC_HOT_INLINE __m128i MiddlePairs(__m128i a, __m128i b)
-  {
-    return _mm_castps_si128(
-      _mm_shuffle_ps(_mm_castsi128_ps(a), _mm_castsi128_ps(b), _MM_SHUFFLE(2, 1, 2, 1)));
-  }
 #endif
   /// Central differences of SampleLinear with the offsets clamped to the box.
   Vec3 GradientNearFaces(const Vec3& p, const int cell[3], const float f[3]) const
@@ -672,9 +536,9 @@ private:
       int shifted[3] = { cell[0], cell[1], cell[2] };
       float shiftedF[3] = { f[0], f[1], f[2] };
       LocateAxis(hi, this->Last[a], this->LastCell[a], shifted[a], shiftedF[a]);
-      const float high = this->Trilinear(shifted, shiftedF);
+      const float high = this->InterpolateCell(shifted, shiftedF);
       LocateAxis(lo, this->Last[a], this->LastCell[a], shifted[a], shiftedF[a]);
-      const float low = this->Trilinear(shifted, shiftedF);
+      const float low = this->InterpolateCell(shifted, shiftedF);
       g[a] = (high - low) / h;
     }
     return g;
