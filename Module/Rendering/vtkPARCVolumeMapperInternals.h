@@ -183,10 +183,9 @@ public:
     parc::RayCaster Caster;
   };
   std::vector<std::unique_ptr<ComponentState>> Components;
-  /// Voxel index -> render frame (world minus the camera position), of the last
-  /// PrepareParameters; every world quantity the core sees is in that frame.
-  parc::Matrix4 IndexToFrame;
-  /// Field, Parameters and IndexToFrame as the caster is prepared on them.
+  /// Field, Parameters and the placement as the caster is prepared on them, of the last
+  /// PrepareParameters. Its world is the render frame (world minus the camera position):
+  /// every world quantity the core sees is in that frame.
   parc::Volume CoreVolume;
   parc::RayCaster Caster;
   parc::CastStatistics Stats; ///< of the last render
@@ -277,7 +276,7 @@ public:
   /// Bytes held per structure (see GetMemorySize).
   std::vector<std::pair<const char*, std::size_t>> Memory() const;
 
-  /// The shading model's part of Parameters (after the lights and IndexToFrame): the
+  /// The shading model's part of Parameters (after the lights and the placement): the
   /// quantized normals (made again when the field changed) and the view direction they are
   /// shaded for (from the camera's frame), or exact shading.
   void PrepareShadingModel(bool quantized, const parc::vtk::CameraFrame& frame);

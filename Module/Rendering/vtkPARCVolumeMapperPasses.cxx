@@ -166,7 +166,7 @@ int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   // Which pass pays off, if any, depends on the GL implementation (software GL makes the
   // passes dear), the data, the ray function and the view: measure.
   const int* dims = state.Field.GetDimensions();
-  const parc::Vec3 centre = state.IndexToFrame.TransformPoint( // the eye is the frame's origin
+  const parc::Vec3 centre = state.CoreVolume.IndexToWorld.TransformPoint( // the eye is the frame's origin
     { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
   state.Plan.Auto.SetView(camera.Direction, parc::Length(centre));
   if (settings.SearchSupercellSize && state.Plan.Sizes.IsSearching())
@@ -204,7 +204,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     return state.NoRays; // nothing can show: no pass, no sample
   }
   const int* dims = state.Field.GetDimensions();
-  if (!passView.Camera.MayMeetBox(state.IndexToFrame, parc::Vec3{ 0, 0, 0 },
+  if (!passView.Camera.MayMeetBox(state.CoreVolume.IndexToWorld, parc::Vec3{ 0, 0, 0 },
         parc::Vec3(dims[0] - 1, dims[1] - 1, dims[2] - 1)))
   {
     state.LastMode = requested;
@@ -223,7 +223,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     state.ReleaseUnusedPasses(window, passes);
     return state.Plan.GetWalk(state.CoreVolume.WorldToIndex);
   }
-  const parc::Matrix4& indexToWorld = state.IndexToFrame;
+  const parc::Matrix4& indexToWorld = state.CoreVolume.IndexToWorld;
   const bool depth = passes.Depth;
   const bool color = passes.Planes;
   bool ok = true;
@@ -297,7 +297,7 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   }
   const parc::Light& light = lights[index];
   parc::LightFrame frameOfLight;
-  if (!parc::MakeLightFrame(light, state.IndexToFrame, state.Field.GetDimensions(), frameOfLight))
+  if (!parc::MakeLightFrame(light, state.CoreVolume.IndexToWorld, state.Field.GetDimensions(), frameOfLight))
   {
     return nullptr;
   }
@@ -325,7 +325,7 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   {
     for (int c = 0; c < 4; ++c)
     {
-      key.push_back(state.IndexToFrame(r, c) + (c == 3 ? frame[r] : 0.0));
+      key.push_back(state.CoreVolume.IndexToWorld(r, c) + (c == 3 ? frame[r] : 0.0));
     }
   }
   if (state.LightBuffers.size() < lights.size())

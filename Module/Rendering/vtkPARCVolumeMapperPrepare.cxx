@@ -495,14 +495,13 @@ bool vtkPARCVolumeMapper::PrepareParameters(
   // The core sees world coordinates minus the camera position, as the passes' views do.
   const parc::Vec3 frame = this->Internals->Frame.Origin;
   vtkImageData* image = vtkImageData::SafeDownCast(this->GetInputDataObject(state.Port, 0));
-  state.IndexToFrame = IndexToFrame(image, vol, frame, state.CellOffset);
-  const parc::Matrix4& indexToWorld = state.IndexToFrame;
   state.CoreVolume = { &state.Field, &p };
-  if (!state.CoreVolume.SetIndexToWorld(indexToWorld))
+  if (!state.CoreVolume.SetIndexToWorld(IndexToFrame(image, vol, frame, state.CellOffset)))
   {
     vtkErrorMacro("The volume's index-to-world transform is singular (zero scale?).");
     return false;
   }
+  const parc::Matrix4& indexToWorld = state.CoreVolume.IndexToWorld;
   const double smallestStep = std::min(
     { VoxelEdge(indexToWorld, 0), VoxelEdge(indexToWorld, 1), VoxelEdge(indexToWorld, 2) });
   p.SampleDistance = this->SampleDistance > 0.0 ? this->SampleDistance : 0.5 * smallestStep;
@@ -601,7 +600,10 @@ bool vtkPARCVolumeMapper::PrepareComponents(
     }
     q.ComponentWeight = property->GetComponentWeight(c);
     std::copy_n(range, 2, q.IntensityRange);
-    if (!component.Caster.Prepare({ &component.Field, &q, state.CoreVolume.WorldToIndex }))
+    parc::Volume volume = state.CoreVolume; // placed alike
+    volume.Field = &component.Field;
+    volume.Parameters = &q;
+    if (!component.Caster.Prepare(volume))
     {
       return false;
     }
@@ -635,7 +637,7 @@ void vtkPARCVolumeMapper::vtkVolumeState::PrepareShadingModel(
   // Towards the eye (the frame's origin) from the volume's centre; along the view
   // direction for a parallel projection.
   const int* dims = this->Field.GetDimensions();
-  const parc::Vec3 centre = this->IndexToFrame.TransformPoint(
+  const parc::Vec3 centre = this->CoreVolume.IndexToWorld.TransformPoint(
     parc::Vec3(0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1)));
   p.ShadingViewDirection = frame.Parallel || !(parc::Length(centre) > 0.0)
     ? -frame.Direction

@@ -18,12 +18,19 @@ struct Volume
   /// World -> voxel-index coordinates (affine). "World" is whatever frame the caller uses
   /// for rays, lights and clipping planes alike; the mapper centres it on the camera.
   Matrix4 WorldToIndex;
+  /// Its inverse, voxel index -> world.
+  Matrix4 IndexToWorld;
 
   /// Places the volume by its voxel-index -> world matrix; false (the placement
   /// unchanged) when it is singular.
   bool SetIndexToWorld(const Matrix4& indexToWorld)
   {
-    return Invert(indexToWorld, this->WorldToIndex);
+    if (!Invert(indexToWorld, this->WorldToIndex))
+    {
+      return false;
+    }
+    this->IndexToWorld = indexToWorld;
+    return true;
   }
 };
 
