@@ -188,8 +188,8 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   vtkRenderWindow* window = ren->GetRenderWindow();
   state.LastMode = ACCELERATION_NONE;
   state.ModeSettledByClassification = false;
-  // A slice takes one sample a ray and asks for no segments: no pass can pay off.
-  if (requested == ACCELERATION_NONE || state.Parameters.Blend == parc::BlendMode::Slice ||
+  // A ray function without segments (a slice: one sample a ray): no pass can pay off.
+  if (requested == ACCELERATION_NONE || !parc::TraitsOf(state.Parameters.Blend).UsesSegments ||
     !state.PrepareModels(settings, vol))
   {
     state.ReleaseUnusedPasses(window, {});

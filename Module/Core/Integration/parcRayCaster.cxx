@@ -170,7 +170,7 @@ bool RayCaster::Prepare(const Volume& volume)
     // A mask of the field's dimensions, for the ray functions that apply it (a slice takes
     // one and ignores it).
     if (!std::equal(dims, dims + 3, mask->GetDimensions()) ||
-      !(TraitsOf(blend).AppliesMask || blend == BlendMode::Slice))
+      !TraitsOf(blend).TakesMask)
     {
       return false;
     }
@@ -314,7 +314,7 @@ bool RayCaster::ReadsContributingCells() const
     return false; // not prepared
   }
   const CastParameters& p = *this->Params;
-  return p.Blend == BlendMode::Composite && this->Components.empty() &&
+  return TraitsOf(p.Blend).SkipsEmptyCells && this->Components.empty() &&
     p.Interp == Interpolation::Linear && this->Field->GetStride() == 1;
 }
 
@@ -408,7 +408,7 @@ float RayCaster::TransmittanceIn(const View& field, const RayQuery& query,
   const SegmentSource& source, ShadowScratch& scratch, CastStatistics& stats) const
 {
   const CastParameters& p = *this->Params;
-  if (p.Blend != BlendMode::Composite && p.Blend != BlendMode::IsoSurface)
+  if (!TraitsOf(p.Blend).CastsShadows)
   {
     return 1.f;
   }

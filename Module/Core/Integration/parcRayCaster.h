@@ -228,12 +228,8 @@ public:
   /// The ray-parameter interval of ray inside the field's box, [TMin, TMax] and the
   /// clipping planes (cropping may cut it further).
   bool ClipRay(const Ray& ray, double& tEnter, double& tExit) const;
-  /// Whether every ray that meets the field has a result, even with nothing to sample
-  /// (additive blending: opaque black), so that no ray may be skipped.
-  bool CastsEveryRay() const
-  {
-    return this->Params && this->Params->Blend == BlendMode::Additive;
-  }
+  /// Whether every ray that meets the field has a result (BlendTraits::CastsEveryRay).
+  bool CastsEveryRay() const { return this->Params && TraitsOf(this->Params->Blend).CastsEveryRay; }
 
   const CastParameters* GetParameters() const { return this->Params; }
   const ScalarField* GetField() const { return this->Field; }

@@ -57,7 +57,7 @@ bool SceneCaster::SetMembers(std::vector<Member> members, double terminationOpac
   if (!this->CastOrder.empty())
   {
     const RayCaster& last = *this->Members[this->CastOrder.back()].Caster;
-    if (last.GetParameters()->Blend == BlendMode::Composite && last.GetComponents().empty() &&
+    if (TraitsOf(last.GetParameters()->Blend).StreamsInScene && last.GetComponents().empty() &&
       last.GetParameters()->TerminationOpacity == terminationOpacity)
     {
       this->Streamed = this->CastOrder.back();

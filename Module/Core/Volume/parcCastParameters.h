@@ -38,43 +38,70 @@ enum class BlendMode
 struct BlendTraits
 {
   /// Its own opacity can stop a ray (composite, isosurface); in a scene, for every volume.
-  bool StopsRays;
+  bool StopsRays = false;
   /// Where a volume of it comes in a scene's cast order: isosurfaces first (their opacity
   /// stops rays soonest and cheapest), the whole-ray functions next, composite last.
-  int CastRank;
+  int CastRank = 1;
   /// Its opacity is corrected for the sample distance, 1 - (1 - a)^(dt / unit distance)
   /// (not additive or average intensity).
-  bool CorrectsOpacity;
+  bool CorrectsOpacity = false;
   /// Its opacity is scaled by dt / unit distance instead (additive).
-  bool ScalesOpacity;
+  bool ScalesOpacity = false;
   /// It combines independent components (composite, maximum and minimum intensity).
-  bool CombinesComponents;
+  bool CombinesComponents = false;
   /// A binary mask hides its samples (composite, isosurface, additive).
-  bool AppliesMask;
+  bool AppliesMask = false;
+  /// A mask is accepted: applied, or ignored (a slice).
+  bool TakesMask = false;
   /// A label map's functions apply to its samples (composite).
-  bool AppliesLabels;
+  bool AppliesLabels = false;
+  /// Its samples' opacity shadows what is behind them from a light (composite,
+  /// isosurface): shadow rays are cast through it.
+  bool CastsShadows = false;
+  /// Every ray that meets the field has a result, even with nothing to sample (additive:
+  /// opaque black), so that no ray may be skipped.
+  bool CastsEveryRay = false;
+  /// Its rays leave out the samples of cells that cannot contribute (composite, with one
+  /// component and linear interpolation: RayCaster::ReadsContributingCells).
+  bool SkipsEmptyCells = false;
+  /// Cast last in a scene, its samples are composited as they are taken, merged with the
+  /// other volumes' events (composite), rather than kept as events of their own.
+  bool StreamsInScene = false;
+  /// Its rays sample segments, so that PARC passes can shorten them (not a slice: one
+  /// sample a ray).
+  bool UsesSegments = true;
 };
 
 constexpr BlendTraits TraitsOf(BlendMode blend)
 {
-  //             stops  rank  corrects  scales  components  mask   labels
+  BlendTraits t;
   switch (blend)
   {
     case BlendMode::Composite:
-      return { true, 2, true, false, true, true, true };
+      t.StopsRays = t.CorrectsOpacity = t.CombinesComponents = true;
+      t.AppliesMask = t.TakesMask = t.AppliesLabels = true;
+      t.CastsShadows = t.SkipsEmptyCells = t.StreamsInScene = true;
+      t.CastRank = 2;
+      break;
     case BlendMode::MaximumIntensity:
     case BlendMode::MinimumIntensity:
-      return { false, 1, true, false, true, false, false };
+      t.CorrectsOpacity = t.CombinesComponents = true;
+      break;
     case BlendMode::AverageIntensity:
-      return { false, 1, false, false, false, false, false };
+      break;
     case BlendMode::Additive:
-      return { false, 1, false, true, false, true, false };
+      t.ScalesOpacity = t.AppliesMask = t.TakesMask = t.CastsEveryRay = true;
+      break;
     case BlendMode::IsoSurface:
-      return { true, 0, true, false, false, true, false };
+      t.StopsRays = t.CorrectsOpacity = t.AppliesMask = t.TakesMask = t.CastsShadows = true;
+      t.CastRank = 0;
+      break;
     case BlendMode::Slice:
-      return { false, 1, true, false, false, false, false };
+      t.CorrectsOpacity = t.TakesMask = true;
+      t.UsesSegments = false;
+      break;
   }
-  return {};
+  return t;
 }
 
 /// How shaded samples are lit (see CastParameters::Shading).
