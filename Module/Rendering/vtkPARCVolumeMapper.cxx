@@ -532,7 +532,7 @@ void vtkPARCVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
     {
       volume->Rasterizer->ReleaseGraphicsResources(window);
       volume->LightRasterizer->ReleaseGraphicsResources(window);
-      volume->LightBuffers.clear(); // drawn in the window's context: remade when needed
+      volume->Plan.ReleaseLightPasses(); // drawn in the window's context: remade when needed
     }
   }
 }

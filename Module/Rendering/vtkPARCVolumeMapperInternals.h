@@ -213,32 +213,11 @@ public:
   /** Classifies and builds the volume's polygon models when their inputs changed. */
   bool PrepareModels(const RenderSettings& settings, vtkVolume* vol);
   vtkNew<vtkPARCRasterizer> Rasterizer;
-  parc::DepthBufferSource DepthSource;
-  parc::PlaneBufferSource PlaneSource;
-  const parc::BothSource Both{ DepthSource, PlaneSource };
-  const parc::WholeRaySource WholeRays;
-  const parc::EmptySource NoRays;
   bool FallbackWarned = false;
-  // PARC for shadow rays: per light (index into Parameters.Lights), the depth or plane
-  // passes of the light's cameras, remade only when what they were made from changes (not
-  // the camera).
+  // PARC for shadow rays: per light, the depth or plane passes of the light's cameras (the
+  // plan's LightPasses), remade only when what they were made from changes (not the
+  // camera).
   vtkNew<vtkPARCRasterizer> LightRasterizer;
-  struct LightPasses
-  {
-    std::vector<double> Key; ///< light and volume in world coordinates, model version
-    parc::LightBufferSource Source;
-  };
-  std::vector<LightPasses> LightBuffers;
-  /// Bytes held by the lights' buffers.
-  std::size_t LightBufferMemory() const
-  {
-    std::size_t bytes = 0;
-    for (const LightPasses& passes : this->LightBuffers)
-    {
-      bytes += passes.Source.GetMemorySize() + passes.Key.capacity() * sizeof(double);
-    }
-    return bytes;
-  }
   vtkIdType PolygonCount = 0;
   int PlaneCount = 0;
   int PassCount = 0;
@@ -257,14 +236,13 @@ public:
     {
       return;
     }
+    this->Plan.ReleasePassBuffers(used.Depth, used.Planes);
     if (!used.Depth)
     {
-      this->DepthSource.ReleaseBuffer();
       this->Rasterizer->ReleasePass(window, vtkPARCRasterizer::Pass::Depth);
     }
     if (!used.Planes)
     {
-      this->PlaneSource.ReleaseBuffer();
       this->Rasterizer->ReleasePass(window, vtkPARCRasterizer::Pass::Planes);
     }
     if (!used.Walk)

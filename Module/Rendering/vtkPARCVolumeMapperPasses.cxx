@@ -8,9 +8,6 @@ namespace
 /// Pixels along each edge of a light's PARC buffers (shadow rays).
 constexpr int LightBufferSize = 256;
 
-/// Relative difference under which what a light's passes were made from counts as unchanged.
-constexpr double LightKeyTolerance = 1e-9;
-
 /// The volume axis whose direction (indexToWorld's column) is closest to direction, the
 /// view's (or a light's towards the volume): its planes are crossed in order by every ray.
 int MajorAxis(const parc::Matrix4& indexToWorld, const parc::Vec3& direction)
@@ -193,7 +190,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     !state.PrepareModels(settings, vol))
   {
     state.ReleaseUnusedPasses(window, {});
-    return state.WholeRays;
+    return state.Plan.GetSource(parc::AutoTrials::None);
   }
   const parc::SupercellGrid& grid = state.Plan.GetGrid();
   if (grid.GetNumberOfContributing() == 0)
@@ -201,20 +198,20 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     state.LastMode = requested;
     state.ModeSettledByClassification = true;
     state.ReleaseUnusedPasses(window, {});
-    return state.NoRays; // nothing can show: no pass, no sample
+    return state.Plan.GetEmptySource(); // nothing can show: no pass, no sample
   }
   const int* dims = state.Field.GetDimensions();
   if (!passView.Camera.MayMeetBox(state.CoreVolume.IndexToWorld, parc::Vec3{ 0, 0, 0 },
         parc::Vec3(dims[0] - 1, dims[1] - 1, dims[2] - 1)))
   {
     state.LastMode = requested;
-    return state.NoRays; // outside the view (another volume of the scene is not): no pass
+    return state.Plan.GetEmptySource(); // outside the view (another volume of the scene is not): no pass
   }
   const int mode = state.ChooseMode(settings, passView.Camera);
   if (mode == ACCELERATION_NONE)
   {
     state.ReleaseUnusedPasses(window, {});
-    return state.WholeRays;
+    return state.Plan.GetSource(parc::AutoTrials::None);
   }
   const AccelerationTraits passes = parc::mapper::TraitsOf(mode);
   if (passes.Walk)
@@ -232,13 +229,13 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     const std::uint64_t version = state.Plan.GetModelVersion();
     const parc::PolygonModel& model = state.Plan.GetDepthModel(
       state.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Depth, version));
-    std::vector<float> nearFar = state.DepthSource.ReleaseBuffer();
+    std::vector<float> nearFar = state.Plan.GetDepthSource().ReleaseBuffer();
     ok = state.Rasterizer->RenderDepth(window, model, version, indexToWorld, passView, nearFar);
     if (state.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Depth, version))
     {
       state.Plan.ReleaseDepthVertices();
     }
-    state.DepthSource.Set(
+    state.Plan.GetDepthSource().Set(
       passView.Camera, std::move(nearFar), &grid, state.CoreVolume.WorldToIndex);
     state.PolygonCount += static_cast<vtkIdType>(state.Plan.GetDepthQuads());
   }
@@ -248,7 +245,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     const std::uint64_t version = state.Plan.GetColorModelVersion(axis);
     const parc::PolygonModel& model = state.Plan.GetColorModel(
       axis, state.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Planes, version));
-    std::vector<std::uint32_t> bits = state.PlaneSource.ReleaseBuffer();
+    std::vector<std::uint32_t> bits = state.Plan.GetPlaneSource().ReleaseBuffer();
     int words = 0;
     std::vector<parc::Vec3> starts, directions;
     passView.Camera.RayBounds(state.CoreVolume.WorldToIndex, starts, directions);
@@ -258,7 +255,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     {
       state.Plan.ReleaseColorVertices(axis);
     }
-    state.PlaneSource.Set(passView.Camera, std::move(bits), words, &grid, axis, model.FirstPlane,
+    state.Plan.GetPlaneSource().Set(passView.Camera, std::move(bits), words, &grid, axis, model.FirstPlane,
       state.CoreVolume.WorldToIndex);
     state.PlaneCount = model.PlaneCount;
     state.PolygonCount += static_cast<vtkIdType>(state.Plan.GetColorQuads(axis));
@@ -273,15 +270,13 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     }
     state.PolygonCount = 0;
     state.PlaneCount = state.PassCount = 0;
-    return state.WholeRays;
+    return state.Plan.GetSource(parc::AutoTrials::None);
   }
   state.LastMode = mode;
   state.ReleaseUnusedPasses(window, passes);
-  if (depth && color)
-  {
-    return state.Both;
-  }
-  return depth ? static_cast<const parc::SegmentSource&>(state.DepthSource) : state.PlaneSource;
+  return state.Plan.GetSource(depth && color ? parc::AutoTrials::Both
+      : depth                                  ? parc::AutoTrials::Depth
+                                               : parc::AutoTrials::Color);
 }
 
 //------------------------------------------------------------------------------
@@ -293,7 +288,7 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   const parc::SupercellGrid& grid = state.Plan.GetGrid();
   if (grid.GetNumberOfContributing() == 0)
   {
-    return &state.NoRays; // nothing in this volume can block a light
+    return &state.Plan.GetEmptySource(); // nothing in this volume can block a light
   }
   const parc::Light& light = lights[index];
   parc::LightFrame frameOfLight;
@@ -328,18 +323,9 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
       key.push_back(state.CoreVolume.IndexToWorld(r, c) + (c == 3 ? frame[r] : 0.0));
     }
   }
-  if (state.LightBuffers.size() < lights.size())
-  {
-    state.LightBuffers.resize(lights.size());
-  }
-  LightPasses& passes = state.LightBuffers[index];
+  parc::AccelerationPlan::LightPasses& passes = state.Plan.GetLightPasses(index, lights.size());
   passes.Source.Offset = -1.0 * eye; // render frame -> the light's frame (eye at 0)
-  // The same world quantities come back through the render frame with rounding.
-  const auto same = [](double a, double b) {
-    return std::fabs(a - b) <= LightKeyTolerance * std::max({ 1.0, std::fabs(a), std::fabs(b) });
-  };
-  if (passes.Key.size() == key.size() &&
-    std::equal(key.begin(), key.end(), passes.Key.begin(), same))
+  if (passes.IsDrawnFrom(key))
   {
     return &passes.Source;
   }

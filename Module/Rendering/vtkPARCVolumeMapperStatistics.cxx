@@ -214,11 +214,11 @@ vtkPARCVolumeMapper::vtkVolumeState::Memory() const
     { "colour models", this->Plan.GetColorModelsMemorySize() },
     { "supercell walk", this->Plan.GetWalkMemorySize() },
     { "contributing cells", this->Plan.GetCellsMemorySize() },
-    { "depth buffer", this->DepthSource.GetMemorySize() },
-    { "bit-plane buffer", this->PlaneSource.GetMemorySize() },
+    { "depth buffer", this->Plan.GetDepthBufferMemorySize() },
+    { "bit-plane buffer", this->Plan.GetPlaneBufferMemorySize() },
     { "OpenGL models and targets",
       this->Rasterizer->GetMemorySize() + this->LightRasterizer->GetMemorySize() },
-    { "light buffers", this->LightBufferMemory() } };
+    { "light buffers", this->Plan.GetLightPassesMemorySize() } };
 }
 
 std::vector<std::pair<const char*, std::size_t>> vtkPARCVolumeMapper::vtkInternals::Memory() const

@@ -111,6 +111,52 @@ TEST(AccelerationPlan, KnowsWhatItsClassificationsWereMadeFrom)
   EXPECT_FALSE(plan.AreCellsClassifiedFrom(cells)) << "released cells are made again";
 }
 
+TEST(AccelerationPlan, GivesTheSegmentSourceOfAFramesPasses)
+{
+  parc::AccelerationPlan plan;
+  EXPECT_EQ(&plan.GetSource(parc::AutoTrials::Depth),
+    static_cast<const parc::SegmentSource*>(&plan.GetDepthSource()));
+  EXPECT_EQ(&plan.GetSource(parc::AutoTrials::Color),
+    static_cast<const parc::SegmentSource*>(&plan.GetPlaneSource()));
+  // No pass: the whole ray is one segment (the caster clips it); nothing to show: none.
+  parc::RayQuery query;
+  query.Path = parc::Ray{ parc::Vec3(0, 0, 0), parc::Vec3(0, 0, 1), 0.0, 2.0 };
+  std::vector<parc::Segment> segments;
+  plan.GetSource(parc::AutoTrials::None).Segments(query, segments);
+  ASSERT_EQ(segments.size(), 1u);
+  EXPECT_LE(segments[0].TNear, 0.0);
+  EXPECT_GE(segments[0].TFar, 2.0);
+  segments.clear();
+  plan.GetEmptySource().Segments(query, segments);
+  EXPECT_TRUE(segments.empty());
+  EXPECT_FALSE(plan.GetEmptySource().MayHaveSegments(0, 0));
+
+  // A pass's buffer is kept for the next frame until a settled mode no longer draws it.
+  parc::Camera camera;
+  camera.Width = camera.Height = 2;
+  plan.GetDepthSource().Set(camera, std::vector<float>(8, 0.f), &plan.GetGrid(), parc::Matrix4());
+  EXPECT_EQ(plan.GetDepthBufferMemorySize(), 8 * sizeof(float));
+  plan.ReleasePassBuffers(true, false);
+  EXPECT_EQ(plan.GetDepthBufferMemorySize(), 8 * sizeof(float));
+  plan.ReleasePassBuffers(false, false);
+  EXPECT_EQ(plan.GetDepthBufferMemorySize(), 0u);
+}
+
+TEST(AccelerationPlan, KeepsALightsPassesWhileTheirKeyHoldsWithinRounding)
+{
+  parc::AccelerationPlan plan;
+  parc::AccelerationPlan::LightPasses& passes = plan.GetLightPasses(1, 2);
+  EXPECT_FALSE(passes.IsDrawnFrom({ 1.0, 2.0 })) << "never drawn";
+  passes.Key = { 1.0, 2000.0 };
+  EXPECT_TRUE(passes.IsDrawnFrom({ 1.0, 2000.0 * (1.0 + 1e-12) })) << "rounding";
+  EXPECT_FALSE(passes.IsDrawnFrom({ 1.0, 2000.0 * (1.0 + 1e-6) }));
+  EXPECT_FALSE(passes.IsDrawnFrom({ 1.0 })) << "another light";
+  EXPECT_EQ(&plan.GetLightPasses(1, 2), &passes);
+  EXPECT_EQ(plan.GetLightPassesMemorySize(), passes.Key.capacity() * sizeof(double));
+  plan.ReleaseLightPasses();
+  EXPECT_EQ(plan.GetLightPassesMemorySize(), 0u);
+}
+
 TEST(AccelerationPlan, ColourModelsHaveVersionsOfTheirOwn)
 {
   const parc::ScalarField field = parctest::Blobs();

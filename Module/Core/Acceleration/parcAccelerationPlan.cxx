@@ -346,6 +346,62 @@ bool AccelerationPlan::Classify(const std::vector<const ScalarField*>& fields,
   return true;
 }
 
+const SegmentSource& AccelerationPlan::GetSource(AutoTrials::Candidate passes) const
+{
+  switch (passes)
+  {
+    case AutoTrials::Depth:
+      return this->DepthSource;
+    case AutoTrials::Color:
+      return this->PlaneSource;
+    case AutoTrials::Both:
+      return this->Both;
+    default:
+      return this->WholeRays;
+  }
+}
+
+void AccelerationPlan::ReleasePassBuffers(bool depth, bool planes)
+{
+  if (!depth)
+  {
+    this->DepthSource.ReleaseBuffer();
+  }
+  if (!planes)
+  {
+    this->PlaneSource.ReleaseBuffer();
+  }
+}
+
+bool AccelerationPlan::LightPasses::IsDrawnFrom(const std::vector<double>& key) const
+{
+  const auto same = [](double a, double b) {
+    return std::fabs(a - b) <= LightKeyTolerance * std::max({ 1.0, std::fabs(a), std::fabs(b) });
+  };
+  return this->Key.size() == key.size() &&
+    std::equal(key.begin(), key.end(), this->Key.begin(), same);
+}
+
+AccelerationPlan::LightPasses& AccelerationPlan::GetLightPasses(
+  std::size_t index, std::size_t lights)
+{
+  if (this->Lights.size() < lights)
+  {
+    this->Lights.resize(lights);
+  }
+  return this->Lights[index];
+}
+
+std::size_t AccelerationPlan::GetLightPassesMemorySize() const
+{
+  std::size_t bytes = 0;
+  for (const LightPasses& passes : this->Lights)
+  {
+    bytes += passes.Source.GetMemorySize() + passes.Key.capacity() * sizeof(double);
+  }
+  return bytes;
+}
+
 bool ClassificationKey::operator==(const ClassificationKey& o) const
 {
   return FieldVersion == o.FieldVersion && Functions == o.Functions &&

@@ -11,7 +11,9 @@
 #ifndef parcAccelerationPlan_h
 #define parcAccelerationPlan_h
 
+#include "parcBufferSources.h"
 #include "parcClassification.h"
+#include "parcLightFrusta.h"
 #include "parcMath.h"
 #include "parcPolygonModel.h"
 #include "parcStatistics.h"
@@ -233,6 +235,10 @@ struct ClassificationKey
 class AccelerationPlan
 {
 public:
+  AccelerationPlan() = default;
+  AccelerationPlan(const AccelerationPlan&) = delete; // its sources refer to each other
+  AccelerationPlan& operator=(const AccelerationPlan&) = delete;
+
   /// Joins coplanar neighbouring faces in the models (fewer primitives; the depth pass is
   /// as tight on a large face as on a small one).
   void SetMergeFaces(bool merge);
@@ -301,6 +307,35 @@ public:
   const SupercellWalk& GetWalk(const Matrix4& worldToIndex);
   /// Frees the walk's flags (a mode that does not walk).
   void ReleaseWalk() { this->Walk.Clear(); }
+
+  /// The segment sources of the view's passes: the caller's GL passes fill their buffers
+  /// (Set) and take them back to fill again (ReleaseBuffer).
+  DepthBufferSource& GetDepthSource() { return this->DepthSource; }
+  PlaneBufferSource& GetPlaneSource() { return this->PlaneSource; }
+  /// What the rays of a frame whose passes are `passes` read: the depth pass, the colour
+  /// pass, both intersected, or the whole rays (AutoTrials::None: no pass).
+  const SegmentSource& GetSource(AutoTrials::Candidate passes) const;
+  /// The source of rays that meet nothing that can show: no segment.
+  const SegmentSource& GetEmptySource() const { return this->NoRays; }
+  /// Frees the buffers of the passes a settled mode does not draw.
+  void ReleasePassBuffers(bool depth, bool planes);
+
+  /// The passes of one light for shadow rays (parcLightFrusta.h), and what they were
+  /// drawn from: the light and the volume in world coordinates, the model's version.
+  struct LightPasses
+  {
+    std::vector<double> Key;
+    LightBufferSource Source;
+    /// Whether they were drawn from key (the same world quantities come back through the
+    /// render frame with rounding: equal within LightKeyTolerance).
+    bool IsDrawnFrom(const std::vector<double>& key) const;
+  };
+  /// Relative difference under which a light pass's key counts as unchanged.
+  static constexpr double LightKeyTolerance = 1e-9;
+  /// The passes of light `index` of `lights` lights.
+  LightPasses& GetLightPasses(std::size_t index, std::size_t lights);
+  /// Frees every light's passes (drawn in a GL context that is going away).
+  void ReleaseLightPasses() { this->Lights.clear(); }
   /// Frees a model's vertices once the caller's GPU holds them.
   void ReleaseDepthVertices() { Release(this->Depth); }
   void ReleaseColorVertices(int axis) { Release(this->Color[axis]); }
@@ -321,6 +356,9 @@ public:
   std::size_t GetColorModelsMemorySize() const;
   std::size_t GetWalkMemorySize() const { return this->Walk.GetMemorySize(); }
   std::size_t GetCellsMemorySize() const { return this->Cells.capacity(); }
+  std::size_t GetDepthBufferMemorySize() const { return this->DepthSource.GetMemorySize(); }
+  std::size_t GetPlaneBufferMemorySize() const { return this->PlaneSource.GetMemorySize(); }
+  std::size_t GetLightPassesMemorySize() const;
 
   AutoTrials Auto; ///< Auto's measurements for this volume
   SupercellSearch Sizes; ///< Auto's choice of the supercell size for this volume
@@ -350,6 +388,12 @@ private:
   PassModel Depth;
   PassModel Color[3]; ///< per major axis
   SupercellWalk Walk;
+  DepthBufferSource DepthSource;
+  PlaneBufferSource PlaneSource;
+  const BothSource Both{ DepthSource, PlaneSource }; ///< refers to the two: no copies
+  const WholeRaySource WholeRays;
+  const EmptySource NoRays;
+  std::vector<LightPasses> Lights;
   bool WalkCurrent = false; ///< the walk's flags are of the current classification
   std::uint64_t ModelVersion = 0;
   std::uint64_t PyramidBuilds = 0, Classifications = 0, ModelBuilds = 0;
