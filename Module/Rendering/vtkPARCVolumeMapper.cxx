@@ -307,7 +307,7 @@ void vtkPARCVolumeMapper::RenderRayImage(vtkRenderer* ren)
 {
   vtkInternals& in = *this->Internals;
   this->LastImageSampleDistance = this->ChooseImageSampleDistance();
-  vtkPARCRasterizer::View view;
+  parc::vtk::PassView view;
   if (!in.MakeView(ren, this->LastImageSampleDistance, view))
   {
     return;
@@ -325,7 +325,7 @@ void vtkPARCVolumeMapper::RenderRayImage(vtkRenderer* ren)
 
 //------------------------------------------------------------------------------
 bool vtkPARCVolumeMapper::vtkInternals::MakeView(
-  vtkRenderer* ren, double step, vtkPARCRasterizer::View& view)
+  vtkRenderer* ren, double step, parc::vtk::PassView& view)
 {
   int width, height;
   ren->GetTiledSize(&width, &height);
@@ -373,7 +373,7 @@ vtkPARCVolumeMapper::vtkInternals::CountSetUpWork() const
   {
     const vtkVolumeState& volume = *entry.first;
     work.push_back(
-      { volume.Plan.GetModelBuilds(), volume.Rasterizer->GetUploadCount(), volume.SetUpTime() });
+      { volume.Plan.GetModelBuilds(), volume.Passes.GetUploadCount(), volume.SetUpTime() });
   }
   return work;
 }
@@ -437,7 +437,7 @@ void vtkPARCVolumeMapper::vtkInternals::ReturnFreedMemory()
     {
       const parc::AccelerationPlan& plan = volume->Plan;
       work += plan.GetPyramidBuilds() + plan.GetClassifications() + plan.GetModelBuilds() +
-        plan.GetCellClassifications() + volume->Rasterizer->GetUploadCount() +
+        plan.GetCellClassifications() + volume->Passes.GetUploadCount() +
         volume->Scalars.Version;
     }
   }
@@ -530,8 +530,7 @@ void vtkPARCVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
   {
     if (volume)
     {
-      volume->Rasterizer->ReleaseGraphicsResources(window);
-      volume->LightRasterizer->ReleaseGraphicsResources(window);
+      volume->Passes.ReleaseGraphicsResources(window);
       volume->Plan.ReleaseLightPasses(); // drawn in the window's context: remade when needed
     }
   }

@@ -9,11 +9,11 @@
 #include "parcBufferSources.h"
 #include "parcEndOfRenderDraw.h"
 #include "parcLightFrusta.h"
+#include "parcPassDriver.h"
 #include "parcPolygonModel.h"
 #include "parcRayCaster.h"
 #include "parcVTKConversion.h"
 #include "vtkPARCMultiVolume.h"
-#include "vtkPARCRasterizer.h"
 
 #include "vtkCamera.h"
 #include "vtkColorTransferFunction.h"
@@ -212,12 +212,9 @@ public:
   void PrepareCells(const RenderSettings& settings, vtkVolume* vol);
   /** Classifies and builds the volume's polygon models when their inputs changed. */
   bool PrepareModels(const RenderSettings& settings, vtkVolume* vol);
-  vtkNew<vtkPARCRasterizer> Rasterizer;
+  /// Draws the plan's passes (the view's and the lights').
+  parc::vtk::PassDriver Passes;
   bool FallbackWarned = false;
-  // PARC for shadow rays: per light, the depth or plane passes of the light's cameras (the
-  // plan's LightPasses), remade only when what they were made from changes (not the
-  // camera).
-  vtkNew<vtkPARCRasterizer> LightRasterizer;
   vtkIdType PolygonCount = 0;
   int PlaneCount = 0;
   int PassCount = 0;
@@ -226,7 +223,7 @@ public:
   /// Seconds the plan and the rasterizer spent so far setting up (Auto's RecordSetUp).
   double SetUpTime() const
   {
-    return this->Plan.GetSetUpTime() + this->Rasterizer->GetSetUpTime();
+    return this->Plan.GetSetUpTime() + this->Passes.GetSetUpTime();
   }
   /// Frees the buffers and GL objects of the passes, and the walk's flags, that a settled
   /// mode (used) does not use (Auto keeps them while it still has modes to try).
@@ -237,14 +234,7 @@ public:
       return;
     }
     this->Plan.ReleasePassBuffers(used.Depth, used.Planes);
-    if (!used.Depth)
-    {
-      this->Rasterizer->ReleasePass(window, vtkPARCRasterizer::Pass::Depth);
-    }
-    if (!used.Planes)
-    {
-      this->Rasterizer->ReleasePass(window, vtkPARCRasterizer::Pass::Planes);
-    }
+    this->Passes.ReleaseUnused(window, used.Depth, used.Planes);
     if (!used.Walk)
     {
       this->Plan.ReleaseWalk();
@@ -269,7 +259,7 @@ public:
     bool planes, LightPassWork& work);
   /// Runs the PARC passes of the requested mode; the segment source the caster uses.
   const parc::SegmentSource& RunPasses(const RenderSettings& settings, vtkRenderer* ren,
-    vtkVolume* vol, const vtkPARCRasterizer::View& view);
+    vtkVolume* vol, const parc::vtk::PassView& view);
 };
 
 //------------------------------------------------------------------------------
@@ -328,7 +318,7 @@ public:
   // The phases of a render after the volumes are prepared (see Render).
   /// The ray image's view for the renderer's camera, step pixels to a ray; false (nothing
   /// to cast) when the viewport is empty or the projection singular.
-  bool MakeView(vtkRenderer* ren, double step, vtkPARCRasterizer::View& view);
+  bool MakeView(vtkRenderer* ren, double step, parc::vtk::PassView& view);
   /// The window depth of the other geometry under each ray-image pixel.
   const float* ReadGeometryDepth(vtkRenderer* ren, const parc::Camera& rays);
   /// What set-up work the volumes have done so far: a frame that did some does not count
@@ -341,7 +331,7 @@ public:
   std::vector<SetUpWork> CountSetUpWork() const;
   /// Runs each volume's PARC passes: the volumes with the segment source each casts with.
   std::vector<parc::SceneCaster::Member> RunPasses(
-    vtkRenderer* ren, const vtkPARCRasterizer::View& view);
+    vtkRenderer* ren, const parc::vtk::PassView& view);
   /// Every rendered volume shadows every shaded one when a shaded volume has a light that
   /// casts shadows (each caster's occluders are set, or cleared).
   void SetUpShadows(vtkRenderer* ren);

@@ -31,7 +31,7 @@ int MajorAxis(const parc::Matrix4& indexToWorld, const parc::Vec3& direction)
 
 //------------------------------------------------------------------------------
 std::vector<parc::SceneCaster::Member> vtkPARCVolumeMapper::vtkInternals::RunPasses(
-  vtkRenderer* ren, const vtkPARCRasterizer::View& view)
+  vtkRenderer* ren, const parc::vtk::PassView& view)
 {
   std::vector<parc::SceneCaster::Member> members;
   for (const auto& entry : this->Rendered)
@@ -114,7 +114,7 @@ void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
       ? static_cast<double>(volume.Stats.Samples) / static_cast<double>(this->Stats.Samples)
       : 1.0 / static_cast<double>(this->Rendered.size());
     const bool setUp = volume.Plan.GetModelBuilds() != before[v].ModelBuilds ||
-      volume.Rasterizer->GetUploadCount() != before[v].Uploads;
+      volume.Passes.GetUploadCount() != before[v].Uploads;
     parc::FrameMeasure frame;
     frame.Projection = volume.ProjectionTime;
     frame.SetUp = volume.SetUpTime() - before[v].Seconds;
@@ -178,7 +178,7 @@ int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
 //------------------------------------------------------------------------------
 const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   const RenderSettings& settings, vtkRenderer* ren, vtkVolume* vol,
-  const vtkPARCRasterizer::View& passView)
+  const parc::vtk::PassView& passView)
 {
   vtkVolumeState& state = *this;
   const int requested = settings.AccelerationMode;
@@ -220,52 +220,24 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     state.ReleaseUnusedPasses(window, passes);
     return state.Plan.GetWalk(state.CoreVolume.WorldToIndex);
   }
-  const parc::Matrix4& indexToWorld = state.CoreVolume.IndexToWorld;
   const bool depth = passes.Depth;
   const bool color = passes.Planes;
-  bool ok = true;
-  if (depth)
-  {
-    const std::uint64_t version = state.Plan.GetModelVersion();
-    const parc::PolygonModel& model = state.Plan.GetDepthModel(
-      state.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Depth, version));
-    std::vector<float> nearFar = state.Plan.GetDepthSource().ReleaseBuffer();
-    ok = state.Rasterizer->RenderDepth(window, model, version, indexToWorld, passView, nearFar);
-    if (state.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Depth, version))
-    {
-      state.Plan.ReleaseDepthVertices();
-    }
-    state.Plan.GetDepthSource().Set(
-      passView.Camera, std::move(nearFar), &grid, state.CoreVolume.WorldToIndex);
-    state.PolygonCount += static_cast<vtkIdType>(state.Plan.GetDepthQuads());
-  }
+  parc::vtk::PassDriver::Drawn drawn;
+  bool ok = !depth || state.Passes.DrawDepth(window, state.Plan, state.CoreVolume, passView, drawn);
   if (ok && color)
   {
-    const int axis = MajorAxis(indexToWorld, passView.Camera.Direction);
-    const std::uint64_t version = state.Plan.GetColorModelVersion(axis);
-    const parc::PolygonModel& model = state.Plan.GetColorModel(
-      axis, state.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Planes, version));
-    std::vector<std::uint32_t> bits = state.Plan.GetPlaneSource().ReleaseBuffer();
-    int words = 0;
-    std::vector<parc::Vec3> starts, directions;
-    passView.Camera.RayBounds(state.CoreVolume.WorldToIndex, starts, directions);
-    ok = state.Rasterizer->RenderPlanes(window, model, version, indexToWorld, passView,
-      parc::RayAxisSign(model, starts, directions), bits, words, state.PassCount);
-    if (state.Rasterizer->HasModel(window, vtkPARCRasterizer::Pass::Planes, version))
-    {
-      state.Plan.ReleaseColorVertices(axis);
-    }
-    state.Plan.GetPlaneSource().Set(passView.Camera, std::move(bits), words, &grid, axis, model.FirstPlane,
-      state.CoreVolume.WorldToIndex);
-    state.PlaneCount = model.PlaneCount;
-    state.PolygonCount += static_cast<vtkIdType>(state.Plan.GetColorQuads(axis));
+    const int axis = MajorAxis(state.CoreVolume.IndexToWorld, passView.Camera.Direction);
+    ok = state.Passes.DrawPlanes(window, state.Plan, state.CoreVolume, passView, axis, drawn);
   }
+  state.PolygonCount += static_cast<vtkIdType>(drawn.Polygons);
+  state.PlaneCount = drawn.Planes;
+  state.PassCount = drawn.Passes;
   if (!ok)
   {
     if (!state.FallbackWarned)
     {
       vtkWarningWithObjectMacro(settings.Reporter, "PARC passes are not available ("
-          << state.Rasterizer->GetLastError() << "); casting unaccelerated.");
+          << state.Passes.GetLastError() << "); casting unaccelerated.");
       state.FallbackWarned = true;
     }
     state.PolygonCount = 0;
@@ -331,12 +303,8 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   }
   const double start = vtkTimerLog::GetUniversalTime();
   passes.Key.clear();
-  const bool uploaded = state.LightRasterizer->HasModel(
-    window, planes ? vtkPARCRasterizer::Pass::Planes : vtkPARCRasterizer::Pass::Depth, version);
-  const parc::PolygonModel& model =
-    planes ? state.Plan.GetColorModel(axis, uploaded) : state.Plan.GetDepthModel(uploaded);
-  const bool ok = state.LightRasterizer->RenderLight(
-    window, model, version, frameOfLight, LightBufferSize, &grid, passes.Source);
+  const bool ok = state.Passes.DrawLight(
+    window, state.Plan, frameOfLight, axis, LightBufferSize, passes.Source);
   work.Time += vtkTimerLog::GetUniversalTime() - start;
   work.Frusta += static_cast<int>(passes.Source.GetFrustumCount());
   if (!ok || passes.Source.GetFrustumCount() == 0)

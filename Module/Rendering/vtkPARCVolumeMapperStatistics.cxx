@@ -159,7 +159,7 @@ vtkIdType vtkPARCVolumeMapper::GetModelBuildCount()
 vtkIdType vtkPARCVolumeMapper::GetModelUploadCount()
 {
   return this->Internals->Sum<vtkIdType>([](const vtkVolumeState& v) {
-    return static_cast<vtkIdType>(v.Rasterizer->GetUploadCount());
+    return static_cast<vtkIdType>(v.Passes.GetUploadCount());
   });
 }
 
@@ -217,7 +217,7 @@ vtkPARCVolumeMapper::vtkVolumeState::Memory() const
     { "depth buffer", this->Plan.GetDepthBufferMemorySize() },
     { "bit-plane buffer", this->Plan.GetPlaneBufferMemorySize() },
     { "OpenGL models and targets",
-      this->Rasterizer->GetMemorySize() + this->LightRasterizer->GetMemorySize() },
+      this->Passes.GetMemorySize() },
     { "light buffers", this->Plan.GetLightPassesMemorySize() } };
 }
 

@@ -1,7 +1,9 @@
 // PARC for VTK: the acceleration plan of one volume (DESIGN.md section 9), shared by the
-// mapper and the polygon-model filter: the range pyramid, the supercell classification,
-// the polygon models of the passes with their versions, and Auto's measurements. No GL:
-// the caller draws the models and says whether its GPU holds a model's version already.
+// mapper and the polygon-model filter: the range pyramid, the supercell classification
+// with what it was made from, the polygon models of the passes with their versions, the
+// segment sources the passes fill (and the lights' passes for shadow rays), Auto's
+// measurements and its supercell search. No GL: the caller draws the models, says whether
+// its GPU holds a model's version already, and fills the sources' buffers.
 //
 // The pyramid is remade when the field's version changes, the classification on every
 // Classify; ClassifyFrom notes what the caller made it from (a ClassificationKey), and
