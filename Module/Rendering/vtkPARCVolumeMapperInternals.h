@@ -215,12 +215,10 @@ public:
   /// Draws the plan's passes (the view's and the lights').
   parc::vtk::PassDriver Passes;
   bool FallbackWarned = false;
-  vtkIdType PolygonCount = 0;
-  int PlaneCount = 0;
-  int PassCount = 0;
-  double ProjectionTime = 0.0; ///< of the last render
+  parc::vtk::PassDriver::Drawn Drawn; ///< what the last render's view passes drew
+  double ProjectionTime = 0.0;        ///< of the last render
 
-  /// Seconds the plan and the rasterizer spent so far setting up (Auto's RecordSetUp).
+  /// Seconds the plan and the passes spent so far setting up (Auto's RecordSetUp).
   double SetUpTime() const
   {
     return this->Plan.GetSetUpTime() + this->Passes.GetSetUpTime();

@@ -229,9 +229,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
     const int axis = MajorAxis(state.CoreVolume.IndexToWorld, passView.Camera.Direction);
     ok = state.Passes.DrawPlanes(window, state.Plan, state.CoreVolume, passView, axis, drawn);
   }
-  state.PolygonCount += static_cast<vtkIdType>(drawn.Polygons);
-  state.PlaneCount = drawn.Planes;
-  state.PassCount = drawn.Passes;
+  state.Drawn = drawn;
   if (!ok)
   {
     if (!state.FallbackWarned)
@@ -240,8 +238,7 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
           << state.Passes.GetLastError() << "); casting unaccelerated.");
       state.FallbackWarned = true;
     }
-    state.PolygonCount = 0;
-    state.PlaneCount = state.PassCount = 0;
+    state.Drawn = {};
     return state.Plan.GetSource(parc::AutoTrials::None);
   }
   state.LastMode = mode;

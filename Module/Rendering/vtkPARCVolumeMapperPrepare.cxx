@@ -232,8 +232,7 @@ bool vtkPARCVolumeMapper::PrepareVolumes(vtkRenderer* ren, vtkVolume* vol)
     vtkVolumeState& volume = in.At(input.first);
     volume.Stats = parc::CastStatistics();
     volume.ProjectionTime = 0.0;
-    volume.PolygonCount = 0;
-    volume.PlaneCount = volume.PassCount = 0;
+    volume.Drawn = {};
     volume.LastMode = ACCELERATION_NONE;
     if (!this->PrepareField(volume, input.second) ||
       !this->PrepareParameters(volume, ren, input.second))

@@ -106,7 +106,8 @@ int vtkPARCVolumeMapper::GetLastInputAccelerationMode(int port)
 }
 vtkIdType vtkPARCVolumeMapper::GetLastPolygonCount()
 {
-  return this->Internals->Sum<vtkIdType>([](const vtkVolumeState& v) { return v.PolygonCount; });
+  return this->Internals->Sum<vtkIdType>(
+    [](const vtkVolumeState& v) { return static_cast<vtkIdType>(v.Drawn.Polygons); });
 }
 vtkIdType vtkPARCVolumeMapper::GetLastCellCount()
 {
@@ -124,11 +125,11 @@ vtkIdType vtkPARCVolumeMapper::GetLastContributingSupercellCount()
 }
 int vtkPARCVolumeMapper::GetLastPlaneCount()
 {
-  return this->Internals->Sum<int>([](const vtkVolumeState& v) { return v.PlaneCount; });
+  return this->Internals->Sum<int>([](const vtkVolumeState& v) { return v.Drawn.Planes; });
 }
 int vtkPARCVolumeMapper::GetLastPassCount()
 {
-  return this->Internals->Sum<int>([](const vtkVolumeState& v) { return v.PassCount; });
+  return this->Internals->Sum<int>([](const vtkVolumeState& v) { return v.Drawn.Passes; });
 }
 double vtkPARCVolumeMapper::GetLastClassificationTime()
 {
@@ -180,8 +181,8 @@ void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
        << indent << "Auto trials remaining: " << v.Plan.Auto.Remaining() << "\n"
        << indent << "Supercells: " << v.Plan.GetGrid().GetNumberOfSupercells() << " ("
        << v.Plan.GetGrid().GetNumberOfContributing() << " possibly contributing)\n"
-       << indent << "Polygons: " << v.PolygonCount << "\n"
-       << indent << "Planes: " << v.PlaneCount << " in " << v.PassCount << " passes\n"
+       << indent << "Polygons: " << v.Drawn.Polygons << "\n"
+       << indent << "Planes: " << v.Drawn.Planes << " in " << v.Drawn.Passes << " passes\n"
        << indent << "Samples: " << v.Stats.Samples << "\n";
   }
   os << "Rays: " << in.Stats.Rays << "\n"
