@@ -919,10 +919,11 @@ struct ClassifiedCells
 };
 }
 
-// Every PC cell (brute force, from the cell ranges) has its node's bit (a bit per node of
-// 2x2x2 cells, parc::CellNodes); nodes without a PC cell rarely have theirs (only where the
-// pyramid's coded range of the node is wider than its cells' ranges). Odd dimensions leave
-// partial nodes and rows that do not fill whole bytes.
+// Every PC cell (brute force, from the cell ranges) has its bit, at the voxel index of the
+// cell's first voxel; the voxels of the last planes begin no cell; the cells of nodes of
+// 2x2x2 cells without a PC one rarely have theirs (only where the pyramid's coded range of
+// the node is wider than its cells' ranges). Odd dimensions leave partial nodes and rows
+// that do not fill whole bytes.
 TEST(ContributingCells, EveryPossiblyContributingCellHasItsBit)
 {
   std::mt19937 rng(31);
@@ -936,43 +937,36 @@ TEST(ContributingCells, EveryPossiblyContributingCellHasItsBit)
       const parc::ScalarField field = RandomVolume(rng, dims);
       const ClassifiedCells cells(field, RandomParameters(rng, blend));
       const std::vector<std::uint8_t>& bits = cells.Bits;
-      const parc::CellNodes nodes(dims);
-      ASSERT_EQ(nodes.Size(), 6u * 5u * 8u) << "ceil(cells / 2) along each axis";
-      ASSERT_EQ(bits.size(), (nodes.Size() + 7) / 8);
+      ASSERT_EQ(bits.size(), (static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] + 7) / 8);
       const std::vector<char> expected = CellFlags(cells.Pyramid, cells.Rule);
       const int c[3] = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
       auto pc = [&](int i, int j, int k) {
         return i < c[0] && j < c[1] && k < c[2] && expected[i + c[0] * (j + c[1] * k)] != 0;
       };
       std::size_t set = 0;
-      for (int k = 0; k < c[2]; k += 2)
-        for (int j = 0; j < c[1]; j += 2)
-          for (int i = 0; i < c[0]; i += 2)
+      for (int k = 0; k < dims[2]; ++k)
+        for (int j = 0; j < dims[1]; ++j)
+          for (int i = 0; i < dims[0]; ++i)
           {
-            const bool bit = parc::CellNodes::IsSet(bits.data(), nodes.Of(i, j, k));
+            const std::size_t v = i + static_cast<std::size_t>(dims[0]) * (j + dims[1] * k);
+            const bool bit = (bits[v / 8] >> (v % 8)) & 1;
+            const bool begins = i < c[0] && j < c[1] && k < c[2];
             bool nodePC = false;
             for (int n = 0; n < 8; ++n)
             {
-              const int ci = i + (n & 1), cj = j + ((n >> 1) & 1), ck = k + (n >> 2);
-              nodePC |= pc(ci, cj, ck);
-              // Every cell of the node reads the node's bit.
-              ASSERT_TRUE(ci >= c[0] || cj >= c[1] || ck >= c[2] || nodes.Of(ci, cj, ck) == nodes.Of(i, j, k));
+              nodePC |= pc((i & ~1) + (n & 1), (j & ~1) + ((n >> 1) & 1), (k & ~1) + (n >> 2));
             }
-            ASSERT_TRUE(!nodePC || bit) << i << " " << j << " " << k;
-            outside += !nodePC;
+            ASSERT_TRUE(begins || !bit) << i << " " << j << " " << k;
+            ASSERT_TRUE(!pc(i, j, k) || bit) << i << " " << j << " " << k;
+            outside += begins && !nodePC;
             spurious += bit && !nodePC;
             set += bit;
           }
-      for (std::size_t n = nodes.Size(); n < 8 * bits.size(); ++n)
-      {
-        ASSERT_FALSE(parc::CellNodes::IsSet(bits.data(), static_cast<std::ptrdiff_t>(n)))
-          << "no bit past the last node";
-      }
-      mixed += set > 0 && set < nodes.Size();
+      mixed += set > 0 && set < expected.size();
     }
   }
   EXPECT_GT(mixed, 20) << "scenes with some cells PC and some not";
-  EXPECT_LT(spurious, outside / 5) << "nodes without a PC cell";
+  EXPECT_LT(spurious, outside / 5) << "cells of nodes without a PC cell";
   const int slice[3] = { 4, 4, 1 }; // one slice: no cells
   const parc::ScalarField flatField = parctest::MakeField(slice, [](int, int, int) { return 1.f; });
   RangePyramid flat;
@@ -984,7 +978,7 @@ TEST(ContributingCells, EveryPossiblyContributingCellHasItsBit)
   EXPECT_TRUE(bits.empty());
 }
 
-// With exact codes (8-bit values) a node's bit is exactly whether a cell of it is PC,
+// With exact codes (8-bit values) a cell's bit is exactly whether a cell of its node is PC,
 // for rules of one interval or threshold (from the level's codes) and of several
 // intervals (from the descent).
 TEST(ContributingCells, ExactCodesGiveExactlyTheNodesWithAPCCell)
@@ -1014,8 +1008,8 @@ TEST(ContributingCells, ExactCodesGiveExactlyTheNodesWithAPCCell)
               nodePC |= ci < c[0] && cj < c[1] && ck < c[2] &&
                 pcCells[ci + c[0] * (cj + c[1] * ck)] != 0;
             }
-            const parc::CellNodes nodes(dims);
-            ASSERT_EQ(parc::CellNodes::IsSet(cells.Bits.data(), nodes.Of(i, j, k)), nodePC)
+            const std::size_t v = i + static_cast<std::size_t>(dims[0]) * (j + dims[1] * k);
+            ASSERT_EQ((cells.Bits[v / 8] >> (v % 8)) & 1, nodePC ? 1 : 0)
               << i << " " << j << " " << k << " blend " << static_cast<int>(blend);
           }
     }

@@ -521,28 +521,70 @@ bool RangePyramid::ClassifyCells(
   {
     return false;
   }
-  // The nodes of level 1 (2x2x2 cells), from the pyramid's ranges, a byte each; then
-  // eight to a byte of bits.
+  // The nodes of level 1 (2x2x2 cells), from the pyramid's ranges.
   std::vector<std::uint8_t> nodes;
   this->Settle(1, rule, nodes, false);
-  if (nodes.size() != CellNodes(this->Field->GetDimensions()).Size())
+  const Level& first = this->Levels[0];
+  const int* dims = this->Field->GetDimensions();
+  const std::size_t nx = dims[0], ny = dims[1];
+  bits.assign((nx * ny * static_cast<std::size_t>(dims[2]) + 7) / 8, 0);
+  // A row of nodes gives the bits of its cells along x, the same for the (up to) 4 rows of
+  // voxels it covers: made once, then shifted into place. Node planes k and k + 1 may
+  // share the byte where their voxels meet: the even planes, then the odd ones.
+  const std::size_t rowBytes = (nx + 7) / 8 + 1;
+  for (int parity = 0; parity < 2; ++parity)
   {
-    return false; // level 1 is the cells' nodes
-  }
-  bits.assign((nodes.size() + 7) / 8, 0);
-  vtkSMPTools::For(0, static_cast<vtkIdType>(bits.size()), [&](vtkIdType b0, vtkIdType b1) {
-    for (vtkIdType b = b0; b < b1; ++b)
-    {
-      const std::size_t first = 8 * static_cast<std::size_t>(b);
-      const std::size_t last = std::min(first + 8, nodes.size());
-      unsigned byte = 0;
-      for (std::size_t n = first; n < last; ++n)
+    const vtkIdType planes = (first.Dims[2] - parity + 1) / 2;
+    vtkSMPTools::For(0, planes, [&](vtkIdType p0, vtkIdType p1) {
+      std::vector<std::uint8_t> row(rowBytes);
+      for (vtkIdType p = p0; p < p1; ++p)
       {
-        byte |= static_cast<unsigned>(nodes[n] != 0) << (n - first);
+        const int kn = static_cast<int>(2 * p + parity);
+        for (int jn = 0; jn < first.Dims[1]; ++jn)
+        {
+          const std::uint8_t* node = &nodes[static_cast<std::size_t>(first.Dims[0]) *
+            (jn + static_cast<std::size_t>(first.Dims[1]) * kn)];
+          if (!std::memchr(node, 1, static_cast<std::size_t>(first.Dims[0])))
+          {
+            continue; // no cell of the row may contribute
+          }
+          // Eight cells a byte, two a node; none from x = CellDims[0] on.
+          const int cellsX = this->CellDims[0];
+          for (int b = 0; 8 * b < cellsX; ++b)
+          {
+            unsigned byte = 0;
+            for (int q = 0; q < 4 && 8 * b + 2 * q < cellsX; ++q)
+            {
+              byte |= (node[4 * b + q] != 0 ? 3u : 0u) << (2 * q);
+            }
+            row[b] = static_cast<std::uint8_t>(byte);
+          }
+          if (cellsX % 8 != 0)
+          {
+            row[cellsX / 8] &= static_cast<std::uint8_t>((1u << (cellsX % 8)) - 1u);
+          }
+          for (int k = 2 * kn; k < std::min(2 * kn + 2, this->CellDims[2]); ++k)
+          {
+            for (int j = 2 * jn; j < std::min(2 * jn + 2, this->CellDims[1]); ++j)
+            {
+              const std::size_t start = nx * (j + ny * k);
+              std::uint8_t* out = &bits[start / 8];
+              const unsigned shift = start % 8;
+              // The row's bits end before the voxel at x = nx - 1: within the bits.
+              for (std::size_t b = 0; 8 * b < nx; ++b)
+              {
+                out[b] |= static_cast<std::uint8_t>(row[b] << shift);
+                if (shift != 0 && row[b] >> (8 - shift) != 0)
+                {
+                  out[b + 1] |= static_cast<std::uint8_t>(row[b] >> (8 - shift));
+                }
+              }
+            }
+          }
+        }
       }
-      bits[b] = static_cast<std::uint8_t>(byte);
-    }
-  });
+    });
+  }
   return true;
 }
 

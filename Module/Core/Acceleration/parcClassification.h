@@ -141,11 +141,12 @@ public:
     this->Settle(level, rule, flags, !this->ExactCodes);
   }
   int GetNumberOfLevels() const { return static_cast<int>(this->Levels.size()); }
-  /// Which cells may be PC under rule, as a bit per node of 2 x 2 x 2 cells (CellNodes):
-  /// a node's bit is set when its range (level 1) meets the rule, so every PC cell's node
-  /// has its bit, and so may nodes without a PC cell (finer bits would cost a
-  /// transfer-function edit more than they save a frame, and eight times the memory).
-  /// What the caster reads to leave out the samples of the cells that cannot contribute
+  /// Which cells may be PC under rule, as bits: bit v % 8 of byte v / 8 for the cell
+  /// whose first voxel has index v (x fastest; a voxel of the last x, y or z plane begins
+  /// no cell and has bit 0). A cell's bit is set when the range of its node of level 1
+  /// meets the rule: every PC cell has its bit, and so may the other cells of its node
+  /// (finer bits would cost a transfer-function edit more than they save a frame). What
+  /// the caster reads to leave out the samples of the cells that cannot contribute
   /// (RayCaster::SetContributingCells). False, bits empty, for a field without cells.
   bool ClassifyCells(const ContributionRule& rule, std::vector<std::uint8_t>& bits) const;
 

@@ -6,8 +6,6 @@
 #include "parcMath.h"
 
 #include <cmath>
-#include <cstddef>
-#include <cstdint>
 
 namespace parc
 {
@@ -26,38 +24,6 @@ inline void NearestVoxel(const Vec3& p, const int dims[3], int voxel[3])
     voxel[a] = std::min(static_cast<int>(x), dims[a] - 1);
   }
 }
-
-/// The nodes of 2 x 2 x 2 cells of a field of dims voxels (the last node along an axis of
-/// an odd number of cells holds one cell), numbered x fastest, and their flags as bits: bit
-/// n % 8 of byte n / 8 for node n. How the caster is told which cells may contribute
-/// (RangePyramid::ClassifyCells): a cell's flag is its node's.
-struct CellNodes
-{
-  std::ptrdiff_t Count[3] = { 0, 0, 0 }; ///< nodes along each axis
-  std::ptrdiff_t Stride[3] = { 0, 0, 0 }; ///< node index steps along each axis
-
-  explicit CellNodes(const int dims[3])
-  {
-    for (int a = 0; a < 3; ++a)
-    {
-      this->Count[a] = dims[a] > 1 ? dims[a] / 2 : 0; // ceil((dims - 1) / 2)
-    }
-    this->Stride[0] = 1;
-    this->Stride[1] = this->Count[0];
-    this->Stride[2] = this->Count[0] * this->Count[1];
-  }
-  std::size_t Size() const
-  {
-    return static_cast<std::size_t>(this->Count[0] * this->Count[1] * this->Count[2]);
-  }
-  /// The node of cell (i, j, k).
-  std::ptrdiff_t Of(int i, int j, int k) const
-  {
-    return (i >> 1) * this->Stride[0] + (j >> 1) * this->Stride[1] + (k >> 1) * this->Stride[2];
-  }
-  /// Whether node n's bit is set in bits.
-  static bool IsSet(const std::uint8_t* bits, std::ptrdiff_t n) { return (bits[n >> 3] >> (n & 7)) & 1; }
-};
 
 /// Where a sample lies: its cell, its fractions in the cell and the cell's first voxel.
 struct SampleLocation

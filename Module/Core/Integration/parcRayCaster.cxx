@@ -324,8 +324,9 @@ const std::uint8_t* RayCaster::ContributingCells() const
   {
     return nullptr;
   }
-  const std::size_t nodes = CellNodes(this->Field->GetDimensions()).Size();
-  return this->Cells->size() == (nodes + 7) / 8 ? this->Cells->data() : nullptr;
+  const int* dims = this->Field->GetDimensions();
+  const std::size_t voxels = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
+  return this->Cells->size() == (voxels + 7) / 8 ? this->Cells->data() : nullptr;
 }
 
 bool RayCaster::ClipRay(const Ray& ray, double& tEnter, double& tExit) const

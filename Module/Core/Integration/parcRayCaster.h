@@ -196,7 +196,7 @@ public:
   /// under this caster's parameters, or null (the default): composite rays then leave out
   /// the samples of the other cells, whose opacity is 0, without interpolating them (the
   /// same image). Used for a composite volume of one component and linear interpolation
-  /// whose values lie next to each other, a bit per node of its cells; it must outlive the
+  /// whose values lie next to each other, bits of the field's size; it must outlive the
   /// casts.
   void SetContributingCells(const std::vector<std::uint8_t>* cells) { this->Cells = cells; }
   /// Whether this caster's rays read the bits of SetContributingCells (prepared, with its

@@ -53,7 +53,6 @@ class FieldView
 public:
   FieldView(const T* data, const int dims[3], std::ptrdiff_t stride)
     : Data(data)
-    , Nodes(dims)
   {
     for (int a = 0; a < 3; ++a)
     {
@@ -114,10 +113,10 @@ public:
   /// its location that of Locate. No branch depends on the data, and each step works on
   /// several lanes at once.
   /// cells (optional, linear interpolation of a field whose x neighbours are next to each
-  /// other): a bit per node of 2 x 2 x 2 cells (CellNodes). Only the groups of
-  /// LatticeBlock::Lanes lanes where some lane's node has its bit set are sampled (the
-  /// values of the others are 0). Returns the lanes sampled whose node has its bit set, as
-  /// bits 1 << j (all n lanes without cells).
+  /// other): a bit per cell, bit c % 8 of byte c / 8 for the cell whose first voxel is value
+  /// c. Only the groups of LatticeBlock::Lanes lanes where some lane's cell has its bit set
+  /// are sampled (the values of the others are 0). Returns the lanes sampled whose cell
+  /// has its bit set, as bits 1 << j (all n lanes without cells).
   PARC_HOT_INLINE unsigned SampleLattice(const RayLattice& lattice, double dt, long k0,
     int count, Interpolation mode, LatticeBlock& block,
     const std::uint8_t* cells = nullptr) const
@@ -154,9 +153,8 @@ public:
       lanes = 0;
       for (int j = 0; j < n; ++j)
       {
-        const std::ptrdiff_t node =
-          this->Nodes.Of(block.Cell[0][j], block.Cell[1][j], block.Cell[2][j]);
-        lanes |= static_cast<unsigned>(CellNodes::IsSet(cells, node)) << j;
+        const std::ptrdiff_t c = block.Offset[j];
+        lanes |= static_cast<unsigned>((cells[c >> 3] >> (c & 7)) & 1) << j;
       }
     }
     for (int j = 0; j < n; j += LatticeBlock::Lanes)
@@ -560,7 +558,6 @@ private:
   }
 
   const T* Data;
-  CellNodes Nodes; ///< the nodes of the cells' flags (SampleLattice's cells)
   std::ptrdiff_t Step[3]; ///< elements between neighbours along x, y, z
   /// The offsets of a cell's 8 corners from its first voxel (corner n: x offset n & 1,
   /// y (n >> 1) & 1, z (n >> 2) & 1).
