@@ -338,6 +338,7 @@ public:
   LightPasses& GetLightPasses(std::size_t index, std::size_t lights);
   /// Frees every light's passes (drawn in a GL context that is going away).
   void ReleaseLightPasses() { this->Lights.clear(); }
+
   /// Frees a model's vertices once the caller's GPU holds them.
   void ReleaseDepthVertices() { Release(this->Depth); }
   void ReleaseColorVertices(int axis) { Release(this->Color[axis]); }
