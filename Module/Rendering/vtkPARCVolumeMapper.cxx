@@ -399,8 +399,9 @@ bool vtkPARCVolumeMapper::vtkInternals::Cast(const parc::Camera& rays, const flo
     }
     if (!this->Scene.SetMembers(members, this->Settings.TerminationOpacity))
     {
-      vtkErrorWithObjectMacro(this->Settings.Reporter, "" << members.size() << " volumes in one scene; at most "
-                                       << parc::MaxSceneVolumes << " render together.");
+      vtkErrorWithObjectMacro(this->Settings.Reporter,
+        "" << members.size() << " volumes in one scene; at most " << parc::MaxSceneVolumes
+           << " render together.");
       std::fill(this->Image.begin(), this->Image.end(), 0.f);
       return;
     }

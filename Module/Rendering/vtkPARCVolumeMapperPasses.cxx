@@ -163,7 +163,8 @@ int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   // Which pass pays off, if any, depends on the GL implementation (software GL makes the
   // passes dear), the data, the ray function and the view: measure.
   const int* dims = state.Field.GetDimensions();
-  const parc::Vec3 centre = state.CoreVolume.IndexToWorld.TransformPoint( // the eye is the frame's origin
+  // The eye is the frame's origin.
+  const parc::Vec3 centre = state.CoreVolume.IndexToWorld.TransformPoint(
     { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
   state.Plan.Auto.SetView(camera.Direction, parc::Length(centre));
   if (settings.SearchSupercellSize && state.Plan.Sizes.IsSearching())
@@ -205,7 +206,8 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
         parc::Vec3(dims[0] - 1, dims[1] - 1, dims[2] - 1)))
   {
     state.LastMode = requested;
-    return state.Plan.GetEmptySource(); // outside the view (another volume of the scene is not): no pass
+    // Outside the view (another volume of the scene is not): no pass.
+    return state.Plan.GetEmptySource();
   }
   const int mode = state.ChooseMode(settings, passView.Camera);
   if (mode == ACCELERATION_NONE)
@@ -261,7 +263,8 @@ const parc::SegmentSource* vtkPARCVolumeMapper::vtkVolumeState::LightSource(
   }
   const parc::Light& light = lights[index];
   parc::LightFrame frameOfLight;
-  if (!parc::MakeLightFrame(light, state.CoreVolume.IndexToWorld, state.Field.GetDimensions(), frameOfLight))
+  if (!parc::MakeLightFrame(
+        light, state.CoreVolume.IndexToWorld, state.Field.GetDimensions(), frameOfLight))
   {
     return nullptr;
   }

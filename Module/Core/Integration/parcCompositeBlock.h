@@ -13,7 +13,8 @@ namespace parc::casting
 {
 
 template <class View>
-PARC_HOT_INLINE bool RayContext<View>::CompositeBlock(long k0, int n, int& visited, EventCompositor& out)
+PARC_HOT_INLINE bool RayContext<View>::CompositeBlock(
+  long k0, int n, int& visited, EventCompositor& out)
 {
 #if defined(__SSE2__)
   if (!this->P.Shade && !this->Events)
