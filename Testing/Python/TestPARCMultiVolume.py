@@ -9,11 +9,10 @@ from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
 from vtkmodules.vtkCommonTransforms import vtkTransform
 from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
 from vtkmodules.vtkImagingSources import vtkImageEllipsoidSource
-from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderWindow,
-                                         vtkRenderer, vtkVolume, vtkVolumeProperty)
+from vtkmodules.vtkRenderingCore import vtkColorTransferFunction, vtkVolume, vtkVolumeProperty
 from vtkmodules.vtkRenderingVolume import vtkVolumeMapper
 
-from parctesthelpers import ray_image
+from parctesthelpers import offscreen_window_showing, ray_image
 
 
 def property_of(opacity_points, rgb, iso=None):
@@ -59,14 +58,7 @@ def make_scene():
     multi.SetVolume(ball, 0)
     multi.SetVolume(haze, 1)
 
-    renderer = vtkRenderer()
-    renderer.AddVolume(multi)
-    window = vtkRenderWindow()
-    window.SetOffScreenRendering(1)
-    window.SetSize(80, 80)
-    window.AddRenderer(renderer)
-    renderer.ResetCamera()
-    return mapper, multi, window
+    return mapper, multi, offscreen_window_showing(multi, 80)
 
 
 class TestPARCMultiVolume(unittest.TestCase):

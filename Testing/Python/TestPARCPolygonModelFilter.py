@@ -11,9 +11,11 @@ from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
 from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkFeatureEdges
 from vtkmodules.vtkFiltersVerdict import vtkCellSizeFilter
 from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
-from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkRenderWindow,
-                                         vtkRenderer, vtkVolumeProperty, vtkWindowToImageFilter)
+from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkVolumeProperty,
+                                         vtkWindowToImageFilter)
 from vtkmodules.vtkRenderingVolume import vtkVolumeMapper
+
+from parctesthelpers import offscreen_window_showing
 
 
 def statistic(poly, name):
@@ -157,13 +159,7 @@ class TestPolygonModelFilter(unittest.TestCase):
         mapper.SetInputConnection(self.filter.GetOutputPort())
         actor = vtkActor()
         actor.SetMapper(mapper)
-        renderer = vtkRenderer()
-        renderer.AddActor(actor)
-        window = vtkRenderWindow()
-        window.SetOffScreenRendering(1)
-        window.SetSize(100, 100)
-        window.AddRenderer(renderer)
-        renderer.ResetCamera()
+        window = offscreen_window_showing(actor, 100)
         window.Render()
         grab = vtkWindowToImageFilter()
         grab.SetInput(window)

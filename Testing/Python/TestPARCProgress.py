@@ -8,10 +8,9 @@ from parc import vtkPARCMultiVolume, vtkPARCVolumeMapper
 from vtkmodules.vtkCommonCore import vtkCommand
 from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
 from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
-from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderWindow, vtkRenderer,
-                                         vtkVolume, vtkVolumeProperty)
+from vtkmodules.vtkRenderingCore import vtkColorTransferFunction, vtkVolume, vtkVolumeProperty
 
-from parctesthelpers import offscreen_window
+from parctesthelpers import offscreen_window, offscreen_window_showing
 
 
 def wavelet_property():
@@ -69,13 +68,7 @@ class TestPARCProgress(unittest.TestCase):
             volume = vtkVolume()
             volume.SetProperty(wavelet_property())
             multi.SetVolume(volume, port)
-        renderer = vtkRenderer()
-        renderer.AddVolume(multi)
-        window = vtkRenderWindow()
-        window.SetOffScreenRendering(1)
-        window.SetSize(128, 128)
-        window.AddRenderer(renderer)
-        renderer.ResetCamera()
+        window = offscreen_window_showing(multi, 128)
         reports = []
         mapper.AddObserver(vtkCommand.ProgressEvent, lambda m, e: reports.append(
             (m.GetProgressText(), m.GetProgress())))
