@@ -9,6 +9,7 @@
 #include "vtkSmartPointer.h"
 #include "vtkType.h"
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 
@@ -61,6 +62,44 @@ struct WrappedScalars
   }
   /// The field is not wrapped (a wrap failed).
   void Clear() { this->Array = nullptr; }
+};
+
+/// How a premultiplied float RGBA ray image becomes the bytes shown, as VTK's ray cast
+/// mappers show it: the final colour window and level applied to the colours (rgb * scale
+/// + bias * alpha, within [0, alpha]; window 1 and level 0.5 change nothing), every
+/// channel clamped to [0, 1] and rounded to 8 bits.
+class FinalColor
+{
+public:
+  /// window 0 is not usable: the colours are then not adjusted (IsUsable false).
+  FinalColor(float window, float level)
+    : Adjust(!(window == 1.f && level == 0.5f) && window != 0.f)
+    , Scale(this->Adjust ? 1.f / window : 1.f)
+    , Bias(this->Adjust ? 0.5f - level / window : 0.f)
+    , Usable(window != 0.f)
+  {
+  }
+  bool IsUsable() const { return this->Usable; }
+  /// The bytes of one pixel.
+  void ToBytes(const float rgba[4], unsigned char out[4]) const
+  {
+    const float a = std::min(std::max(rgba[3], 0.f), 1.f);
+    for (int c = 0; c < 4; ++c)
+    {
+      float v = rgba[c];
+      if (this->Adjust && c < 3)
+      {
+        v = std::min(std::max(v * this->Scale + this->Bias * a, 0.f), a);
+      }
+      v = std::min(std::max(v, 0.f), 1.f);
+      out[c] = static_cast<unsigned char>(v * 255.f + 0.5f);
+    }
+  }
+
+private:
+  bool Adjust;
+  float Scale, Bias;
+  bool Usable;
 };
 
 /// Whether WrapScalars takes scalars of this VTK type.

@@ -1,5 +1,7 @@
 #include "vtkPARCGPUVolumeRayCastMapper.h"
 
+#include "parcVTKConversion.h"
+
 #include "vtkFloatArray.h"
 #include "vtkImageData.h"
 #include "vtkObjectFactory.h"
@@ -107,10 +109,12 @@ void vtkPARCGPUVolumeRayCastMapper::GetColorImage(vtkImageData* image)
   vtkNew<vtkUnsignedCharArray> bytes;
   bytes->SetNumberOfComponents(4);
   bytes->SetNumberOfTuples(rgba ? rgba->GetNumberOfTuples() : 0);
-  for (vtkIdType i = 0; i < bytes->GetNumberOfValues(); ++i)
+  // What the mapper shows: the same bytes as its display image.
+  const parc::vtk::FinalColor finalColor(
+    this->PARC->GetFinalColorWindow(), this->PARC->GetFinalColorLevel());
+  for (vtkIdType p = 0; p < bytes->GetNumberOfTuples(); ++p)
   {
-    const float v = std::min(1.f, std::max(0.f, rgba->GetValue(i)));
-    bytes->SetValue(i, static_cast<unsigned char>(std::lround(255.f * v)));
+    finalColor.ToBytes(rgba->GetPointer(4 * p), bytes->GetPointer(4 * p));
   }
   image->GetPointData()->SetScalars(bytes);
 }

@@ -490,32 +490,16 @@ void vtkPARCVolumeMapper::DisplayImage(vtkRenderer* ren, vtkVolume* vol)
   in.Display.resize(static_cast<std::size_t>(values));
   const float* image = in.Image.data();
   unsigned char* display = in.Display.data();
-  // The final colour window and level, as VTK's ray cast mappers apply them to the
-  // premultiplied colours: rgb * scale + bias * alpha, within [0, alpha].
-  const bool windowLevel = !(this->FinalColorWindow == 1.f && this->FinalColorLevel == 0.5f);
-  if (windowLevel && this->FinalColorWindow == 0.f && !in.WindowWarned)
+  const parc::vtk::FinalColor finalColor(this->FinalColorWindow, this->FinalColorLevel);
+  if (!finalColor.IsUsable() && !in.WindowWarned)
   {
     vtkWarningMacro("FinalColorWindow 0 is not usable: the final colours are not adjusted.");
     in.WindowWarned = true;
   }
-  const bool adjust = windowLevel && this->FinalColorWindow != 0.f;
-  const float scale = adjust ? 1.f / this->FinalColorWindow : 1.f;
-  const float bias = adjust ? 0.5f - this->FinalColorLevel / this->FinalColorWindow : 0.f;
   vtkSMPTools::For(0, values / 4, [=](vtkIdType begin, vtkIdType end) {
     for (vtkIdType p = begin; p < end; ++p)
     {
-      const float* rgba = image + 4 * p;
-      const float a = std::min(std::max(rgba[3], 0.f), 1.f);
-      for (int c = 0; c < 4; ++c)
-      {
-        float v = rgba[c];
-        if (adjust && c < 3)
-        {
-          v = std::min(std::max(v * scale + bias * a, 0.f), a);
-        }
-        v = std::min(std::max(v, 0.f), 1.f);
-        display[4 * p + c] = static_cast<unsigned char>(v * 255.f + 0.5f);
-      }
+      finalColor.ToBytes(image + 4 * p, display + 4 * p);
     }
   });
   int origin[2] = { 0, 0 };

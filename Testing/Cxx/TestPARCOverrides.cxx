@@ -3,7 +3,8 @@
 // bit for bit (composite and maximum intensity, cropping, a clipping plane, image sample
 // distance 2); a vtkSmartVolumeMapper made then renders through PARC in its GPU and default
 // modes and says so (GetLastUsedRenderMode); vtkPARCOverrides::GetPARCMapper reaches the
-// statistics. Disabled, New() gives VTK's OpenGL mapper again, and a mapper made while
+// statistics; the drop-in's GetColorImage is what it shows (the final colour window and
+// level applied). Disabled, New() gives VTK's OpenGL mapper again, and a mapper made while
 // enabled keeps rendering through PARC.
 #include "parcTestScene.h"
 #include "vtkPARCGPUVolumeRayCastMapper.h"
@@ -11,10 +12,12 @@
 
 #include <vtkFixedPointVolumeRayCastMapper.h>
 #include <vtkFloatArray.h>
+#include <vtkImageData.h>
 #include <vtkPointData.h>
 #include <vtkPlane.h>
 #include <vtkRendererCollection.h>
 #include <vtkSmartVolumeMapper.h>
+#include <vtkUnsignedCharArray.h>
 
 #include <iostream>
 #include <string>
@@ -26,6 +29,25 @@ void RenderWith(vtkRenderWindow* window, vtkVolume* volume, vtkVolumeMapper* map
 {
   volume->SetMapper(mapper);
   window->Render();
+}
+
+/// The mean of each channel of mapper's GetColorImage (RGBA bytes), or -1s without one.
+std::vector<double> MeanColor(vtkGPUVolumeRayCastMapper* mapper)
+{
+  vtkNew<vtkImageData> image;
+  mapper->GetColorImage(image);
+  auto* bytes = vtkUnsignedCharArray::SafeDownCast(image->GetPointData()->GetScalars());
+  std::vector<double> mean(4, -1.0);
+  if (!bytes || bytes->GetNumberOfComponents() != 4 || bytes->GetNumberOfTuples() == 0)
+  {
+    return mean;
+  }
+  std::fill(mean.begin(), mean.end(), 0.0);
+  for (vtkIdType i = 0; i < bytes->GetNumberOfValues(); ++i)
+  {
+    mean[i % 4] += bytes->GetValue(i) / static_cast<double>(bytes->GetNumberOfTuples());
+  }
+  return mean;
 }
 
 bool Fail(const std::string& message)
@@ -92,6 +114,19 @@ int TestPARCOverrides(int, char*[])
     ok = ((!expected.empty() && got == expected && alpha > 0.1) ||
       Fail("blend " + std::to_string(blend) + ": the drop-in's image is not vtkPARCVolumeMapper's")) && ok;
   }
+
+  // GetColorImage: the bytes shown, adjusted by the final colour window and level (0.5 and
+  // 0.25 brighten the colours, not the opacity).
+  const std::vector<double> plain = MeanColor(gpu);
+  gpu->SetFinalColorWindow(0.5f);
+  gpu->SetFinalColorLevel(0.25f);
+  RenderWith(window, volume, gpu);
+  const std::vector<double> bright = MeanColor(gpu);
+  gpu->SetFinalColorWindow(1.f);
+  gpu->SetFinalColorLevel(0.5f);
+  ok = ((plain[3] > 1.0 && bright[0] > 1.3 * plain[0] && bright[3] == plain[3]) ||
+         Fail("GetColorImage is not the image shown with the final colour window and level")) &&
+    ok;
 
   // The array a program selects by name (as ParaView does), not the active scalars.
   vtkNew<vtkImageData> twoArrays;
