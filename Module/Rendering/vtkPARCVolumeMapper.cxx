@@ -123,9 +123,10 @@ const char* vtkPARCVolumeMapper::GetShadowModeAsString(int mode)
 //------------------------------------------------------------------------------
 void vtkPARCVolumeMapper::Render(vtkRenderer* ren, vtkVolume* vol)
 {
-  // The phases: the volumes' fields and ray functions; then for the camera the ray image's
-  // view, the depth of other geometry, each volume's PARC passes, one cast of all volumes
-  // and Auto's bookkeeping (RenderRayImage); last the image over the viewport.
+  // The phases: the settings and the camera's frame, read once; the volumes' fields and ray
+  // functions; then for the camera the ray image's view, the depth of other geometry, each
+  // volume's PARC passes, one cast of all volumes and Auto's bookkeeping (RenderRayImage);
+  // last the image over the viewport.
   vtkInternals& in = *this->Internals;
   if (parc::vtk::InsideDualDepthPeeling(ren))
   {
