@@ -11,7 +11,6 @@
 #include "vtkUnsignedCharArray.h"
 
 #include <algorithm>
-#include <cmath>
 
 vtkStandardNewMacro(vtkPARCGPUVolumeRayCastMapper);
 

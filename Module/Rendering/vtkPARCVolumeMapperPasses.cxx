@@ -162,11 +162,8 @@ int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   }
   // Which pass pays off, if any, depends on the GL implementation (software GL makes the
   // passes dear), the data, the ray function and the view: measure.
-  const int* dims = state.Field.GetDimensions();
   // The eye is the frame's origin.
-  const parc::Vec3 centre = state.CoreVolume.IndexToWorld.TransformPoint(
-    { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
-  state.Plan.Auto.SetView(camera.Direction, parc::Length(centre));
+  state.Plan.Auto.SetView(camera.Direction, parc::Length(state.CoreVolume.Centre()));
   if (settings.SearchSupercellSize && state.Plan.Sizes.IsSearching())
   {
     return AutoCandidates[state.Plan.Sizes.GetCandidate()]; // the search's frames take its pass

@@ -635,9 +635,7 @@ void vtkPARCVolumeMapper::vtkVolumeState::PrepareShadingModel(
   p.Normals = &this->Normals;
   // Towards the eye (the frame's origin) from the volume's centre; along the view
   // direction for a parallel projection.
-  const int* dims = this->Field.GetDimensions();
-  const parc::Vec3 centre = this->CoreVolume.IndexToWorld.TransformPoint(
-    parc::Vec3(0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1)));
+  const parc::Vec3 centre = this->CoreVolume.Centre();
   p.ShadingViewDirection = frame.Parallel || !(parc::Length(centre) > 0.0)
     ? -frame.Direction
     : parc::Normalized(-centre);

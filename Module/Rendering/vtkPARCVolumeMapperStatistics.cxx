@@ -217,8 +217,7 @@ vtkPARCVolumeMapper::vtkVolumeState::Memory() const
     { "contributing cells", this->Plan.GetCellsMemorySize() },
     { "depth buffer", this->Plan.GetDepthBufferMemorySize() },
     { "bit-plane buffer", this->Plan.GetPlaneBufferMemorySize() },
-    { "OpenGL models and targets",
-      this->Passes.GetMemorySize() },
+    { "OpenGL models and targets", this->Passes.GetMemorySize() },
     { "light buffers", this->Plan.GetLightPassesMemorySize() } };
 }
 

@@ -32,6 +32,13 @@ struct Volume
     this->IndexToWorld = indexToWorld;
     return true;
   }
+  /// The centre of the field's box, in world coordinates.
+  Vec3 Centre() const
+  {
+    const int* dims = this->Field->GetDimensions();
+    return this->IndexToWorld.TransformPoint(
+      { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
+  }
 };
 
 } // namespace parc
