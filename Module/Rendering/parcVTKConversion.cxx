@@ -366,6 +366,26 @@ std::string ConvertLabels(vtkVolumeProperty* property, const double range[2],
   return fixes;
 }
 
+ClassificationKey ClassificationKeyOf(vtkVolumeProperty* property, const CastParameters& p,
+  std::uint64_t fieldVersion, int blend, const double average[2])
+{
+  ClassificationKey key;
+  key.FieldVersion = fieldVersion;
+  key.Functions = property;
+  key.FunctionsTime = property->GetMTime();
+  key.Blend = blend;
+  key.Labels = p.Labels.size();
+  for (const LabelFunctions& label : p.Labels)
+  {
+    if (vtkPiecewiseFunction* opacity = property->GetLabelScalarOpacity(label.Label))
+    {
+      key.LabelsTime = std::max(key.LabelsTime, opacity->GetMTime());
+    }
+  }
+  std::copy_n(average, 2, key.Average);
+  return key;
+}
+
 double GradientUnit(vtkImageData* image)
 {
   const double* spacing = image->GetSpacing();

@@ -3,6 +3,7 @@
 #ifndef parcVTKConversion_h
 #define parcVTKConversion_h
 
+#include "parcAccelerationPlan.h"
 #include "parcRayCaster.h"
 
 #include "vtkDataArray.h"
@@ -129,6 +130,12 @@ std::string ConvertProperty(vtkVolumeProperty* property, const double range[2],
 /// ConvertProperty does.
 std::string ConvertLabels(vtkVolumeProperty* property, const double range[2],
   const CastParameters& p, std::vector<LabelFunctions>& out, double gradientUnit = 1.0);
+
+/// What a classification of the field of version fieldVersion is made from: property's
+/// transfer functions (and those of p's labels), the caller's VTK blend mode and its
+/// average-intensity range. Its supercell size is left 0 for the caller to set.
+ClassificationKey ClassificationKeyOf(vtkVolumeProperty* property, const CastParameters& p,
+  std::uint64_t fieldVersion, int blend, const double average[2]);
 
 /// The length the gradient opacity functions of VTK's volume mappers measure gradients
 /// per: the mean of image's voxel spacing (world units).

@@ -123,12 +123,8 @@ int vtkPARCPolygonModelFilter::RequestData(
   parc::vtk::ConvertProperty(property, in.Field.GetRange(), p, 0, parc::vtk::GradientUnit(image));
   p.AverageRange[0] = this->AverageIPScalarRange[0];
   p.AverageRange[1] = this->AverageIPScalarRange[1];
-  parc::ClassificationKey key;
-  key.FieldVersion = in.Scalars.Version;
-  key.Functions = property;
-  key.FunctionsTime = property->GetMTime();
-  key.Blend = this->BlendMode;
-  std::copy_n(this->AverageIPScalarRange, 2, key.Average);
+  parc::ClassificationKey key = parc::vtk::ClassificationKeyOf(
+    property, p, in.Scalars.Version, this->BlendMode, this->AverageIPScalarRange);
   std::copy_n(this->SupercellSize, 3, key.Size);
   if (!in.Plan.IsClassifiedFrom(key))
   {

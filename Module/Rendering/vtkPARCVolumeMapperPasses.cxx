@@ -339,22 +339,9 @@ void vtkPARCVolumeMapper::vtkVolumeState::PrepareCells(
 parc::ClassificationKey vtkPARCVolumeMapper::vtkVolumeState::Key(
   const RenderSettings& settings, vtkVolume* vol) const
 {
-  const vtkVolumeState& state = *this;
-  parc::ClassificationKey key;
-  key.FieldVersion = state.Scalars.Version;
-  key.Functions = vol->GetProperty();
-  key.FunctionsTime = vol->GetProperty()->GetMTime();
-  key.Blend = state.InputBlend;
-  key.Labels = state.Parameters.Labels.size();
-  for (const parc::LabelFunctions& label : state.Parameters.Labels)
-  {
-    if (vtkPiecewiseFunction* opacity = vol->GetProperty()->GetLabelScalarOpacity(label.Label))
-    {
-      key.LabelsTime = std::max(key.LabelsTime, opacity->GetMTime());
-    }
-  }
-  std::copy_n(settings.AverageIPScalarRange, 2, key.Average);
-  state.SupercellSizeOf(settings, key.Size);
+  parc::ClassificationKey key = parc::vtk::ClassificationKeyOf(vol->GetProperty(),
+    this->Parameters, this->Scalars.Version, this->InputBlend, settings.AverageIPScalarRange);
+  this->SupercellSizeOf(settings, key.Size);
   return key;
 }
 
