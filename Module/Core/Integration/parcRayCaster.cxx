@@ -86,11 +86,11 @@ std::vector<RayCaster::ShadingFactors> NormalShadingTable(
     for (std::size_t i = 0; i < p.Lights.size(); ++i)
     {
       const Light& light = p.Lights[i];
-      const double ndl = Dot(n, directions[i].ToLight);
-      if (ndl > 0.0)
+      double ndl, spec;
+      const auto halfDot = [&] { return Dot(n, directions[i].Half); };
+      const auto power = [&p](double ndh) { return std::pow(ndh, p.SpecularPower); };
+      if (casting::BlinnPhongWeights(Dot(n, directions[i].ToLight), halfDot, power, ndl, spec))
       {
-        const double ndh = Dot(n, directions[i].Half);
-        const double spec = ndh > 0.0 ? std::pow(ndh, p.SpecularPower) : 0.0;
         for (int c = 0; c < 3; ++c)
         {
           diffuse[c] += p.Diffuse * light.Color[c] * ndl;

@@ -27,6 +27,25 @@ inline float FlipUnlessPositive(float x, float sign)
   return x;
 }
 
+/// Blinn-Phong's weights of one light, the one definition the scalar shading shares
+/// (RayContext::Shade and AddPositionalLights, and the quantized normals' table;
+/// ShadeLanes is its form for the lanes of a block): false when the light is behind the
+/// surface (n.l <= 0), weights untouched; else the diffuse weight n.l and the specular
+/// weight power(n.h) where n.h > 0, 0 elsewhere. halfDot gives n.h (computed only for a
+/// light in front). T is float for the cast's samples, double for the table and
+/// positional lights.
+template <class T, class HalfDot, class Power>
+inline bool BlinnPhongWeights(T ndl, HalfDot halfDot, Power power, T& diffuse, T& specular)
+{
+  if (!(ndl > T(0)))
+  {
+    return false;
+  }
+  const T ndh = halfDot();
+  diffuse = ndl;
+  specular = ndh > T(0) ? power(ndh) : T(0);
+  return true;
+}
 
 /// x^n for a whole n >= 0 by repeated squaring.
 inline float IntegerPower(float x, int n)
@@ -132,12 +151,13 @@ PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f
     for (std::size_t i = 0; i < count; ++i)
     {
       const RayCaster::DirectionalLight& light = lights[i];
-      float ndl = Dot(n, light.ToLight);
-      if (ndl > 0.f)
+      float ndl, spec;
+      const auto halfDot = [&] {
+        return Dot(n, i < MaxHoistedLights ? this->HalfVectors[i] : this->HalfVector(light.ToLight));
+      };
+      const auto power = [this](float ndh) { return this->SpecularTerm(ndh); };
+      if (BlinnPhongWeights(Dot(n, light.ToLight), halfDot, power, ndl, spec))
       {
-        const float ndh =
-          Dot(n, i < MaxHoistedLights ? this->HalfVectors[i] : this->HalfVector(light.ToLight));
-        float spec = ndh > 0.f ? this->SpecularTerm(ndh) : 0.f;
         if (light.ShadowAttenuation > 0.f && this->Shadows)
         {
           const float v = this->Visibility(this->WorldPosition(t), light.ShadowDirection,
@@ -308,16 +328,18 @@ void RayContext<View>::AddPositionalLights(
       attenuation *=
         (c < positional.CosCone) ? 0.0 : std::pow(std::max(c, 0.0), light->Exponent);
     }
-    const double ndl = Dot(normal, l);
-    if (ndl > 0.0 && attenuation != 0.0)
+    double ndl, spec;
+    const auto halfDot = [&] { return Dot(normal, Normalized(l - this->WorldRay.Direction)); };
+    const auto power = [this](double ndh) {
+      return static_cast<double>(this->SpecularTerm(static_cast<float>(ndh)));
+    };
+    if (attenuation != 0.0 && BlinnPhongWeights(Dot(normal, l), halfDot, power, ndl, spec))
     {
       if (light->ShadowAttenuation > 0.0 && this->Shadows)
       {
         attenuation *= this->Visibility(
           x, l, dist, positional.Index, static_cast<float>(light->ShadowAttenuation));
       }
-      const double ndh = Dot(normal, Normalized(l - this->WorldRay.Direction));
-      const double spec = ndh > 0.0 ? this->SpecularTerm(static_cast<float>(ndh)) : 0.0;
       for (int c = 0; c < 3; ++c)
       {
         const double color = attenuation * light->Color[c];
