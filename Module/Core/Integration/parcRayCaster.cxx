@@ -64,6 +64,7 @@ std::vector<RayCaster::ShadingFactors> NormalShadingTable(
     const Vec3 toLight = Normalized(light.Position - light.FocalPoint);
     directions.push_back({ toLight, Normalized(toLight + toEye) });
   }
+  const auto power = [&p](double ndh) { return std::pow(ndh, p.SpecularPower); };
   for (std::size_t code = 0; code < table.size(); ++code)
   {
     RayCaster::ShadingFactors& f = table[code];
@@ -88,7 +89,6 @@ std::vector<RayCaster::ShadingFactors> NormalShadingTable(
       const Light& light = p.Lights[i];
       double ndl, spec;
       const auto halfDot = [&] { return Dot(n, directions[i].Half); };
-      const auto power = [&p](double ndh) { return std::pow(ndh, p.SpecularPower); };
       if (casting::BlinnPhongWeights(Dot(n, directions[i].ToLight), halfDot, power, ndl, spec))
       {
         for (int c = 0; c < 3; ++c)

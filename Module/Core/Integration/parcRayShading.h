@@ -148,6 +148,7 @@ PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f
     const Vec3f n = FlipUnlessPositive(1.f / length, Dot(g, this->ToEye)) * g;
     const RayCaster::DirectionalLight* lights = this->K.DirectionalLights.data();
     const std::size_t count = this->K.DirectionalLights.size();
+    const auto power = [this](float ndh) { return this->SpecularTerm(ndh); };
     for (std::size_t i = 0; i < count; ++i)
     {
       const RayCaster::DirectionalLight& light = lights[i];
@@ -155,7 +156,6 @@ PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f
       const auto halfDot = [&] {
         return Dot(n, i < MaxHoistedLights ? this->HalfVectors[i] : this->HalfVector(light.ToLight));
       };
-      const auto power = [this](float ndh) { return this->SpecularTerm(ndh); };
       if (BlinnPhongWeights(Dot(n, light.ToLight), halfDot, power, ndl, spec))
       {
         if (light.ShadowAttenuation > 0.f && this->Shadows)
@@ -313,6 +313,9 @@ void RayContext<View>::AddPositionalLights(
 {
   const Vec3 x = this->WorldRay.Origin + t * this->WorldRay.Direction;
   const Vec3 normal(n.X, n.Y, n.Z);
+  const auto power = [this](double ndh) {
+    return static_cast<double>(this->SpecularTerm(static_cast<float>(ndh)));
+  };
   for (const RayCaster::PositionalLight& positional : this->K.PositionalLights)
   {
     const Light* light = positional.Source;
@@ -330,9 +333,6 @@ void RayContext<View>::AddPositionalLights(
     }
     double ndl, spec;
     const auto halfDot = [&] { return Dot(normal, Normalized(l - this->WorldRay.Direction)); };
-    const auto power = [this](double ndh) {
-      return static_cast<double>(this->SpecularTerm(static_cast<float>(ndh)));
-    };
     if (attenuation != 0.0 && BlinnPhongWeights(Dot(normal, l), halfDot, power, ndl, spec))
     {
       if (light->ShadowAttenuation > 0.0 && this->Shadows)
