@@ -189,10 +189,17 @@ public:
   parc::Volume CoreVolume;
   parc::RayCaster Caster;
   parc::CastStatistics Stats; ///< of the last render
-  int LastMode = ACCELERATION_NONE;
-  /// The classification decided the last frame's mode without Auto's measurements (no
-  /// supercell, or every one, may contribute): no trial is to come.
-  bool ModeSettledByClassification = false;
+  /// What the last frame's rays took, set once by RunPasses.
+  struct FramePasses
+  {
+    int Mode = ACCELERATION_NONE; ///< as GetLastInputAccelerationMode reports it
+    /// The AutoTrials candidate whose segments the rays took (-1: the walk's, or none).
+    int Candidate = -1;
+    /// The classification decided the mode without Auto's measurements (no supercell, or
+    /// every one, may contribute): no trial is to come.
+    bool SettledByClassification = false;
+  };
+  FramePasses Last;
 
   // PARC: the classification and models, remade only when their inputs (the plan's keys)
   // change.

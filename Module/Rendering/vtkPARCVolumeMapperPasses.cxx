@@ -135,10 +135,8 @@ void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
     }
     if (searchSizes && completed && !setUp)
     {
-      const int* candidate = std::find(
-        AutoCandidates, AutoCandidates + parc::AutoTrials::Count, volume.LastMode);
-      volume.Plan.Sizes.Record(static_cast<int>(candidate - AutoCandidates),
-        volume.Plan.Auto.Settled, frame.Projection + frame.Casting);
+      volume.Plan.Sizes.Record(
+        volume.Last.Candidate, volume.Plan.Auto.Settled, frame.Projection + frame.Casting);
     }
   }
 }
@@ -157,7 +155,7 @@ int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   const std::size_t pc = grid.GetNumberOfContributing();
   if (pc == grid.GetNumberOfSupercells())
   {
-    state.ModeSettledByClassification = true;
+    state.Last.SettledByClassification = true;
     return ACCELERATION_NONE; // every supercell may contribute: no pass can help
   }
   // Which pass pays off, if any, depends on the GL implementation (software GL makes the
@@ -181,20 +179,21 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   vtkVolumeState& state = *this;
   const int requested = settings.AccelerationMode;
   vtkRenderWindow* window = ren->GetRenderWindow();
-  state.LastMode = ACCELERATION_NONE;
-  state.ModeSettledByClassification = false;
+  FramePasses& last = state.Last;
+  last = FramePasses();
   // A ray function without segments (a slice: one sample a ray): no pass can pay off.
   if (requested == ACCELERATION_NONE || !parc::TraitsOf(state.Parameters.Blend).UsesSegments ||
     !state.PrepareModels(settings, vol))
   {
+    last.Candidate = parc::AutoTrials::None;
     state.ReleaseUnusedPasses(window, {});
     return state.Plan.GetSource(parc::AutoTrials::None);
   }
   const parc::SupercellGrid& grid = state.Plan.GetGrid();
   if (grid.GetNumberOfContributing() == 0)
   {
-    state.LastMode = requested;
-    state.ModeSettledByClassification = true;
+    last.Mode = requested;
+    last.SettledByClassification = true;
     state.ReleaseUnusedPasses(window, {});
     return state.Plan.GetEmptySource(); // nothing can show: no pass, no sample
   }
@@ -202,20 +201,21 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
   if (!passView.Camera.MayMeetBox(state.CoreVolume.IndexToWorld, parc::Vec3{ 0, 0, 0 },
         parc::Vec3(dims[0] - 1, dims[1] - 1, dims[2] - 1)))
   {
-    state.LastMode = requested;
+    last.Mode = requested;
     // Outside the view (another volume of the scene is not): no pass.
     return state.Plan.GetEmptySource();
   }
   const int mode = state.ChooseMode(settings, passView.Camera);
   if (mode == ACCELERATION_NONE)
   {
+    last.Candidate = parc::AutoTrials::None;
     state.ReleaseUnusedPasses(window, {});
     return state.Plan.GetSource(parc::AutoTrials::None);
   }
   const AccelerationTraits passes = parc::mapper::TraitsOf(mode);
   if (passes.Walk)
   {
-    state.LastMode = mode;
+    last.Mode = mode;
     state.ReleaseUnusedPasses(window, passes);
     return state.Plan.GetWalk(state.CoreVolume.WorldToIndex);
   }
@@ -238,13 +238,15 @@ const parc::SegmentSource& vtkPARCVolumeMapper::vtkVolumeState::RunPasses(
       state.FallbackWarned = true;
     }
     state.Drawn = {};
+    last.Candidate = parc::AutoTrials::None;
     return state.Plan.GetSource(parc::AutoTrials::None);
   }
-  state.LastMode = mode;
+  last.Mode = mode;
+  last.Candidate = depth && color ? parc::AutoTrials::Both
+    : depth                       ? parc::AutoTrials::Depth
+                                  : parc::AutoTrials::Color;
   state.ReleaseUnusedPasses(window, passes);
-  return state.Plan.GetSource(depth && color ? parc::AutoTrials::Both
-      : depth                                  ? parc::AutoTrials::Depth
-                                               : parc::AutoTrials::Color);
+  return state.Plan.GetSource(static_cast<parc::AutoTrials::Candidate>(last.Candidate));
 }
 
 //------------------------------------------------------------------------------

@@ -233,7 +233,7 @@ bool vtkPARCVolumeMapper::PrepareVolumes(vtkRenderer* ren, vtkVolume* vol)
     volume.Stats = parc::CastStatistics();
     volume.ProjectionTime = 0.0;
     volume.Drawn = {};
-    volume.LastMode = ACCELERATION_NONE;
+    volume.Last = vtkVolumeState::FramePasses();
     if (!this->PrepareField(volume, input.second) ||
       !this->PrepareParameters(volume, ren, input.second))
     {

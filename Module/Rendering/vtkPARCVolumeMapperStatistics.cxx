@@ -56,7 +56,7 @@ vtkIdType vtkPARCVolumeMapper::GetLastShadowCellCount()
 int vtkPARCVolumeMapper::GetAutoTrialsRemaining()
 {
   return this->Internals->Sum<int>([](const vtkVolumeState& v) {
-    return v.ModeSettledByClassification ? 0 : v.Plan.Auto.Remaining();
+    return v.Last.SettledByClassification ? 0 : v.Plan.Auto.Remaining();
   });
 }
 
@@ -101,7 +101,7 @@ int vtkPARCVolumeMapper::GetLastInputAccelerationMode(int port)
   }
   const auto& volumes = this->Internals->Volumes;
   return static_cast<std::size_t>(port) < volumes.size() && volumes[port]
-    ? volumes[port]->LastMode
+    ? volumes[port]->Last.Mode
     : ACCELERATION_NONE;
 }
 vtkIdType vtkPARCVolumeMapper::GetLastPolygonCount()
@@ -177,7 +177,7 @@ void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
     {
       os << "Port " << v.Port << ":\n";
     }
-    os << indent << "Acceleration: " << GetAccelerationModeAsString(v.LastMode) << "\n"
+    os << indent << "Acceleration: " << GetAccelerationModeAsString(v.Last.Mode) << "\n"
        << indent << "Auto trials remaining: " << v.Plan.Auto.Remaining() << "\n"
        << indent << "Supercells: " << v.Plan.GetGrid().GetNumberOfSupercells() << " ("
        << v.Plan.GetGrid().GetNumberOfContributing() << " possibly contributing)\n"
