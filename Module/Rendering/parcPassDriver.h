@@ -62,6 +62,11 @@ public:
   {
     return this->View->GetMemorySize() + this->Lights->GetMemorySize();
   }
+  /// Bytes the GL implementation holds for the passes beyond them, measured.
+  std::size_t GetDriverMemorySize() const
+  {
+    return this->View->GetDriverMemorySize() + this->Lights->GetDriverMemorySize();
+  }
 
 private:
   vtkNew<vtkPARCRasterizer> View;

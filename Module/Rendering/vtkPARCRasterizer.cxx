@@ -2,6 +2,7 @@
 
 #include "parcBufferSources.h"
 #include "parcDepthFS.h"
+#include "parcDriverMemory.h"
 #include "parcFaceFS.h"
 #include "parcFaceVS.h"
 #include "parcPassGLState.h"
@@ -23,6 +24,7 @@
 #include <chrono>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 
 namespace
@@ -175,6 +177,12 @@ struct RenderTarget
   /// incomplete.
   bool Bind(vtkOpenGLState* state, GLenum format, int attachments, int width, int height,
     std::string& error);
+  /// Whether Bind allocates storage for these arguments.
+  bool Allocates(GLenum format, int attachments, int width, int height) const
+  {
+    return format != this->Format || width != this->Size[0] || height != this->Size[1] ||
+      static_cast<int>(this->Renderbuffers.size()) != attachments;
+  }
   /// Bytes of renderbuffer storage.
   std::size_t GetMemorySize() const
   {
@@ -214,8 +222,7 @@ bool RenderTarget::Bind(vtkOpenGLState* state, GLenum format, int attachments, i
     glGenFramebuffers(1, &this->Framebuffer);
   }
   state->vtkglBindFramebuffer(GL_FRAMEBUFFER, this->Framebuffer);
-  if (format != this->Format || width != this->Size[0] || height != this->Size[1] ||
-    static_cast<int>(this->Renderbuffers.size()) != attachments)
+  if (this->Allocates(format, attachments, width, height))
   {
     for (int a = 0; a < static_cast<int>(this->Renderbuffers.size()); ++a)
     {
@@ -265,16 +272,40 @@ public:
   GPUModel Models[Passes];      ///< by Pass
   RenderTarget Targets[Passes]; ///< by Pass
   std::vector<std::uint32_t> Texels; ///< read-back of one plane attachment
+  /// What the GL implementation holds for this rasterizer's calls: measured from the
+  /// first set-up of a pass (programs built, a model uploaded, a render target allocated:
+  /// SettingUp) to its end, and over the releases. A warm pass is not measured: the
+  /// driver frees what it allocates there (a scene's bins) outside it, at the window's
+  /// next flush; and measuring the heap walks the allocator's free lists.
+  parc::vtk::DriverMemory Driver;
+  std::optional<parc::vtk::DriverMemory::Scope> SetUpScope; ///< of the current pass
+  void SettingUp()
+  {
+    if (!this->SetUpScope)
+    {
+      this->SetUpScope.emplace(this->Driver);
+    }
+  }
+  /// Bytes of the models and render targets GL holds for the passes.
+  std::size_t GetObjectsMemorySize() const;
   /// Seconds spent so far making the context current, compiling the programs, uploading
   /// models and binding (allocating) render targets.
   double SetUpTime = 0.0;
 
   bool Prepare(vtkRenderWindow* window, std::string& error);
+  /// One pass (RunPass), its GL memory measured when it sets up.
+  template <class Body>
+  bool Run(vtkRenderWindow* window, const char* pass, std::string& error, Body&& body)
+  {
+    const bool ok = this->RunPass(window, pass, error, body);
+    this->SetUpScope.reset(); // adds what the set-up allocated
+    return ok;
+  }
   /// One pass: makes the context current (building the programs the first time), saves
   /// the GL state for the duration, sets the state both passes share, runs body(state)
   /// and reports a GL error as a failure of the named pass.
   template <class Body>
-  bool Run(vtkRenderWindow* window, const char* pass, std::string& error, Body&& body)
+  bool RunPass(vtkRenderWindow* window, const char* pass, std::string& error, Body&& body)
   {
     error.clear();
     const auto start = std::chrono::steady_clock::now();
@@ -313,6 +344,7 @@ public:
     GPUModel& gpu = this->Models[static_cast<int>(pass)];
     if (gpu.Version != version)
     {
+      this->SettingUp();
       const auto start = std::chrono::steady_clock::now();
       // No glFinish after it: llvmpipe copies the data in glBufferData already, and a
       // finish here made the next draw ~0.5 ms slower.
@@ -327,8 +359,13 @@ public:
     Pass pass, GLenum format, int attachments, int width, int height, std::string& error)
   {
     const auto start = std::chrono::steady_clock::now();
-    const bool bound = this->Targets[static_cast<int>(pass)].Bind(
-      this->Context->GetState(), format, attachments, width, height, error);
+    RenderTarget& target = this->Targets[static_cast<int>(pass)];
+    if (target.Allocates(format, attachments, width, height))
+    {
+      this->SettingUp();
+    }
+    const bool bound =
+      target.Bind(this->Context->GetState(), format, attachments, width, height, error);
     this->SetUpTime += parc::SecondsSince(start);
     return bound;
   }
@@ -363,6 +400,7 @@ bool vtkPARCRasterizer::vtkInternals::Prepare(vtkRenderWindow* window, std::stri
       error = "the OpenGL context is older than 3.3";
       return false;
     }
+    this->SettingUp();
     this->DepthProgram = BuildProgram(parcDepthFS, error);
     this->PlaneProgram = this->DepthProgram ? BuildProgram(parcPlaneFS, error) : 0;
     if (!this->PlaneProgram)
@@ -529,6 +567,7 @@ void vtkPARCRasterizer::vtkInternals::Release()
   {
     m = GPUModel();
   }
+  this->Driver = parc::vtk::DriverMemory(); // nothing of this rasterizer's is held any more
   this->Context = nullptr;
 }
 
@@ -565,13 +604,14 @@ void vtkPARCRasterizer::ReleasePass(vtkRenderWindow* window, Pass pass)
   {
     return; // nothing held
   }
-  in.Context->MakeCurrent();
-  in.Models[slot].Release();
-  in.Targets[slot].Release();
   if (pass == Pass::Planes)
   {
     std::vector<std::uint32_t>().swap(in.Texels);
   }
+  parc::vtk::DriverMemory::Scope measured(in.Driver);
+  in.Context->MakeCurrent();
+  in.Models[slot].Release();
+  in.Targets[slot].Release();
 }
 
 double vtkPARCRasterizer::GetSetUpTime() const
@@ -579,15 +619,27 @@ double vtkPARCRasterizer::GetSetUpTime() const
   return this->Internals->SetUpTime;
 }
 
+std::size_t vtkPARCRasterizer::vtkInternals::GetObjectsMemorySize() const
+{
+  std::size_t bytes = 0;
+  for (int slot = 0; slot < Passes; ++slot)
+  {
+    bytes += this->Models[slot].Bytes + this->Targets[slot].GetMemorySize();
+  }
+  return bytes;
+}
+
 std::size_t vtkPARCRasterizer::GetMemorySize() const
 {
   const vtkInternals& in = *this->Internals;
-  std::size_t bytes = in.Texels.capacity() * sizeof(std::uint32_t);
-  for (int slot = 0; slot < vtkInternals::Passes; ++slot)
-  {
-    bytes += in.Models[slot].Bytes + in.Targets[slot].GetMemorySize();
-  }
-  return bytes;
+  return in.Texels.capacity() * sizeof(std::uint32_t) + in.GetObjectsMemorySize();
+}
+
+std::size_t vtkPARCRasterizer::GetDriverMemorySize() const
+{
+  const vtkInternals& in = *this->Internals;
+  return std::max(in.Driver.GetMemorySize(), in.GetObjectsMemorySize()) -
+    in.GetObjectsMemorySize();
 }
 
 void vtkPARCRasterizer::ReleaseGraphicsResources(vtkWindow* window)
@@ -647,9 +699,10 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
   std::vector<float>& nearFar)
 {
   vtkInternals& in = *this->Internals;
+  const int w = view.Camera.Width, h = view.Camera.Height;
+  nearFar.resize(2 * static_cast<std::size_t>(w) * h); // before Run: not the driver's memory
   return in.Run(window, "depth", this->LastError, [&](vtkOpenGLState* state) {
     const GPUModel& gpu = in.Use(Pass::Depth, model, modelVersion, this->UploadCount);
-    const int w = view.Camera.Width, h = view.Camera.Height;
     if (!in.BindTarget(Pass::Depth, GL_RG32F, 1, w, h, this->LastError))
     {
       return false;
@@ -663,7 +716,6 @@ bool vtkPARCRasterizer::RenderDepth(vtkRenderWindow* window, const parc::Polygon
     state->vtkglBlendFuncSeparate(GL_ONE, GL_ONE, GL_ONE, GL_ONE);
     state->vtkglBlendEquation(GL_MIN);
     in.Draw(in.DepthProgram, gpu, indexToWorld, view, parc::Vec3());
-    nearFar.resize(2 * static_cast<std::size_t>(w) * h);
     state->vtkglReadBuffer(GL_COLOR_ATTACHMENT0);
     glReadPixels(0, 0, w, h, GL_RG, GL_FLOAT, nearFar.data());
     return true;
@@ -681,19 +733,24 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
     skipNormal[model.MajorAxis] = raySign;
   }
   vtkInternals& in = *this->Internals;
+  const int w = view.Camera.Width, h = view.Camera.Height;
+  const std::size_t pixels = static_cast<std::size_t>(w) * h;
+  passes = std::max(1, (model.PlaneCount + PlanesPerPass - 1) / PlanesPerPass);
+  // Words per pixel: the planes' words in one attachment of one, two or four channels
+  // (fewer bytes to blend and read back), else whole attachments of four.
+  const int planeWords = std::max(1, (model.PlaneCount + 31) / 32);
+  const int attachmentsTotal = (planeWords + 3) / 4;
+  const TexelFormat texel = attachmentsTotal == 1 ? NarrowestTexel(planeWords) : WideTexel;
+  wordsPerPixel = attachmentsTotal == 1 ? texel.Words : 4 * attachmentsTotal;
+  // The read-back buffers are sized before Run: they are not the driver's memory.
+  bits.resize(pixels * wordsPerPixel);
+  std::vector<std::uint32_t>& texels = in.Texels;
+  if (attachmentsTotal > 1)
+  {
+    texels.resize(4 * pixels);
+  }
   return in.Run(window, "plane", this->LastError, [&](vtkOpenGLState* state) {
     const GPUModel& gpu = in.Use(Pass::Planes, model, modelVersion, this->UploadCount);
-    const int w = view.Camera.Width, h = view.Camera.Height;
-    const std::size_t pixels = static_cast<std::size_t>(w) * h;
-    passes = std::max(1, (model.PlaneCount + PlanesPerPass - 1) / PlanesPerPass);
-    // Words per pixel: the planes' words in one attachment of one, two or four channels
-    // (fewer bytes to blend and read back), else whole attachments of four.
-    const int planeWords = std::max(1, (model.PlaneCount + 31) / 32);
-    const int attachmentsTotal = (planeWords + 3) / 4;
-    const TexelFormat texel = attachmentsTotal == 1 ? NarrowestTexel(planeWords) : WideTexel;
-    wordsPerPixel = attachmentsTotal == 1 ? texel.Words : 4 * attachmentsTotal;
-    bits.resize(pixels * wordsPerPixel);
-    std::vector<std::uint32_t>& texels = in.Texels;
     state->vtkglDisable(GL_BLEND);
     for (int pass = 0; pass < passes; ++pass)
     {
@@ -721,7 +778,6 @@ bool vtkPARCRasterizer::RenderPlanes(vtkRenderWindow* window, const parc::Polygo
           glReadPixels(0, 0, w, h, texel.Format, GL_UNSIGNED_INT, bits.data());
           continue;
         }
-        texels.resize(4 * pixels);
         glReadPixels(0, 0, w, h, texel.Format, GL_UNSIGNED_INT, texels.data());
         const int word0 = 4 * (pass * MaxAttachments + a);
         for (std::size_t p = 0; p < pixels; ++p)

@@ -110,6 +110,10 @@ public:
   /// Bytes of the uploaded models, the render targets and the read-back buffer (on
   /// software GL all of it is main memory).
   std::size_t GetMemorySize() const;
+  /// Bytes the GL implementation holds for this rasterizer's calls beyond its copies of
+  /// the models and targets (GetMemorySize): compiled shaders, binned triangles, the
+  /// compiler's pages. Measured (parc::vtk::DriverMemory), not asked of GL.
+  std::size_t GetDriverMemorySize() const;
 
   /// Frees the model and render target of one pass when window is the context they belong
   /// to: a pass the view no longer uses holds no memory.

@@ -1,5 +1,7 @@
 #include "vtkPARCVolumeMapperInternals.h"
 
+#include <optional>
+
 namespace
 {
 constexpr float DisplayDepth = 1e-6f; ///< window depth of the displayed image quad
@@ -504,6 +506,15 @@ void vtkPARCVolumeMapper::DisplayImage(vtkRenderer* ren, vtkVolume* vol)
     }
   });
   int origin[2] = { 0, 0 };
+  // Measured when the texture is (re)allocated: a warm frame's transient memory is not the
+  // display's.
+  std::optional<parc::vtk::DriverMemory::Scope> measured;
+  if (in.ImageSize[0] != in.DisplayedSize[0] || in.ImageSize[1] != in.DisplayedSize[1])
+  {
+    measured.emplace(in.DisplayDriver);
+    in.DisplayedSize[0] = in.ImageSize[0];
+    in.DisplayedSize[1] = in.ImageSize[1];
+  }
   in.DisplayHelper->RenderTexture(vol, ren, in.ImageSize, in.ImageSize, in.ImageSize, origin,
     DisplayDepth, in.Display.data());
 }
@@ -512,6 +523,8 @@ void vtkPARCVolumeMapper::DisplayImage(vtkRenderer* ren, vtkVolume* vol)
 void vtkPARCVolumeMapper::ReleaseGraphicsResources(vtkWindow* window)
 {
   this->Internals->DisplayHelper->ReleaseGraphicsResources(window);
+  this->Internals->DisplayDriver = parc::vtk::DriverMemory();
+  this->Internals->DisplayedSize[0] = this->Internals->DisplayedSize[1] = 0;
   for (const auto& volume : this->Internals->Volumes)
   {
     if (volume)

@@ -658,8 +658,13 @@ public:
    * Bytes the mapper holds besides its input, per structure and in total: the copy of
    * the scalars (only non-finite floating-point input is copied; other scalars are sampled
    * in place, in their own type; so is a mask), the cell-range pyramid, the supercell
-   * flags, the polygon models, the read-back PARC buffers, and the ray-cast and display
-   * images.
+   * flags, the polygon models, the read-back PARC buffers, the ray-cast and display
+   * images, and what the OpenGL implementation keeps for the passes and the displayed
+   * image. No GL call tells the last: it is measured as the process's heap and resident
+   * growth over the GL calls that allocate (programs built, models uploaded, render
+   * targets and the display texture allocated; on a software GL such as llvmpipe it
+   * includes the shader compiler's pages). Another thread allocating during those calls
+   * is counted with them. ReleaseGraphicsResources drops it.
    * PrintMemory writes one line per structure.
    */
   vtkIdType GetMemorySize();

@@ -9,6 +9,7 @@
 #include "parcBufferSources.h"
 #include "parcEndOfRenderDraw.h"
 #include "parcLightFrusta.h"
+#include "parcDriverMemory.h"
 #include "parcPassDriver.h"
 #include "parcPolygonModel.h"
 #include "parcRayCaster.h"
@@ -297,6 +298,10 @@ public:
   LightPassWork LightPasses; ///< the shadow rays' light passes (part of the render)
   double RenderTime = 0.0;
   vtkNew<vtkOpenGLRayCastImageDisplayHelper> DisplayHelper;
+  /// What the GL implementation holds for the image's display, measured when the
+  /// image's size changes (the passes measure their own).
+  parc::vtk::DriverMemory DisplayDriver;
+  int DisplayedSize[2] = { 0, 0 }; ///< of the image when DisplayDriver last measured
   /// The volume's allocated render time for this render (render-time budgets).
   double Budget = 0.0;
   /// Whether this render adjusts the sample distances to the budget (AutoAdjust-, or

@@ -218,6 +218,7 @@ vtkPARCVolumeMapper::vtkVolumeState::Memory() const
     { "depth buffer", this->Plan.GetDepthBufferMemorySize() },
     { "bit-plane buffer", this->Plan.GetPlaneBufferMemorySize() },
     { "OpenGL models and targets", this->Passes.GetMemorySize() },
+    { "OpenGL implementation, beyond them (measured)", this->Passes.GetDriverMemorySize() },
     { "light buffers", this->Plan.GetLightPassesMemorySize() } };
 }
 
@@ -245,7 +246,8 @@ std::vector<std::pair<const char*, std::size_t>> vtkPARCVolumeMapper::vtkInterna
   memory.insert(memory.end(),
     { { "ray-cast image", this->Image.capacity() * sizeof(float) },
       { "opaque depth", this->Depth.capacity() * sizeof(float) },
-      { "display image", this->Display.capacity() } });
+      { "display image", this->Display.capacity() },
+      { "OpenGL implementation, display (measured)", this->DisplayDriver.GetMemorySize() } });
   return memory;
 }
 

@@ -198,6 +198,21 @@ int TestPARCAccelerationExact(int argc, char* argv[])
                   << both << "--\n" << depthOnly << "--\n" << none;
         ++failures;
       }
+      // What the GL implementation keeps for the passes is measured (on llvmpipe, its copies
+      // and its own memory are in the process), and goes with the window's graphics
+      // resources, as does what it keeps for the displayed image.
+      const std::string drawn = memory(vtkPARCVolumeMapper::ACCELERATION_DEPTH_BUFFER);
+      mapper->ReleaseGraphicsResources(window);
+      std::ostringstream released;
+      mapper->PrintMemory(released);
+      const std::string passes = "OpenGL implementation, beyond them (measured)";
+      if (!holds(drawn, passes) || holds(released.str(), passes) ||
+        holds(released.str(), "OpenGL implementation, display (measured)"))
+      {
+        std::cerr << "FAIL: the GL implementation's memory not measured or not released:\n"
+                  << drawn << "--\n" << released.str();
+        ++failures;
+      }
     }
     // The mapper keeps no vertices once its model is uploaded; the same volume in a second
     // window (another GL context) gets the model built again, and the image stays exact.

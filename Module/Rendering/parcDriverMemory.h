@@ -1,0 +1,56 @@
+// PARC for VTK: the memory an OpenGL implementation keeps for the calls made to it, measured.
+// No GL call says what its implementation allocates: a software GL such as Mesa's llvmpipe
+// keeps a copy of every buffer and renderbuffer in the process, bins the triangles it draws
+// and compiles shaders (its compiler's code pages and the code it makes become resident).
+// DriverMemory measures it instead, around the calls that allocate, as the growth of the
+// process's heap and of its resident size beyond the heap.
+#ifndef parcDriverMemory_h
+#define parcDriverMemory_h
+
+#include <cstddef>
+#include <cstdint>
+
+namespace parc
+{
+namespace vtk
+{
+
+class DriverMemory
+{
+public:
+  /// Measures the calls made during its lifetime. Only the driver is to allocate then:
+  /// the caller sizes its own buffers before (another thread allocating at the same time
+  /// is counted too). Calls whose memory the driver frees outside them (a warm frame's)
+  /// are not to be measured.
+  class Scope
+  {
+  public:
+    explicit Scope(DriverMemory& memory);
+    ~Scope();
+    Scope(const Scope&) = delete;
+    Scope& operator=(const Scope&) = delete;
+
+  private:
+    DriverMemory& Memory;
+    std::int64_t Heap;
+    std::int64_t Resident;
+  };
+
+  /// Bytes the measured calls hold: the heap they allocated and did not free, and what
+  /// else they made resident (never less for a free: code pages stay).
+  std::size_t GetMemorySize() const;
+
+  /// The process's bytes allocated from the heap (0 where the C library cannot say).
+  static std::int64_t HeapBytes();
+  /// The process's resident bytes (0 where the system cannot say).
+  static std::int64_t ResidentBytes();
+
+private:
+  std::int64_t Heap = 0;     ///< heap growth over the scopes (frees subtract)
+  std::int64_t Resident = 0; ///< resident growth over the scopes beyond the heap's
+};
+
+}
+}
+
+#endif
