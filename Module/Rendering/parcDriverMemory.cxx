@@ -17,19 +17,22 @@ namespace vtk
 //------------------------------------------------------------------------------
 DriverMemory::Scope::Scope(DriverMemory& memory)
   : Memory(memory)
-  , Heap(HeapBytes())
-  , Resident(ResidentBytes())
+  , Before(Snapshot::Take())
 {
 }
 
 DriverMemory::Scope::~Scope()
 {
-  const std::int64_t heap = HeapBytes() - this->Heap;
-  const std::int64_t resident = ResidentBytes() - this->Resident;
+  const Snapshot after = Snapshot::Take();
+  const std::int64_t heap = after.Heap - this->Before.Heap;
   this->Memory.Heap += heap;
-  // Resident growth the heap's does not explain: the code pages and compiled code of a
-  // shader compiler, or other mappings. A free lowers neither.
-  this->Memory.Resident += std::max<std::int64_t>(0, resident - std::max<std::int64_t>(0, heap));
+  // Pages of files made resident (a shader compiler's code), and anonymous pages beyond
+  // the heap's growth (compiled code, other mappings). A free lowers neither; heap
+  // allocations that reuse pages already resident hide anonymous pages, never file pages.
+  const std::int64_t file = after.FilePages - this->Before.FilePages;
+  const std::int64_t anonymous = after.AnonymousPages - this->Before.AnonymousPages;
+  this->Memory.Resident += std::max<std::int64_t>(0, file) +
+    std::max<std::int64_t>(0, anonymous - std::max<std::int64_t>(0, heap));
 }
 
 //------------------------------------------------------------------------------
@@ -39,31 +42,28 @@ std::size_t DriverMemory::GetMemorySize() const
 }
 
 //------------------------------------------------------------------------------
-std::int64_t DriverMemory::HeapBytes()
+DriverMemory::Snapshot DriverMemory::Snapshot::Take()
 {
+  Snapshot now;
 #if defined(__GLIBC__) && (__GLIBC__ > 2 || (__GLIBC__ == 2 && __GLIBC_MINOR__ >= 33))
   const struct mallinfo2 info = mallinfo2();
-  return static_cast<std::int64_t>(info.uordblks + info.hblkhd);
-#else
-  return 0;
+  now.Heap = static_cast<std::int64_t>(info.uordblks + info.hblkhd);
 #endif
-}
-
-std::int64_t DriverMemory::ResidentBytes()
-{
 #if defined(__linux__)
-  std::FILE* statm = std::fopen("/proc/self/statm", "r");
-  if (!statm)
+  // Pages: total, resident, resident and shared (backed by files).
+  if (std::FILE* statm = std::fopen("/proc/self/statm", "r"))
   {
-    return 0;
+    long size = 0, resident = 0, shared = 0;
+    if (std::fscanf(statm, "%ld %ld %ld", &size, &resident, &shared) == 3)
+    {
+      const std::int64_t page = sysconf(_SC_PAGESIZE);
+      now.FilePages = shared * page;
+      now.AnonymousPages = (resident - shared) * page;
+    }
+    std::fclose(statm);
   }
-  long size = 0, resident = 0;
-  const bool read = std::fscanf(statm, "%ld %ld", &size, &resident) == 2;
-  std::fclose(statm);
-  return read ? static_cast<std::int64_t>(resident) * sysconf(_SC_PAGESIZE) : 0;
-#else
-  return 0;
 #endif
+  return now;
 }
 
 }

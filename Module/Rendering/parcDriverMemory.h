@@ -22,32 +22,36 @@ public:
   /// the caller sizes its own buffers before (another thread allocating at the same time
   /// is counted too). Calls whose memory the driver frees outside them (a warm frame's)
   /// are not to be measured.
-  class Scope
-  {
-  public:
-    explicit Scope(DriverMemory& memory);
-    ~Scope();
-    Scope(const Scope&) = delete;
-    Scope& operator=(const Scope&) = delete;
-
-  private:
-    DriverMemory& Memory;
-    std::int64_t Heap;
-    std::int64_t Resident;
-  };
+  class Scope;
 
   /// Bytes the measured calls hold: the heap they allocated and did not free, and what
   /// else they made resident (never less for a free: code pages stay).
   std::size_t GetMemorySize() const;
 
-  /// The process's bytes allocated from the heap (0 where the C library cannot say).
-  static std::int64_t HeapBytes();
-  /// The process's resident bytes (0 where the system cannot say).
-  static std::int64_t ResidentBytes();
-
 private:
+  /// The process's memory at one time; 0 for what the system cannot tell.
+  struct Snapshot
+  {
+    std::int64_t Heap = 0;           ///< bytes allocated from the heap (glibc)
+    std::int64_t FilePages = 0;      ///< resident bytes backed by files (Linux)
+    std::int64_t AnonymousPages = 0; ///< other resident bytes (Linux)
+    static Snapshot Take();
+  };
   std::int64_t Heap = 0;     ///< heap growth over the scopes (frees subtract)
   std::int64_t Resident = 0; ///< resident growth over the scopes beyond the heap's
+};
+
+class DriverMemory::Scope
+{
+public:
+  explicit Scope(DriverMemory& memory);
+  ~Scope();
+  Scope(const Scope&) = delete;
+  Scope& operator=(const Scope&) = delete;
+
+private:
+  DriverMemory& Memory;
+  const Snapshot Before;
 };
 
 }
