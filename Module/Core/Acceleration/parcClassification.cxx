@@ -279,6 +279,23 @@ void RangePyramid::Build(const ScalarField& field)
       levelDims[a] = this->Levels.back().Dims[a];
     }
   }
+  this->Levels[0].Pack(); // level 2 is made from its full codes
+}
+
+void RangePyramid::Level::Pack()
+{
+  // In place of the minima (each node's byte read before it is written): no new memory.
+  Code* min = this->Min.data();
+  const Code* max = this->Max.data();
+  vtkSMPTools::For(0, static_cast<vtkIdType>(this->Min.size()), [=](vtkIdType b, vtkIdType e) {
+    for (vtkIdType n = b; n < e; ++n)
+    {
+      min[n] = static_cast<Code>((min[n] >> PackedShift) | ((max[n] >> PackedShift) << PackedShift));
+    }
+  });
+  this->Packed = std::move(this->Min);
+  this->Min = std::vector<Code>();
+  std::vector<Code>().swap(this->Max);
 }
 
 RangePyramid::Level RangePyramid::FirstLevel() const
@@ -386,7 +403,7 @@ bool RangePyramid::Query(int level, const int node[3], const int c0[3], const in
   const Level& l = this->Levels[level - 1];
   const std::size_t n = static_cast<std::size_t>(node[0]) +
     static_cast<std::size_t>(l.Dims[0]) * (node[1] + static_cast<std::size_t>(l.Dims[1]) * node[2]);
-  const double lo = this->CodeValues[l.Min[n]], hi = this->CodeValues[l.Max[n]];
+  const double lo = this->CodeValues[l.MinCode(n)], hi = this->CodeValues[l.MaxCode(n)];
   if (!rule.IsPossiblyContributing(lo, hi))
   {
     return false;
@@ -461,7 +478,7 @@ void RangePyramid::SettleFromCodes(
     --last;
   }
   const Level& target = this->Levels[level - 1];
-  flags.assign(target.Min.size(), 0);
+  flags.assign(target.Size(), 0);
   if (first >= CodeCount || last < 0)
   {
     return; // no value meets one of the tests
@@ -472,11 +489,23 @@ void RangePyramid::SettleFromCodes(
   vtkSMPTools::For(0, (n + Chunk - 1) / Chunk, [&](vtkIdType c0, vtkIdType c1) {
     // Locals only (a byte store could alias anything reached through a reference): the
     // compiler then compares many bytes at once.
+    std::uint8_t* out = flags.data();
+    const vtkIdType begin = c0 * Chunk, end = std::min(c1 * Chunk, n);
+    if (!target.Packed.empty())
+    {
+      // MaxCode >= high and MinCode <= low, on the high halves.
+      const Code* packed = target.Packed.data();
+      const unsigned h = high >> PackedShift, l = low >> PackedShift;
+      for (vtkIdType i = begin; i < end; ++i)
+      {
+        const unsigned p = packed[i];
+        out[i] = static_cast<std::uint8_t>(((p >> PackedShift) >= h) & ((p & Level::LowBits) <= l));
+      }
+      return;
+    }
     const Code* lo = target.Min.data();
     const Code* hi = target.Max.data();
-    std::uint8_t* out = flags.data();
     const Code h = high, l = low;
-    const vtkIdType begin = c0 * Chunk, end = std::min(c1 * Chunk, n);
     for (vtkIdType i = begin; i < end; ++i)
     {
       out[i] = static_cast<std::uint8_t>((hi[i] >= h) & (lo[i] <= l));
@@ -493,7 +522,7 @@ void RangePyramid::Settle(int level, const ContributionRule& rule,
     return;
   }
   const Level& target = this->Levels[level - 1];
-  flags.assign(static_cast<std::size_t>(target.Dims[0]) * target.Dims[1] * target.Dims[2], 0);
+  flags.assign(target.Size(), 0);
   // Start a few levels up (enough nodes to share among threads, each settling many).
   constexpr int LevelsAbove = 3;
   const int top = std::min(level + LevelsAbove, static_cast<int>(this->Levels.size()));
@@ -598,7 +627,7 @@ void RangePyramid::Descend(int m, const int node[3], int level, const Contributi
   }
   const std::size_t n = static_cast<std::size_t>(node[0]) +
     static_cast<std::size_t>(l.Dims[0]) * (node[1] + static_cast<std::size_t>(l.Dims[1]) * node[2]);
-  const double lo = this->CodeValues[l.Min[n]], hi = this->CodeValues[l.Max[n]];
+  const double lo = this->CodeValues[l.MinCode(n)], hi = this->CodeValues[l.MaxCode(n)];
   if (!rule.IsPossiblyContributing(lo, hi))
   {
     return; // no cell below contributes: the flags stay 0
@@ -656,7 +685,7 @@ std::size_t RangePyramid::GetMemorySize() const
   std::size_t bytes = sizeof(this->CodeValues);
   for (const Level& l : this->Levels)
   {
-    bytes += (l.Min.size() + l.Max.size()) * sizeof(Code);
+    bytes += (l.Min.size() + l.Max.size() + l.Packed.size()) * sizeof(Code);
   }
   return bytes;
 }

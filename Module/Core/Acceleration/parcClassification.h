@@ -112,7 +112,8 @@ private:
 /// rounded down and the maximum rounded up: a node's coded range holds its true range, so
 /// a query descends wherever it would with exact ranges and decides on the exact cell
 /// ranges (for 8- and 16-bit data of at most 256 values the codes are the values
-/// themselves: see ExactCodes).
+/// themselves: see ExactCodes). Level 1, the largest, keeps only the codes' high halves
+/// (Level::Packed).
 class RangePyramid
 {
 public:
@@ -134,18 +135,19 @@ public:
   /// axis): what AnyContributing says of each node's cells, found top-down so that a node
   /// whose whole range decides (nothing or everything contributes) settles all its
   /// descendants at once.
-  /// With exact codes the nodes' ranges alone give that answer (see ExactCodes).
+  /// With exact codes the nodes' ranges alone give that answer (see ExactCodes) above
+  /// level 1.
   void ClassifyLevel(
     int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const
   {
-    this->Settle(level, rule, flags, !this->ExactCodes);
+    this->Settle(level, rule, flags, !this->IsExact(level));
   }
   int GetNumberOfLevels() const { return static_cast<int>(this->Levels.size()); }
   /// Which cells may be PC under rule, as bits: bit v % 8 of byte v / 8 for the cell
   /// whose first voxel has index v (x fastest; a voxel of the last x, y or z plane begins
-  /// no cell and has bit 0). A cell's bit is set when the range of its node of level 1
-  /// meets the rule: every PC cell has its bit, and so may the other cells of its node
-  /// (finer bits would cost a transfer-function edit more than they save a frame). What
+  /// no cell and has bit 0). A cell's bit is set when the packed range of its node of
+  /// level 1 meets the rule: every PC cell has its bit, and so may the other cells of its
+  /// node (finer bits would cost a transfer-function edit more than they save a frame). What
   /// the caster reads to leave out the samples of the cells that cannot contribute
   /// (RayCaster::SetContributingCells). False, bits empty, for a field without cells.
   bool ClassifyCells(const ContributionRule& rule, std::vector<std::uint8_t>& bits) const;
@@ -156,11 +158,39 @@ public:
 private:
   using Code = std::uint8_t;
   static constexpr int CodeCount = 256;
+  /// Level 1 keeps a byte a node, its codes' high halves (PackedShift): a quarter of a
+  /// byte a cell instead of half. Its ranges are wider, still holding the true ones (so
+  /// conservative), and the levels above are made from its full codes.
+  static constexpr int PackedShift = 4;
   struct Level
   {
     int Dims[3];
-    std::vector<Code> Min, Max;
+    std::vector<Code> Min, Max; ///< the codes, or empty when Packed
+    /// The minimum's code >> PackedShift in the low bits, the maximum's in the high bits.
+    std::vector<Code> Packed;
+    std::size_t Size() const { return static_cast<std::size_t>(Dims[0]) * Dims[1] * Dims[2]; }
+    /// Node n's codes: its range, or a wider one when packed.
+    Code MinCode(std::size_t n) const
+    {
+      return this->Packed.empty() ? this->Min[n]
+                                  : static_cast<Code>((this->Packed[n] & LowBits) << PackedShift);
+    }
+    Code MaxCode(std::size_t n) const
+    {
+      return this->Packed.empty()
+        ? this->Max[n]
+        : static_cast<Code>(((this->Packed[n] >> PackedShift) << PackedShift) | LowBits);
+    }
+    /// Replaces the codes by their packed form.
+    void Pack();
+    static constexpr unsigned LowBits = (1u << PackedShift) - 1u;
   };
+  /// Whether a node's range of level is exactly the range of its voxels (ExactCodes, and
+  /// not packed).
+  bool IsExact(int level) const
+  {
+    return this->ExactCodes && this->Levels[level - 1].Packed.empty();
+  }
   /// Level 1, from the field's voxels.
   Level FirstLevel() const;
   bool Query(int level, const int node[3], const int c0[3], const int c1[3],
