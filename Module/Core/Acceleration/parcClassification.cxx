@@ -462,12 +462,9 @@ bool RangePyramid::AnyContributing(const int c0[3], const int c1[3],
   return false;
 }
 
-void RangePyramid::SettleFromCodes(
-  int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const
+bool RangePyramid::CodeBounds(const ContributionRule& rule, Code& high, Code& low) const
 {
-  // A node passes when its maximum code is at least the first code whose value meets the
-  // high end's test, and its minimum at most the last code whose value meets the low
-  // end's (both tests are monotone, and code values do not decrease).
+  // Both tests are monotone, and code values do not decrease.
   int first = 0, last = CodeCount - 1;
   while (first < CodeCount && !rule.MeetsHigh(this->CodeValues[first]))
   {
@@ -477,13 +474,33 @@ void RangePyramid::SettleFromCodes(
   {
     --last;
   }
+  high = static_cast<Code>(std::min(first, CodeCount - 1));
+  low = static_cast<Code>(std::max(last, 0));
+  return first < CodeCount && last >= 0;
+}
+
+void RangePyramid::PackedFlags(
+  const Code* packed, std::size_t count, Code high, Code low, std::uint8_t* flags)
+{
+  // MaxCode >= high and MinCode <= low, on the high halves.
+  const unsigned h = high >> PackedShift, l = low >> PackedShift;
+  for (std::size_t i = 0; i < count; ++i)
+  {
+    const unsigned p = packed[i];
+    flags[i] = static_cast<std::uint8_t>(((p >> PackedShift) >= h) & ((p & Level::LowBits) <= l));
+  }
+}
+
+void RangePyramid::SettleFromCodes(
+  int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const
+{
   const Level& target = this->Levels[level - 1];
   flags.assign(target.Size(), 0);
-  if (first >= CodeCount || last < 0)
+  Code high, low;
+  if (!this->CodeBounds(rule, high, low))
   {
     return; // no value meets one of the tests
   }
-  const Code high = static_cast<Code>(first), low = static_cast<Code>(last);
   constexpr vtkIdType Chunk = 1 << 16;
   const vtkIdType n = static_cast<vtkIdType>(flags.size());
   vtkSMPTools::For(0, (n + Chunk - 1) / Chunk, [&](vtkIdType c0, vtkIdType c1) {
@@ -493,14 +510,7 @@ void RangePyramid::SettleFromCodes(
     const vtkIdType begin = c0 * Chunk, end = std::min(c1 * Chunk, n);
     if (!target.Packed.empty())
     {
-      // MaxCode >= high and MinCode <= low, on the high halves.
-      const Code* packed = target.Packed.data();
-      const unsigned h = high >> PackedShift, l = low >> PackedShift;
-      for (vtkIdType i = begin; i < end; ++i)
-      {
-        const unsigned p = packed[i];
-        out[i] = static_cast<std::uint8_t>(((p >> PackedShift) >= h) & ((p & Level::LowBits) <= l));
-      }
+      PackedFlags(target.Packed.data() + begin, end - begin, high, low, out + begin);
       return;
     }
     const Code* lo = target.Min.data();
@@ -550,13 +560,24 @@ bool RangePyramid::ClassifyCells(
   {
     return false;
   }
-  // The nodes of level 1 (2x2x2 cells), from the pyramid's ranges.
-  std::vector<std::uint8_t> nodes;
-  this->Settle(1, rule, nodes, false);
+  // The nodes of level 1 (2x2x2 cells), from the pyramid's ranges: a row at a time from
+  // the packed codes for a rule that tests a range's ends apart (no flag array of a byte a
+  // node to fill and read), else all settled first.
   const Level& first = this->Levels[0];
+  const bool rowsFromCodes = !first.Packed.empty() && rule.TestsEndsApart();
+  Code high = 0, low = 0;
+  std::vector<std::uint8_t> nodes;
   const int* dims = this->Field->GetDimensions();
   const std::size_t nx = dims[0], ny = dims[1];
   bits.assign((nx * ny * static_cast<std::size_t>(dims[2]) + 7) / 8, 0);
+  if (rowsFromCodes && !this->CodeBounds(rule, high, low))
+  {
+    return true; // no value meets one of the tests: no cell may contribute
+  }
+  if (!rowsFromCodes)
+  {
+    this->Settle(1, rule, nodes, false);
+  }
   // A row of nodes gives the bits of its cells along x, the same for the (up to) 4 rows of
   // voxels it covers: made once, then shifted into place. Node planes k and k + 1 may
   // share the byte where their voxels meet: the even planes, then the odd ones.
@@ -565,14 +586,19 @@ bool RangePyramid::ClassifyCells(
   {
     const vtkIdType planes = (first.Dims[2] - parity + 1) / 2;
     vtkSMPTools::For(0, planes, [&](vtkIdType p0, vtkIdType p1) {
-      std::vector<std::uint8_t> row(rowBytes);
+      std::vector<std::uint8_t> row(rowBytes), rowNodes(rowsFromCodes ? first.Dims[0] : 0);
       for (vtkIdType p = p0; p < p1; ++p)
       {
         const int kn = static_cast<int>(2 * p + parity);
         for (int jn = 0; jn < first.Dims[1]; ++jn)
         {
-          const std::uint8_t* node = &nodes[static_cast<std::size_t>(first.Dims[0]) *
-            (jn + static_cast<std::size_t>(first.Dims[1]) * kn)];
+          const std::size_t rowStart = static_cast<std::size_t>(first.Dims[0]) *
+            (jn + static_cast<std::size_t>(first.Dims[1]) * kn);
+          if (rowsFromCodes)
+          {
+            PackedFlags(&first.Packed[rowStart], rowNodes.size(), high, low, rowNodes.data());
+          }
+          const std::uint8_t* node = rowsFromCodes ? rowNodes.data() : &nodes[rowStart];
           if (!std::memchr(node, 1, static_cast<std::size_t>(first.Dims[0])))
           {
             continue; // no cell of the row may contribute
