@@ -3,7 +3,8 @@
 // keeps a copy of every buffer and renderbuffer in the process, bins the triangles it draws
 // and compiles shaders (its compiler's code pages and the code it makes become resident).
 // DriverMemory measures it instead, around the calls that allocate, as the growth of the
-// process's heap and of its resident size beyond the heap.
+// process's heap, of its resident file pages and of its other resident pages beyond the
+// heap's.
 #ifndef parcDriverMemory_h
 #define parcDriverMemory_h
 
