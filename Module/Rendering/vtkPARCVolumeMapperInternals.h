@@ -7,9 +7,9 @@
 
 #include "parcAccelerationPlan.h"
 #include "parcBufferSources.h"
+#include "parcDriverMemory.h"
 #include "parcEndOfRenderDraw.h"
 #include "parcLightFrusta.h"
-#include "parcDriverMemory.h"
 #include "parcPassDriver.h"
 #include "parcPolygonModel.h"
 #include "parcRayCaster.h"
