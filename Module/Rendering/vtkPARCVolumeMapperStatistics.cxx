@@ -214,7 +214,6 @@ vtkPARCVolumeMapper::vtkVolumeState::Memory() const
     { "depth model", this->Plan.GetDepthModelMemorySize() },
     { "colour models", this->Plan.GetColorModelsMemorySize() },
     { "supercell walk", this->Plan.GetWalkMemorySize() },
-    { "contributing cells", this->Plan.GetCellsMemorySize() },
     { "depth buffer", this->Plan.GetDepthBufferMemorySize() },
     { "bit-plane buffer", this->Plan.GetPlaneBufferMemorySize() },
     { "OpenGL models and targets", this->Passes.GetMemorySize() },

@@ -107,7 +107,20 @@ TEST(AccelerationPlan, KnowsWhatItsClassificationsWereMadeFrom)
   ASSERT_TRUE(plan.ClassifyCellsFrom(cells, field, rule));
   EXPECT_TRUE(plan.AreCellsClassifiedFrom(cells));
   EXPECT_EQ(plan.GetPyramidBuilds(), 1u);
+  EXPECT_TRUE(plan.GetContributingCells().Covers(field.GetDimensions()));
+  // The map points into the pyramid: a new pyramid (the field changed) lets it go.
+  parc::ClassificationKey newField = key;
+  newField.FieldVersion += 1;
+  plan.ClassifyFrom(newField, { &field }, { rule }, parc::Interpolation::Linear, fitted);
+  EXPECT_EQ(plan.GetPyramidBuilds(), 2u);
+  EXPECT_TRUE(plan.GetContributingCells().IsEmpty());
+  EXPECT_FALSE(plan.AreCellsClassifiedFrom(cells));
+  cells.FieldVersion = newField.FieldVersion;
+  ASSERT_TRUE(plan.ClassifyCellsFrom(cells, field, rule));
+  EXPECT_TRUE(plan.AreCellsClassifiedFrom(cells)) << "kept after the pyramid it builds";
+  EXPECT_EQ(plan.GetPyramidBuilds(), 2u);
   plan.ReleaseCells();
+  EXPECT_TRUE(plan.GetContributingCells().IsEmpty());
   EXPECT_FALSE(plan.AreCellsClassifiedFrom(cells)) << "released cells are made again";
 }
 

@@ -903,28 +903,28 @@ TEST(PolygonModel, RayAxisSign)
 
 namespace
 {
-/// The pyramid, rule and cell bits of a field under parameters p.
+/// The pyramid, rule and map of the cells of a field under parameters p.
 struct ClassifiedCells
 {
   RangePyramid Pyramid;
   ContributionRule Rule;
-  std::vector<std::uint8_t> Bits;
+  parc::CellMap Map;
 
   ClassifiedCells(const parc::ScalarField& field, const CastParameters& p)
   {
     this->Pyramid.Build(field);
     this->Rule.Set(p, field.GetRange());
-    EXPECT_TRUE(this->Pyramid.ClassifyCells(this->Rule, this->Bits));
+    EXPECT_TRUE(this->Pyramid.MapCells(this->Rule, this->Map));
+    EXPECT_TRUE(this->Map.Covers(field.GetDimensions()));
   }
 };
 }
 
-// Every PC cell (brute force, from the cell ranges) has its bit, at the voxel index of the
-// cell's first voxel; the voxels of the last planes begin no cell; the cells of nodes of
-// 2x2x2 cells without a PC one rarely have theirs (only where the pyramid's coded range of
-// the node is wider than its cells' ranges). Odd dimensions leave partial nodes and rows
-// that do not fill whole bytes.
-TEST(ContributingCells, EveryPossiblyContributingCellHasItsBit)
+// Every PC cell (brute force, from the cell ranges) is in the map, read cell by cell and
+// lane by lane (a block's located samples); the cells of nodes of 2x2x2 cells without a
+// PC one rarely are (only where the pyramid's coded range of the node is wider than its
+// cells' ranges). Odd dimensions leave partial nodes.
+TEST(ContributingCells, EveryPossiblyContributingCellIsInTheMap)
 {
   std::mt19937 rng(31);
   const int dims[3] = { 13, 10, 17 };
@@ -936,31 +936,44 @@ TEST(ContributingCells, EveryPossiblyContributingCellHasItsBit)
     {
       const parc::ScalarField field = RandomVolume(rng, dims);
       const ClassifiedCells cells(field, RandomParameters(rng, blend));
-      const std::vector<std::uint8_t>& bits = cells.Bits;
-      ASSERT_EQ(bits.size(), (static_cast<std::size_t>(dims[0]) * dims[1] * dims[2] + 7) / 8);
       const std::vector<char> expected = CellFlags(cells.Pyramid, cells.Rule);
       const int c[3] = { dims[0] - 1, dims[1] - 1, dims[2] - 1 };
       auto pc = [&](int i, int j, int k) {
         return i < c[0] && j < c[1] && k < c[2] && expected[i + c[0] * (j + c[1] * k)] != 0;
       };
       std::size_t set = 0;
-      for (int k = 0; k < dims[2]; ++k)
-        for (int j = 0; j < dims[1]; ++j)
-          for (int i = 0; i < dims[0]; ++i)
+      parc::LatticeBlock block;
+      int lane = 0;
+      for (int k = 0; k < c[2]; ++k)
+        for (int j = 0; j < c[1]; ++j)
+          for (int i = 0; i < c[0]; ++i)
           {
-            const std::size_t v = i + static_cast<std::size_t>(dims[0]) * (j + dims[1] * k);
-            const bool bit = (bits[v / 8] >> (v % 8)) & 1;
-            const bool begins = i < c[0] && j < c[1] && k < c[2];
+            const bool may = cells.Map.MayContribute(i, j, k);
             bool nodePC = false;
             for (int n = 0; n < 8; ++n)
             {
               nodePC |= pc((i & ~1) + (n & 1), (j & ~1) + ((n >> 1) & 1), (k & ~1) + (n >> 2));
             }
-            ASSERT_TRUE(begins || !bit) << i << " " << j << " " << k;
-            ASSERT_TRUE(!pc(i, j, k) || bit) << i << " " << j << " " << k;
-            outside += begins && !nodePC;
-            spurious += bit && !nodePC;
-            set += bit;
+            ASSERT_TRUE(!pc(i, j, k) || may) << i << " " << j << " " << k;
+            outside += !nodePC;
+            spurious += may && !nodePC;
+            set += may;
+            // The same cell as lane `lane` of a block, in the cells' order turned around.
+            const int l = parc::LatticeBlock::Size - 1 - lane;
+            block.Cell[0][l] = i;
+            block.Cell[1][l] = j;
+            block.Cell[2][l] = k;
+            if (++lane == parc::LatticeBlock::Size)
+            {
+              const unsigned lanes = cells.Map.Lanes(block, parc::LatticeBlock::Size);
+              for (int m = 0; m < parc::LatticeBlock::Size; ++m)
+              {
+                ASSERT_EQ((lanes >> m) & 1u,
+                  cells.Map.MayContribute(block.Cell[0][m], block.Cell[1][m], block.Cell[2][m]))
+                  << "lane " << m;
+              }
+              lane = 0;
+            }
           }
       mixed += set > 0 && set < expected.size();
     }
@@ -971,18 +984,18 @@ TEST(ContributingCells, EveryPossiblyContributingCellHasItsBit)
   const parc::ScalarField flatField = parctest::MakeField(slice, [](int, int, int) { return 1.f; });
   RangePyramid flat;
   flat.Build(flatField);
-  std::vector<std::uint8_t> bits{ 1 };
+  parc::CellMap map;
   ContributionRule rule;
   rule.Set(RandomParameters(rng, BlendMode::Composite), flatField.GetRange());
-  EXPECT_FALSE(flat.ClassifyCells(rule, bits));
-  EXPECT_TRUE(bits.empty());
+  EXPECT_FALSE(flat.MapCells(rule, map));
+  EXPECT_TRUE(map.IsEmpty());
+  EXPECT_FALSE(map.Covers(slice));
 }
 
-// With exact codes (8-bit values) a cell's bit is set for every node of level 1 (its 2x2x2
-// cells) with a PC cell, and otherwise only where the node's range widened to whole
-// sixteenths of the codes (level 1 is packed) meets the rule (the descent may also leave
-// out a node whose exact ancestor misses it). Rules of one interval or threshold (from
-// the level's codes) and of several intervals (from the descent).
+// With exact codes (8-bit values) a cell is in the map exactly when the range of its node
+// of level 1 (its 2x2x2 cells) widened to whole sixteenths of the codes (level 1 is packed)
+// meets the rule: so is every cell of a node with a PC cell. Rules of one interval or
+// threshold and of several intervals.
 TEST(ContributingCells, ExactCodesGiveTheNodesWhosePackedRangeMeetsTheRule)
 {
   std::mt19937 rng(32);
@@ -1023,12 +1036,11 @@ TEST(ContributingCells, ExactCodesGiveTheNodesWhosePackedRangeMeetsTheRule)
             const double wideLo = bottom + (loCode & ~(Sixteenth - 1));
             const double wideHi = std::min(bottom + (hiCode | (Sixteenth - 1)), top);
             const bool meets = cells.Rule.IsPossiblyContributing(wideLo, wideHi);
-            const std::size_t v = i + static_cast<std::size_t>(dims[0]) * (j + dims[1] * k);
-            const int bit = (cells.Bits[v / 8] >> (v % 8)) & 1;
-            ASSERT_TRUE(!nodePC || bit) << "a node with a PC cell has its bits: " << i << " "
-                                        << j << " " << k << " blend " << static_cast<int>(blend);
-            ASSERT_TRUE(!bit || meets) << "a bit only where the packed range meets the rule: "
-                                       << i << " " << j << " " << k;
+            const bool bit = cells.Map.MayContribute(i, j, k);
+            ASSERT_TRUE(!nodePC || bit) << "a node with a PC cell is in: " << i << " " << j
+                                        << " " << k << " blend " << static_cast<int>(blend);
+            ASSERT_EQ(bit, meets) << "in where the packed range meets the rule: " << i << " "
+                                  << j << " " << k;
             widened += bit && !nodePC;
           }
     }
@@ -1063,7 +1075,7 @@ TEST(ContributingCells, CastingLeavesOutEmptyCellsExactly)
         parc::RayCaster plain, skipping;
         ASSERT_TRUE(plain.Prepare({ &field, &p }));
         ASSERT_TRUE(skipping.Prepare({ &field, &p }));
-        skipping.SetContributingCells(&cells.Bits);
+        skipping.SetContributingCells(&cells.Map);
         const parc::WholeRaySource whole;
         std::vector<parc::Segment> segments;
         std::vector<parc::LatticeRange> ranges;

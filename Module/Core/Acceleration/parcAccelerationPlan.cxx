@@ -421,8 +421,9 @@ bool AccelerationPlan::ClassifyFrom(const ClassificationKey& key,
 bool AccelerationPlan::ClassifyCellsFrom(
   const ClassificationKey& key, const ScalarField& field, const ContributionRule& rule)
 {
-  this->CellsKey = key;
-  return this->ClassifyCells(field, key.FieldVersion, rule);
+  const bool classified = this->ClassifyCells(field, key.FieldVersion, rule);
+  this->CellsKey = key; // after the pyramid, whose building releases the cells
+  return classified;
 }
 
 bool AccelerationPlan::ClassifyCells(
@@ -430,7 +431,7 @@ bool AccelerationPlan::ClassifyCells(
 {
   const auto start = std::chrono::steady_clock::now();
   this->EnsurePyramids({ &field }, fieldVersion);
-  const bool classified = this->Pyramids[0].ClassifyCells(rule, this->Cells);
+  const bool classified = this->Pyramids[0].MapCells(rule, this->Cells);
   ++this->CellClassifications;
   this->SetUpTime += SecondsSince(start);
   return classified;
@@ -441,6 +442,7 @@ void AccelerationPlan::EnsurePyramids(
 {
   if (this->Pyramids.size() != fields.size() || this->PyramidFieldVersion != fieldVersion)
   {
+    this->ReleaseCells(); // the map points into the pyramid
     this->Pyramids.resize(fields.size());
     for (std::size_t c = 0; c < fields.size(); ++c)
     {

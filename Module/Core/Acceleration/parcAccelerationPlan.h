@@ -261,16 +261,16 @@ public:
     const std::vector<ContributionRule>& rules, Interpolation interpolation,
     const double size[3], double fitted[3]);
 
-  /// Makes the pyramid again if fieldVersion changed, then classifies each cell of field
-  /// under rule (RangePyramid::ClassifyCells), for the caster to leave out the samples of
-  /// the cells that cannot contribute. False, the bits empty, for a field without cells.
+  /// Makes the pyramid again if fieldVersion changed, then maps the cells of field that
+  /// may contribute under rule (RangePyramid::MapCells), for the caster to leave out the
+  /// samples of the others. False, the map empty, for a field without cells.
   bool ClassifyCells(
     const ScalarField& field, std::uint64_t fieldVersion, const ContributionRule& rule);
-  /// The bits of the last ClassifyCells (empty after ReleaseCells).
-  const std::vector<std::uint8_t>& GetContributingCells() const { return this->Cells; }
+  /// The map of the last ClassifyCells (empty after ReleaseCells or a new pyramid).
+  const CellMap& GetContributingCells() const { return this->Cells; }
   void ReleaseCells()
   {
-    this->Cells = std::vector<std::uint8_t>();
+    this->Cells = CellMap();
     this->CellsKey = ClassificationKey();
   }
 
@@ -358,7 +358,6 @@ public:
   std::size_t GetDepthModelMemorySize() const { return this->Depth.Model.GetMemorySize(); }
   std::size_t GetColorModelsMemorySize() const;
   std::size_t GetWalkMemorySize() const { return this->Walk.GetMemorySize(); }
-  std::size_t GetCellsMemorySize() const { return this->Cells.capacity(); }
   std::size_t GetDepthBufferMemorySize() const { return this->DepthSource.GetMemorySize(); }
   std::size_t GetPlaneBufferMemorySize() const { return this->PlaneSource.GetMemorySize(); }
   std::size_t GetLightPassesMemorySize() const;
@@ -386,7 +385,7 @@ private:
   std::vector<RangePyramid> Pyramids; ///< one per field
   std::uint64_t PyramidFieldVersion = 0;
   SupercellGrid Grid;
-  std::vector<std::uint8_t> Cells; ///< ClassifyCells' bits
+  CellMap Cells; ///< ClassifyCells' map, into Pyramids[0]
   ClassificationKey SupercellsKey, CellsKey; ///< of ClassifyFrom and ClassifyCellsFrom
   PassModel Depth;
   PassModel Color[3]; ///< per major axis

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <numeric>
 
@@ -552,94 +551,21 @@ void RangePyramid::Settle(int level, const ContributionRule& rule,
   });
 }
 
-bool RangePyramid::ClassifyCells(
-  const ContributionRule& rule, std::vector<std::uint8_t>& bits) const
+bool RangePyramid::MapCells(const ContributionRule& rule, CellMap& map) const
 {
-  bits.clear();
+  map = CellMap();
   if (this->Levels.empty())
   {
     return false;
   }
-  // The nodes of level 1 (2x2x2 cells), from the pyramid's ranges: a row at a time from
-  // the packed codes for a rule that tests a range's ends apart (no flag array of a byte a
-  // node to fill and read), else all settled first.
   const Level& first = this->Levels[0];
-  const bool rowsFromCodes = !first.Packed.empty() && rule.TestsEndsApart();
-  Code high = 0, low = 0;
-  std::vector<std::uint8_t> nodes;
-  const int* dims = this->Field->GetDimensions();
-  const std::size_t nx = dims[0], ny = dims[1];
-  bits.assign((nx * ny * static_cast<std::size_t>(dims[2]) + 7) / 8, 0);
-  if (rowsFromCodes && !this->CodeBounds(rule, high, low))
+  for (int p = 0; p < CellMap::CodeCount; ++p)
   {
-    return true; // no value meets one of the tests: no cell may contribute
+    const Code packed = static_cast<Code>(p);
+    map.Contributes[p] = rule.IsPossiblyContributing(
+      this->CodeValues[Level::PackedMin(packed)], this->CodeValues[Level::PackedMax(packed)]);
   }
-  if (!rowsFromCodes)
-  {
-    this->Settle(1, rule, nodes, false);
-  }
-  // A row of nodes gives the bits of its cells along x, the same for the (up to) 4 rows of
-  // voxels it covers: made once, then shifted into place. Node planes k and k + 1 may
-  // share the byte where their voxels meet: the even planes, then the odd ones.
-  const std::size_t rowBytes = (nx + 7) / 8 + 1;
-  for (int parity = 0; parity < 2; ++parity)
-  {
-    const vtkIdType planes = (first.Dims[2] - parity + 1) / 2;
-    vtkSMPTools::For(0, planes, [&](vtkIdType p0, vtkIdType p1) {
-      std::vector<std::uint8_t> row(rowBytes), rowNodes(rowsFromCodes ? first.Dims[0] : 0);
-      for (vtkIdType p = p0; p < p1; ++p)
-      {
-        const int kn = static_cast<int>(2 * p + parity);
-        for (int jn = 0; jn < first.Dims[1]; ++jn)
-        {
-          const std::size_t rowStart = static_cast<std::size_t>(first.Dims[0]) *
-            (jn + static_cast<std::size_t>(first.Dims[1]) * kn);
-          if (rowsFromCodes)
-          {
-            PackedFlags(&first.Packed[rowStart], rowNodes.size(), high, low, rowNodes.data());
-          }
-          const std::uint8_t* node = rowsFromCodes ? rowNodes.data() : &nodes[rowStart];
-          if (!std::memchr(node, 1, static_cast<std::size_t>(first.Dims[0])))
-          {
-            continue; // no cell of the row may contribute
-          }
-          // Eight cells a byte, two a node; none from x = CellDims[0] on.
-          const int cellsX = this->CellDims[0];
-          for (int b = 0; 8 * b < cellsX; ++b)
-          {
-            unsigned byte = 0;
-            for (int q = 0; q < 4 && 8 * b + 2 * q < cellsX; ++q)
-            {
-              byte |= (node[4 * b + q] != 0 ? 3u : 0u) << (2 * q);
-            }
-            row[b] = static_cast<std::uint8_t>(byte);
-          }
-          if (cellsX % 8 != 0)
-          {
-            row[cellsX / 8] &= static_cast<std::uint8_t>((1u << (cellsX % 8)) - 1u);
-          }
-          for (int k = 2 * kn; k < std::min(2 * kn + 2, this->CellDims[2]); ++k)
-          {
-            for (int j = 2 * jn; j < std::min(2 * jn + 2, this->CellDims[1]); ++j)
-            {
-              const std::size_t start = nx * (j + ny * k);
-              std::uint8_t* out = &bits[start / 8];
-              const unsigned shift = start % 8;
-              // The row's bits end before the voxel at x = nx - 1: within the bits.
-              for (std::size_t b = 0; 8 * b < nx; ++b)
-              {
-                out[b] |= static_cast<std::uint8_t>(row[b] << shift);
-                if (shift != 0 && row[b] >> (8 - shift) != 0)
-                {
-                  out[b + 1] |= static_cast<std::uint8_t>(row[b] >> (8 - shift));
-                }
-              }
-            }
-          }
-        }
-      }
-    });
-  }
+  map.SetNodes(first.Packed.data(), first.Dims);
   return true;
 }
 

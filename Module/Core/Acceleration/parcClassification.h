@@ -20,6 +20,7 @@
 #define parcClassification_h
 
 #include "parcCastParameters.h"
+#include "parcCellMap.h"
 #include "parcScalarField.h"
 
 #include <algorithm>
@@ -143,14 +144,13 @@ public:
     this->Settle(level, rule, flags, !this->IsExact(level));
   }
   int GetNumberOfLevels() const { return static_cast<int>(this->Levels.size()); }
-  /// Which cells may be PC under rule, as bits: bit v % 8 of byte v / 8 for the cell
-  /// whose first voxel has index v (x fastest; a voxel of the last x, y or z plane begins
-  /// no cell and has bit 0). A cell's bit is set when the packed range of its node of
-  /// level 1 meets the rule: every PC cell has its bit, and so may the other cells of its
-  /// node (finer bits would cost a transfer-function edit more than they save a frame). What
-  /// the caster reads to leave out the samples of the cells that cannot contribute
-  /// (RayCaster::SetContributingCells). False, bits empty, for a field without cells.
-  bool ClassifyCells(const ContributionRule& rule, std::vector<std::uint8_t>& bits) const;
+  /// Which cells may be PC under rule, as the caster reads them (RayCaster::
+  /// SetContributingCells): a cell may when the packed range of its node of level 1 meets
+  /// the rule. Every PC cell may, and so may the other cells of its node (finer cells would
+  /// cost memory and a transfer-function edit more than they save a frame). The map points
+  /// to the pyramid's level 1: it holds until the pyramid is built again. False, map empty,
+  /// for a field without cells.
+  bool MapCells(const ContributionRule& rule, CellMap& map) const;
 
   /// Memory held by the pyramid, in bytes.
   std::size_t GetMemorySize() const;
@@ -172,14 +172,17 @@ private:
     /// Node n's codes: its range, or a wider one when packed.
     Code MinCode(std::size_t n) const
     {
-      return this->Packed.empty() ? this->Min[n]
-                                  : static_cast<Code>((this->Packed[n] & LowBits) << PackedShift);
+      return this->Packed.empty() ? this->Min[n] : PackedMin(this->Packed[n]);
     }
     Code MaxCode(std::size_t n) const
     {
-      return this->Packed.empty()
-        ? this->Max[n]
-        : static_cast<Code>(((this->Packed[n] >> PackedShift) << PackedShift) | LowBits);
+      return this->Packed.empty() ? this->Max[n] : PackedMax(this->Packed[n]);
+    }
+    /// The codes of a packed byte's range.
+    static Code PackedMin(Code packed) { return static_cast<Code>((packed & LowBits) << PackedShift); }
+    static Code PackedMax(Code packed)
+    {
+      return static_cast<Code>(((packed >> PackedShift) << PackedShift) | LowBits);
     }
     /// Replaces the codes by their packed form.
     void Pack();

@@ -318,15 +318,13 @@ bool RayCaster::ReadsContributingCells() const
     p.Interp == Interpolation::Linear && this->Field->GetStride() == 1;
 }
 
-const std::uint8_t* RayCaster::ContributingCells() const
+const CellMap* RayCaster::ContributingCells() const
 {
   if (!this->Cells || !this->ReadsContributingCells())
   {
     return nullptr;
   }
-  const int* dims = this->Field->GetDimensions();
-  const std::size_t voxels = static_cast<std::size_t>(dims[0]) * dims[1] * dims[2];
-  return this->Cells->size() == (voxels + 7) / 8 ? this->Cells->data() : nullptr;
+  return this->Cells->Covers(this->Field->GetDimensions()) ? this->Cells : nullptr;
 }
 
 bool RayCaster::ClipRay(const Ray& ray, double& tEnter, double& tExit) const

@@ -76,6 +76,7 @@
 
 #include "parcCamera.h"
 #include "parcCastParameters.h"
+#include "parcCellMap.h"
 #include "parcCompositor.h"
 #include "parcRay.h"
 #include "parcScalarField.h"
@@ -192,14 +193,14 @@ public:
   bool SetComponents(std::vector<Component> components);
   const std::vector<Component>& GetComponents() const { return this->Components; }
 
-  /// The cells of the field that may contribute, as RangePyramid::ClassifyCells gives them
+  /// The cells of the field that may contribute, as RangePyramid::MapCells gives them
   /// under this caster's parameters, or null (the default): composite rays then leave out
   /// the samples of the other cells, whose opacity is 0, without interpolating them (the
   /// same image). Used for a composite volume of one component and linear interpolation
-  /// whose values lie next to each other, bits of the field's size; it must outlive the
+  /// whose values lie next to each other, a map covering the field; it must outlive the
   /// casts.
-  void SetContributingCells(const std::vector<std::uint8_t>* cells) { this->Cells = cells; }
-  /// Whether this caster's rays read the bits of SetContributingCells (prepared, with its
+  void SetContributingCells(const CellMap* cells) { this->Cells = cells; }
+  /// Whether this caster's rays read the map of SetContributingCells (prepared, with its
   /// components set): the volumes that skip no sample need none.
   bool ReadsContributingCells() const;
 
@@ -370,12 +371,12 @@ private:
   const CastParameters* Params = nullptr;
   Matrix4 WorldToIndex;
   RenderConstants Constants;
-  /// The bits of SetContributingCells that apply to this caster's rays, or null.
-  const std::uint8_t* ContributingCells() const;
+  /// The map of SetContributingCells when it applies to this caster's rays, or null.
+  const CellMap* ContributingCells() const;
 
   const Occluders* Shadows = nullptr;
   std::vector<Component> Components;
-  const std::vector<std::uint8_t>* Cells = nullptr;
+  const CellMap* Cells = nullptr;
 };
 
 /// The volumes that shadow a scene's shaded contributions, each with a segment source per

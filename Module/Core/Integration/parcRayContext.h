@@ -65,7 +65,7 @@ struct RayContext
   /// The block of lattice samples taken last.
   LatticeBlock Block;
   /// RayCaster::ContributingCells for composite rays, else null.
-  const std::uint8_t* Cells = nullptr;
+  const CellMap* Cells = nullptr;
   /// The corrected opacities of the block's lanes (RenderConstants::OpacityByValue; 0 for
   /// the lanes LaneOpacities was not given).
   alignas(16) float Opacities[LatticeBlock::Size];

@@ -4,6 +4,7 @@
 #ifndef parcFieldView_h
 #define parcFieldView_h
 
+#include "parcCellMap.h"
 #include "parcInterpolation.h"
 #include "parcMath.h"
 #include "parcRayLattice.h"
@@ -113,13 +114,12 @@ public:
   /// its location that of Locate. No branch depends on the data, and each step works on
   /// several lanes at once.
   /// cells (optional, linear interpolation of a field whose x neighbours are next to each
-  /// other): a bit per cell, bit c % 8 of byte c / 8 for the cell whose first voxel is value
-  /// c. Only the groups of LatticeBlock::Lanes lanes where some lane's cell has its bit set
-  /// are sampled (the values of the others are 0). Returns the lanes sampled whose cell
-  /// has its bit set, as bits 1 << j (all n lanes without cells).
+  /// other): the cells that may contribute, covering the field's. Only the groups of
+  /// LatticeBlock::Lanes lanes where some lane's cell may contribute are sampled (the
+  /// values of the others are 0). Returns the lanes sampled whose cell may contribute, as
+  /// bits 1 << j (all n lanes without cells).
   PARC_HOT_INLINE unsigned SampleLattice(const RayLattice& lattice, double dt, long k0,
-    int count, Interpolation mode, LatticeBlock& block,
-    const std::uint8_t* cells = nullptr) const
+    int count, Interpolation mode, LatticeBlock& block, const CellMap* cells = nullptr) const
   {
     const int n = LatticeBlock::Lanes * ((count + LatticeBlock::Lanes - 1) / LatticeBlock::Lanes);
     const unsigned all = (1u << n) - 1u;
@@ -150,12 +150,7 @@ public:
     unsigned lanes = all;
     if (cells)
     {
-      lanes = 0;
-      for (int j = 0; j < n; ++j)
-      {
-        const std::ptrdiff_t c = block.Offset[j];
-        lanes |= static_cast<unsigned>((cells[c >> 3] >> (c & 7)) & 1) << j;
-      }
+      lanes = cells->Lanes(block, n);
     }
     for (int j = 0; j < n; j += LatticeBlock::Lanes)
     {
