@@ -7,6 +7,10 @@
 
 #include <cmath>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace parc
 {
 
@@ -79,6 +83,13 @@ struct LatticeBlock
   float Fractions[3][Size];
   std::ptrdiff_t Offset[Size];
 
+#if defined(__SSE2__)
+  /// The cells of lanes j .. j + 3 along axis, in a register.
+  PARC_HOT_INLINE __m128i CellLanes(int axis, int j) const
+  {
+    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(this->Cell[axis] + j));
+  }
+#endif
   SampleLocation Location(int j) const
   {
     return { { this->Cell[0][j], this->Cell[1][j], this->Cell[2][j] },

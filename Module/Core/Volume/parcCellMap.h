@@ -71,9 +71,9 @@ public:
     const __m128i row = _mm_set1_epi32(this->RowStep), plane = _mm_set1_epi32(this->PlaneStep);
     for (int j = 0; j < n; j += 4)
     {
-      const __m128i x = _mm_srai_epi32(Load(block.Cell[0] + j), 1);
-      const __m128i y = _mm_srai_epi32(Load(block.Cell[1] + j), 1);
-      const __m128i z = _mm_srai_epi32(Load(block.Cell[2] + j), 1);
+      const __m128i x = _mm_srai_epi32(block.CellLanes(0, j), 1);
+      const __m128i y = _mm_srai_epi32(block.CellLanes(1, j), 1);
+      const __m128i z = _mm_srai_epi32(block.CellLanes(2, j), 1);
       _mm_store_si128(reinterpret_cast<__m128i*>(node + j),
         _mm_add_epi32(x, _mm_add_epi32(MultiplyLow(y, row), MultiplyLow(z, plane))));
     }
@@ -97,10 +97,6 @@ private:
     return (i >> 1) + (j >> 1) * this->RowStep + (k >> 1) * this->PlaneStep;
   }
 #if defined(__SSE2__)
-  static PARC_HOT_INLINE __m128i Load(const int* p)
-  {
-    return _mm_loadu_si128(reinterpret_cast<const __m128i*>(p));
-  }
   /// The low 32 bits of the products of a's and b's lanes (SSE2 multiplies two at a time).
   static PARC_HOT_INLINE __m128i MultiplyLow(__m128i a, __m128i b)
   {

@@ -15,6 +15,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 #include <type_traits>
 
 #if defined(__SSE2__)
@@ -64,6 +65,11 @@ public:
     this->Step[0] = stride;
     this->Step[1] = stride * dims[0];
     this->Step[2] = this->Step[1] * dims[1];
+    this->StepsFitIn32Bits = true;
+    for (std::ptrdiff_t step : this->Step)
+    {
+      this->StepsFitIn32Bits &= step >= 0 && step <= std::numeric_limits<std::uint32_t>::max();
+    }
     for (int n = 0; n < 8; ++n)
     {
       this->Corner[n] = ((n & 1) ? this->Step[0] : 0) + ((n & 2) ? this->Step[1] : 0) +
@@ -142,11 +148,7 @@ public:
       LocateLanes(lattice.Origin[a], lattice.Direction[a], u, n, this->Last[a],
         this->LastCell[a], block.Cell[a], block.Fractions[a]);
     }
-    for (int j = 0; j < n; ++j)
-    {
-      block.Offset[j] = block.Cell[0][j] * this->Step[0] + block.Cell[1][j] * this->Step[1] +
-        block.Cell[2][j] * this->Step[2];
-    }
+    this->CellOffsets(block, n);
     unsigned lanes = all;
     if (cells)
     {
@@ -307,6 +309,43 @@ private:
       f[j] = x - static_cast<float>(i);
     }
 #endif
+  }
+  /// The offsets of the located cells of block's lanes j < n (a multiple of
+  /// LatticeBlock::Lanes) from the first voxel.
+  PARC_HOT_INLINE void CellOffsets(LatticeBlock& block, int n) const
+  {
+#if defined(__SSE2__)
+    if (this->StepsFitIn32Bits)
+    {
+      // Cells are not negative: 32 x 32 -> 64-bit products of unsigned numbers, two lanes at
+      // a time (0 and 2, then 1 and 3), summed in 64 bits.
+      const __m128i s0 = _mm_set1_epi32(static_cast<int>(this->Step[0]));
+      const __m128i s1 = _mm_set1_epi32(static_cast<int>(this->Step[1]));
+      const __m128i s2 = _mm_set1_epi32(static_cast<int>(this->Step[2]));
+      for (int j = 0; j < n; j += 4)
+      {
+        const __m128i x = block.CellLanes(0, j);
+        const __m128i y = block.CellLanes(1, j);
+        const __m128i z = block.CellLanes(2, j);
+        const __m128i even = _mm_add_epi64(_mm_mul_epu32(x, s0),
+          _mm_add_epi64(_mm_mul_epu32(y, s1), _mm_mul_epu32(z, s2)));
+        const __m128i odd = _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(x, 32), s0),
+          _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(y, 32), s1),
+            _mm_mul_epu32(_mm_srli_epi64(z, 32), s2)));
+        static_assert(sizeof(std::ptrdiff_t) == 8, "64-bit offsets");
+        _mm_storeu_si128(
+          reinterpret_cast<__m128i*>(block.Offset + j), _mm_unpacklo_epi64(even, odd));
+        _mm_storeu_si128(
+          reinterpret_cast<__m128i*>(block.Offset + j + 2), _mm_unpackhi_epi64(even, odd));
+      }
+      return;
+    }
+#endif
+    for (int j = 0; j < n; ++j)
+    {
+      block.Offset[j] = block.Cell[0][j] * this->Step[0] + block.Cell[1][j] * this->Step[1] +
+        block.Cell[2][j] * this->Step[2];
+    }
   }
   /// The lanes of a LatticeBlock::Lanes group.
   static constexpr unsigned GroupBits = (1u << LatticeBlock::Lanes) - 1u;
@@ -554,6 +593,8 @@ private:
 
   const T* Data;
   std::ptrdiff_t Step[3]; ///< elements between neighbours along x, y, z
+  /// Whether every step is a 32-bit unsigned number (cell offsets four lanes at a time).
+  bool StepsFitIn32Bits = false;
   /// The offsets of a cell's 8 corners from its first voxel (corner n: x offset n & 1,
   /// y (n >> 1) & 1, z (n >> 2) & 1).
   std::ptrdiff_t Corner[8];
