@@ -6,13 +6,15 @@ and shaded by this mapper (Auto) and vtkFixedPointVolumeRayCastMapper (automatic
 off) at half a voxel, in a perspective view. For each volume and shading:
 
 - first frame: each mapper new, in a process of its own and a window whose GL context
-  exists, and this mapper's set-up per voxel (its first frame less its warm one);
+  exists, in rounds interleaved (A B A B): minimum and median; and this mapper's set-up
+  per voxel (its median first frame less its median warm one);
 - warm frames at each image size: both mappers warmed up (this one until Auto has chosen
   its pass and supercell size), then rounds interleaved (A B A B): minimum and median;
 - the frame after a transfer-function edit against a warm frame (this mapper);
 - this mapper's casting cost (ns per sample per thread), mode and supercell size;
-- memory, in the first frame's process: the resident size 5 frames add (after the
-  window's GL context is made) against the volume's bytes, beside GetMemorySize.
+- memory, in the first frame's processes: the resident size 5 frames add (after the
+  window's GL context is made) against the volume's bytes, beside GetMemorySize (medians
+  over the rounds).
 
 Prints markdown; writes CSV data and PNG plots into OUTDIR. The resized volumes are kept in
 OUTDIR/volumes while the section runs and removed after.
@@ -266,12 +268,17 @@ def report(outdir, quick, factors=None, images=None):
             measured = child("--measure", outdir, factor, kind, ",".join(map(str, images)),
                              rounds)
             for row in measured:
-                for name in ("fixed", "parc"):
-                    fresh = child("--first", outdir, factor, kind, name, row["shade"], images[0])
-                    row["first_" + name] = fresh["first"]
-                    row["growth_" + name] = fresh["growth"]
+                fresh = {"fixed": [], "parc": []}
+                for _ in range(rounds):
+                    for name in ("fixed", "parc"):
+                        fresh[name].append(child("--first", outdir, factor, kind, name,
+                                                 row["shade"], images[0]))
+                for name, runs in fresh.items():
+                    row["first_" + name] = min_median([run["first"] for run in runs])
+                    row["growth_" + name] = min_median([run["growth"] for run in runs])[1]
                     if name == "parc":
-                        row["memory_size_" + name] = fresh["memory_size"]
+                        row["memory_size_" + name] = min_median(
+                            [run["memory_size"] for run in runs])[1]
             rows.extend(measured)
             os.remove(volume_path(outdir, factor, kind))
             print("(%s: %.0f s)" % (label(measured[0]), time.time() - started),
@@ -284,16 +291,23 @@ def report(outdir, quick, factors=None, images=None):
     plots(outdir, rows, images)
 
 
+def first_frames(row, name):
+    """A mapper's first frame (minimum, median); a saved run of one round has one time."""
+    first = row["first_" + name]
+    return (first, first) if isinstance(first, (int, float)) else tuple(first)
+
+
 def tables(rows, images):
-    print("| volume | shading | FixedPoint first (s) | PARC first (s) | first: FixedPoint / PARC "
-          "| PARC set-up (ns per voxel) | " +
+    print("| volume | shading | FixedPoint first median (min) (s) | PARC first median (min) (s) "
+          "| first: FixedPoint / PARC | PARC set-up (ns per voxel) | " +
           " | ".join("warm %d^2: FixedPoint, PARC median (min) (s) | FixedPoint / PARC" % p
                      for p in images) + " |")
     print("|---|---|---|---|---|---|" + "---|---|" * len(images))
     for r in rows:
-        setup = 1e9 * (r["first_parc"] - r["warm_parc_%d" % images[0]][0]) / r["voxels"]
-        cells = ["%.3f" % r["first_fixed"], "%.3f" % r["first_parc"],
-                 "%.2fx" % (r["first_fixed"] / r["first_parc"]), "%.2f" % setup]
+        fixed, parc = first_frames(r, "fixed"), first_frames(r, "parc")
+        setup = 1e9 * (parc[1] - r["warm_parc_%d" % images[0]][1]) / r["voxels"]
+        cells = ["%.3f (%.3f)" % (fixed[1], fixed[0]), "%.3f (%.3f)" % (parc[1], parc[0]),
+                 "%.2fx" % (fixed[1] / parc[1]), "%.2f" % setup]
         for p in images:
             f, c = r["warm_fixed_%d" % p], r["warm_parc_%d" % p]
             cells += ["%.3f (%.3f), %.3f (%.3f)" % (f[1], f[0], c[1], c[0]), "%.2fx" % (f[1] / c[1])]
@@ -339,7 +353,7 @@ def plots(outdir, rows, images):
                                    lambda r, key=key: r["warm_%s_%d" % (key, images[0])][1], colour,
                                    False))
                 series.append(line("%s %s first frame" % (title, shading), select,
-                                   lambda r, key=key: r["first_" + key], colour, True))
+                                   lambda r, key=key: first_frames(r, key)[1], colour, True))
         name = "volume-size-time-%s.png" % kind
         title = "%s: warm frame (median) and first frame against volume size, %d^2" % (kind, images[0])
         draw(series, os.path.join(outdir, name), title, "voxels", "seconds", True, True,
