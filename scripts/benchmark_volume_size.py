@@ -370,8 +370,11 @@ def plots(outdir, rows, images):
     for kind in kinds:
         series.append(line("PARC GetMemorySize", lambda r, k=kind: r["kind"] == k and r["shade"] == 0,
                            lambda r: r["memory_size_parc"] / 2**20, PALETTE[4], kind != kinds[0]))
-    title = "Memory a render adds against volume size (%s solid, %s dashed)" % (
-        kinds[0], ", ".join(kinds[1:]) or "-")
+    for kind in kinds:  # the goal: at most half the volume
+        series.append(line("half the volume", lambda r, k=kind: r["kind"] == k and r["shade"] == 0,
+                           lambda r: 0.5 * r["bytes"] / 2**20, PALETTE[7], kind != kinds[0]))
+    title = "Memory a render adds against volume size (%s)" % (
+        kinds[0] if len(kinds) == 1 else "%s solid, %s dashed" % (kinds[0], ", ".join(kinds[1:])))
     draw(series, os.path.join(outdir, "volume-size-memory.png"), title, "voxels", "MiB", True, True,
          legend_left=True)
     print("![%s](volume-size-memory.png)\n" % title)
