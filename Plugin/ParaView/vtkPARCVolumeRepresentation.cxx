@@ -12,6 +12,7 @@
 #include "vtkPARCPVVolumeScene.h"
 #include "vtkPVRenderView.h"
 #include "vtkStreamingDemandDrivenPipeline.h"
+#include "vtkVolumeProperty.h"
 
 #include <algorithm>
 
@@ -159,6 +160,23 @@ const char* vtkPARCVolumeRepresentation::GetLastAccelerationModeAsString()
       : this->GetPARCMapper()->GetLastAccelerationMode());
 }
 
+bool vtkPARCVolumeRepresentation::NeedsGradients()
+{
+  vtkVolumeProperty* property = this->Property;
+  return property->GetShade() ||
+    (property->HasGradientOpacity() && !property->GetDisableGradientOpacity());
+}
+
+void vtkPARCVolumeRepresentation::SetShade(bool shade)
+{
+  const bool before = this->NeedsGradients();
+  this->Superclass::SetShade(shade);
+  if (this->NeedsGradients() != before)
+  {
+    this->MarkModified(); // the pieces' border layers change (RequestUpdateExtent)
+  }
+}
+
 int vtkPARCVolumeRepresentation::RequestUpdateExtent(
   vtkInformation* request, vtkInformationVector** inputVector, vtkInformationVector* outputVector)
 {
@@ -168,6 +186,7 @@ int vtkPARCVolumeRepresentation::RequestUpdateExtent(
   }
   using Pipeline = vtkStreamingDemandDrivenPipeline;
   this->ReadsOwnedPiece = false;
+  this->Layers = -1;
   vtkInformation* in = inputVector[0]->GetNumberOfInformationObjects() == 1
     ? inputVector[0]->GetInformationObject(0)
     : nullptr;
@@ -189,7 +208,15 @@ int vtkPARCVolumeRepresentation::RequestUpdateExtent(
     // Shadow rays leave the piece: with shadows every rank reads the whole volume.
     const bool shadows =
       this->GetPARCMapper()->GetShadowMode() == vtkPARCVolumeMapper::SHADOWS_ON;
-    const int layers = cells ? 2 : 1;
+    const int layers = (cells ? 1 : 0) + (this->NeedsGradients() ? 1 : 0);
+    this->Layers = shadows ? -1 : layers;
+    if (!shadows && layers == 0)
+    {
+      // The piece as the pipeline splits it: asked for as it is, the source does not read
+      // it again (its extent, the rank's own, shares its border voxels with the next).
+      this->ReadsOwnedPiece = true;
+      return 1;
+    }
     for (int a = 0; a < 3; ++a)
     {
       read[2 * a] = shadows ? whole[2 * a] : std::max(whole[2 * a], this->OwnedExtent[2 * a] - layers);
@@ -223,6 +250,10 @@ int vtkPARCVolumeRepresentation::RequestData(
   if (owned)
   {
     const int* extent = input->GetExtent();
+    if (this->Layers == 0) // the piece as split: all of it is the rank's
+    {
+      std::copy_n(extent, 6, this->OwnedExtent);
+    }
     for (int a = 0; a < 3; ++a) // the part of the owned extent the source gave
     {
       ownedExtent[2 * a] = std::max(extent[2 * a], this->OwnedExtent[2 * a]);

@@ -48,6 +48,12 @@ public:
   void SetShadows(bool shadows);
 
   /**
+   * Forwarded to the volume property; a split volume's pieces are read again when the
+   * gradients shading needs change their border layers (RequestUpdateExtent).
+   */
+  void SetShade(bool shade);
+
+  /**
    * The mapper.
    */
   vtkPARCVolumeMapper* GetPARCMapper();
@@ -89,11 +95,14 @@ protected:
   /**
    * When the volume is split across ranks, asks for the rank's piece (OwnedExtent: the
    * pipeline's block split) with the layers of cells the mapper needs at its border, as
-   * ordinary cells: one layer for point scalars, two for cell scalars (their gradients at
-   * the border reach one cell further); with shadows, the whole volume, as shadow rays
-   * cross the other pieces. Asking for ghost levels instead would make the source build
-   * a ghost array the size of the piece, and ParaView crop and scan it, tens of seconds
-   * for a volume of a few hundred MB.
+   * ordinary cells: one for gradients (shading or gradient opacity) and one more for cell
+   * scalars (made point scalars with their neighbours); with shadows, the whole volume,
+   * as shadow rays cross the other pieces. Point scalars without gradients need no layer:
+   * the piece is then asked for as the pipeline split it, which ParaView has read already
+   * to show it (a piece asked for otherwise is read again, and its ranges computed again:
+   * seconds on 2 ranks at 181 MB). Asking for ghost levels instead would make the source
+   * build a ghost array the size of the piece, and ParaView crop and scan it, tens of
+   * seconds for a volume of a few hundred MB.
    */
   int RequestUpdateExtent(vtkInformation*, vtkInformationVector**, vtkInformationVector*) override;
 
@@ -113,6 +122,11 @@ private:
   int OwnedExtent[6] = { 0, -1, 0, -1, 0, -1 };
   /** Whether RequestUpdateExtent asked for the piece with its border layers. */
   bool ReadsOwnedPiece = false;
+  /** The border layers RequestUpdateExtent asked for (-1: the whole volume). */
+  int Layers = -1;
+
+  /** Whether the mapper takes gradients (shading, gradient opacity). */
+  bool NeedsGradients();
 
   /** The mapper, as the member of the view's scene it is. */
   vtkPARCPVVolumeMapper* GetSceneMemberMapper();
