@@ -9,7 +9,8 @@ off) at half a voxel, in a perspective view. For each volume and shading:
   exists, in rounds interleaved (A B A B): minimum and median; and this mapper's set-up
   per voxel (its median first frame less its median warm one);
 - warm frames at each image size: both mappers warmed up (this one until Auto has chosen
-  its pass and supercell size), then rounds interleaved (A B A B): minimum and median;
+  its pass and supercell size), then rounds interleaved (A B A B): minimum and median
+  (3 rounds, 7 below 128 MiB);
 - the frame after a transfer-function edit against a warm frame (this mapper);
 - this mapper's casting cost (ns per sample per thread), mode and supercell size;
 - memory, in the first frame's processes: the resident size 5 frames add (after the
@@ -38,9 +39,17 @@ FACTORS = {"uint8": [1, 2, 3, 4, 6], "int16": [1, 2, 3, 5]}
 QUICK_FACTORS = {"uint8": [1, 2], "int16": [1]}
 IMAGES, QUICK_IMAGES = [600, 1000], [600]
 ROUNDS, QUICK_ROUNDS = 3, 2
+# Volumes below this size render in well under a second, where the shared machine's noise
+# moves a ratio most: more rounds there (not in a quick run).
+SMALL_VOLUME_BYTES, SMALL_VOLUME_ROUNDS = 2**27, 7
 WARM_UP_FRAMES = 20  # enough for Auto's trials and its supercell search
 MEMORY_FRAMES = 5
 CT_SCALE, CT_OFFSET = 12, -1024  # int16 = 12 * uint8 - 1024: a CT-like range
+
+
+def volume_dims(factor):
+    """The voxels of the head resized by factor, per axis."""
+    return [factor * (d - 1) + 1 for d in HEAD_DIMS]
 
 
 def volume_path(outdir, factor, kind):
@@ -72,7 +81,7 @@ def load_image(outdir, factor, kind):
     from vtkmodules.util.numpy_support import numpy_to_vtk
     values = np.load(volume_path(outdir, factor, kind))
     image = vtkImageData()
-    image.SetDimensions(*[factor * (d - 1) + 1 for d in HEAD_DIMS])
+    image.SetDimensions(*volume_dims(factor))
     image.SetSpacing(*[1.0 / factor] * 3)
     assert image.GetNumberOfPoints() == values.size
     image.GetPointData().SetScalars(numpy_to_vtk(values, deep=0))
@@ -265,11 +274,13 @@ def report(outdir, quick, factors=None, images=None):
                   file=sys.stderr, flush=True)
             started = time.time()
             child("--make", outdir, factor, kind)
+            small = not quick and np.prod(volume_dims(factor)) * np.dtype(kind).itemsize < SMALL_VOLUME_BYTES
+            volume_rounds = SMALL_VOLUME_ROUNDS if small else rounds
             measured = child("--measure", outdir, factor, kind, ",".join(map(str, images)),
-                             rounds)
+                             volume_rounds)
             for row in measured:
                 fresh = {"fixed": [], "parc": []}
-                for _ in range(rounds):
+                for _ in range(volume_rounds):
                     for name in ("fixed", "parc"):
                         fresh[name].append(child("--first", outdir, factor, kind, name,
                                                  row["shade"], images[0]))
