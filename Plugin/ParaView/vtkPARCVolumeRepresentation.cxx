@@ -160,18 +160,22 @@ const char* vtkPARCVolumeRepresentation::GetLastAccelerationModeAsString()
       : this->GetPARCMapper()->GetLastAccelerationMode());
 }
 
-bool vtkPARCVolumeRepresentation::NeedsGradients()
+int vtkPARCVolumeRepresentation::BorderLayers()
 {
+  vtkInformation* array = this->GetInputArrayInformation(0);
+  const bool cells = array && array->Has(vtkDataObject::FIELD_ASSOCIATION()) &&
+    array->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_CELLS;
   vtkVolumeProperty* property = this->Property;
-  return property->GetShade() ||
+  const bool gradients = property->GetShade() ||
     (property->HasGradientOpacity() && !property->GetDisableGradientOpacity());
+  return cells ? 2 : (gradients ? 1 : 0);
 }
 
 void vtkPARCVolumeRepresentation::SetShade(bool shade)
 {
-  const bool before = this->NeedsGradients();
+  const int before = this->BorderLayers();
   this->Superclass::SetShade(shade);
-  if (this->NeedsGradients() != before)
+  if (this->BorderLayers() != before)
   {
     this->MarkModified(); // the pieces' border layers change (RequestUpdateExtent)
   }
@@ -202,13 +206,10 @@ int vtkPARCVolumeRepresentation::RequestUpdateExtent(
         in->Get(Pipeline::UPDATE_NUMBER_OF_PIECES()), 0, whole, this->OwnedExtent,
         vtkExtentTranslator::BLOCK_MODE, 0))
   {
-    vtkInformation* array = this->GetInputArrayInformation(0);
-    const bool cells = array && array->Has(vtkDataObject::FIELD_ASSOCIATION()) &&
-      array->Get(vtkDataObject::FIELD_ASSOCIATION()) == vtkDataObject::FIELD_ASSOCIATION_CELLS;
     // Shadow rays leave the piece: with shadows every rank reads the whole volume.
     const bool shadows =
       this->GetPARCMapper()->GetShadowMode() == vtkPARCVolumeMapper::SHADOWS_ON;
-    const int layers = (cells ? 1 : 0) + (this->NeedsGradients() ? 1 : 0);
+    const int layers = this->BorderLayers();
     this->Layers = shadows ? -1 : layers;
     if (!shadows && layers == 0)
     {

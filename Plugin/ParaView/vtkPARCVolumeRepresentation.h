@@ -48,8 +48,8 @@ public:
   void SetShadows(bool shadows);
 
   /**
-   * Forwarded to the volume property; a split volume's pieces are read again when the
-   * gradients shading needs change their border layers (RequestUpdateExtent).
+   * Forwarded to the volume property; a split volume's pieces are read again when shading
+   * changes their border layers (BorderLayers).
    */
   void SetShade(bool shade);
 
@@ -95,9 +95,10 @@ protected:
   /**
    * When the volume is split across ranks, asks for the rank's piece (OwnedExtent: the
    * pipeline's block split) with the layers of cells the mapper needs at its border, as
-   * ordinary cells: one for gradients (shading or gradient opacity) and one more for cell
-   * scalars (made point scalars with their neighbours); with shadows, the whole volume,
-   * as shadow rays cross the other pieces. Point scalars without gradients need no layer:
+   * ordinary cells: one for point scalars with gradients (shading or gradient opacity),
+   * two for cell scalars (made point scalars with their neighbours, and the gradients at
+   * the border reach one cell further); with shadows, the whole volume, as shadow rays
+   * cross the other pieces. Point scalars without gradients need no layer:
    * the piece is then asked for as the pipeline split it, which ParaView has read already
    * to show it (a piece asked for otherwise is read again, and its ranges computed again:
    * seconds on 2 ranks at 181 MB). Asking for ghost levels instead would make the source
@@ -125,8 +126,12 @@ private:
   /** The border layers RequestUpdateExtent asked for (-1: the whole volume). */
   int Layers = -1;
 
-  /** Whether the mapper takes gradients (shading, gradient opacity). */
-  bool NeedsGradients();
+  /**
+   * The layers of cells the mapper needs beyond a piece (RequestUpdateExtent): 2 for cell
+   * scalars, 1 for point scalars whose gradients it takes (shading, gradient opacity), 0
+   * for the others.
+   */
+  int BorderLayers();
 
   /** The mapper, as the member of the view's scene it is. */
   vtkPARCPVVolumeMapper* GetSceneMemberMapper();
