@@ -120,9 +120,19 @@ def check(condition, message):
 
 
 reference, components = shot("paraview-volume", "Volume", Shade=0)
+# The reader's executions on this process from here on (pvbatch: the first rank's; a client
+# of pvserver sees none).
+reader_runs = [0]
+if not arguments.server:
+    reader.GetClientSideObject().AddObserver(
+        "EndEvent", lambda *_: reader_runs.__setitem__(0, reader_runs[0] + 1))
 parc_auto, _ = shot("parc-volume-auto", "PARC Volume", PARCAccelerationMode="Auto")
 parc_none, _ = shot("parc-volume-none", "PARC Volume", PARCAccelerationMode="None")
 unaccelerated = statistics()
+if not arguments.server:
+    check(reader_runs[0] == 0, "unshaded point scalars need no border layer: each rank renders "
+          "the piece ParaView read to show the volume, not read again (%d reads on %d ranks)"
+          % (reader_runs[0], ranks))
 parc_depth, _ = shot("parc-volume-depth", "PARC Volume", PARCAccelerationMode="Depth Buffer")
 accelerated = statistics()
 parc_color, _ = shot("parc-volume-color", "PARC Volume", PARCAccelerationMode="Color Buffer")
@@ -209,7 +219,11 @@ check_close(own_slice, parc_slice, "slice")
 display.BlendMode = "Composite"
 # Shaded (the two mappers shade differently, so not compared with each other): gradients at
 # piece borders read the ghost points.
+reader_runs[0] = 0
 shaded, _ = shot("parc-volume-shaded", "PARC Volume", Shade=1, PARCAccelerationMode="None")
+if not arguments.server:
+    check((reader_runs[0] > 0) == (ranks > 1), "shading asks for the border layer: %d reads "
+          "of the pieces on %d ranks (none on 1, the whole volume)" % (reader_runs[0], ranks))
 shaded_auto, _ = shot("parc-volume-shaded-auto", "PARC Volume", PARCAccelerationMode="Auto")
 own_shaded, _ = shot("paraview-volume-shaded", "Volume")
 check(shaded_auto == shaded and shaded != parc_none,
