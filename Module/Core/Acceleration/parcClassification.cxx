@@ -478,18 +478,6 @@ bool RangePyramid::CodeBounds(const ContributionRule& rule, Code& high, Code& lo
   return first < CodeCount && last >= 0;
 }
 
-void RangePyramid::PackedFlags(
-  const Code* packed, std::size_t count, Code high, Code low, std::uint8_t* flags)
-{
-  // MaxCode >= high and MinCode <= low, on the high halves.
-  const unsigned h = high >> PackedShift, l = low >> PackedShift;
-  for (std::size_t i = 0; i < count; ++i)
-  {
-    const unsigned p = packed[i];
-    flags[i] = static_cast<std::uint8_t>(((p >> PackedShift) >= h) & ((p & Level::LowBits) <= l));
-  }
-}
-
 void RangePyramid::SettleFromCodes(
   int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const
 {
@@ -507,11 +495,6 @@ void RangePyramid::SettleFromCodes(
     // compiler then compares many bytes at once.
     std::uint8_t* out = flags.data();
     const vtkIdType begin = c0 * Chunk, end = std::min(c1 * Chunk, n);
-    if (!target.Packed.empty())
-    {
-      PackedFlags(target.Packed.data() + begin, end - begin, high, low, out + begin);
-      return;
-    }
     const Code* lo = target.Min.data();
     const Code* hi = target.Max.data();
     const Code h = high, l = low;

@@ -207,13 +207,10 @@ private:
   /// code is at least high and its minimum at most low. False when no value meets one of
   /// the tests.
   bool CodeBounds(const ContributionRule& rule, Code& high, Code& low) const;
-  /// Whether each of count packed nodes meets the rule of CodeBounds high and low, into
-  /// flags.
-  static void PackedFlags(
-    const Code* packed, std::size_t count, Code high, Code low, std::uint8_t* flags);
   /// Settle without exact for a rule that tests the ends of a range apart, in one pass
   /// over the level's codes (no descent from above: a node's ancestors all pass when it
-  /// does, their ranges holding its range).
+  /// does, their ranges holding its range). Only for a level with exact codes, never the
+  /// packed one (ClassifyLevel).
   void SettleFromCodes(
     int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const;
   /// Settle below the node of level m (>= level).
