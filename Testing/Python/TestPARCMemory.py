@@ -7,11 +7,10 @@ import sys
 import unittest
 
 from parc import vtkPARCVolumeMapper
-from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
 from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
-from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderWindow,
-                                         vtkRenderer, vtkVolume, vtkVolumeProperty)
+from vtkmodules.vtkRenderingCore import vtkRenderWindow, vtkRenderer, vtkVolume
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401
+from parctesthelpers import wavelet_property
 
 # GetMemorySize over the resident growth of a new mapper's first frames: the GL part is
 # measured, the rest counted; what neither sees (the Python objects, allocator slack) is a
@@ -30,15 +29,7 @@ class TestPARCMemory(unittest.TestCase):
         source.SetWholeExtent(-60, 60, -60, 60, -60, 60)
         source.Update()
         self.image = source.GetOutput()
-        opacity = vtkPiecewiseFunction()
-        opacity.AddPoint(150, 0.0)
-        opacity.AddPoint(250, 0.3)
-        color = vtkColorTransferFunction()
-        color.AddRGBPoint(150, 0.2, 0.3, 1.0)
-        color.AddRGBPoint(250, 1.0, 0.8, 0.3)
-        self.prop = vtkVolumeProperty()
-        self.prop.SetScalarOpacity(opacity)
-        self.prop.SetColor(color)
+        self.prop = wavelet_property(150)
         self.prop.SetInterpolationTypeToLinear()
         self.renderer = vtkRenderer()
         self.window = vtkRenderWindow()

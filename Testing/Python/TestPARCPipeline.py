@@ -6,13 +6,13 @@ import unittest
 
 from parc import vtkPARCVolumeMapper
 from vtkmodules.vtkCommonCore import vtkCommand
-from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
+from vtkmodules.vtkCommonDataModel import vtkImageData
 from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
 from vtkmodules.util.misc import calldata_type
 from vtkmodules.util.numpy_support import vtk_to_numpy
 from vtkmodules.util.vtkConstants import VTK_DOUBLE
-from vtkmodules.vtkRenderingCore import vtkColorTransferFunction, vtkLight, vtkVolumeProperty
-from parctesthelpers import offscreen_window, ray_image
+from vtkmodules.vtkRenderingCore import vtkLight
+from parctesthelpers import offscreen_window, ray_image, wavelet_property
 
 
 def make_scene(size=120):
@@ -20,15 +20,7 @@ def make_scene(size=120):
     source.SetWholeExtent(-20, 20, -20, 20, -20, 20)
     mapper = vtkPARCVolumeMapper()
     mapper.SetInputConnection(source.GetOutputPort())
-    opacity = vtkPiecewiseFunction()
-    opacity.AddPoint(100, 0.0)
-    opacity.AddPoint(250, 0.3)
-    color = vtkColorTransferFunction()
-    color.AddRGBPoint(100, 0.2, 0.3, 1.0)
-    color.AddRGBPoint(250, 1.0, 0.8, 0.3)
-    prop = vtkVolumeProperty()
-    prop.SetScalarOpacity(opacity)
-    prop.SetColor(color)
+    prop = wavelet_property(100)
     prop.ShadeOn()
     return mapper, offscreen_window(mapper, prop, size)
 

@@ -1,7 +1,8 @@
 """Helpers shared by the Python tests."""
-from vtkmodules.vtkCommonDataModel import vtkImageData
+from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
 from vtkmodules.util.numpy_support import vtk_to_numpy
-from vtkmodules.vtkRenderingCore import vtkRenderWindow, vtkRenderer, vtkVolume
+from vtkmodules.vtkRenderingCore import (vtkColorTransferFunction, vtkRenderWindow,
+                                         vtkRenderer, vtkVolume, vtkVolumeProperty)
 import vtkmodules.vtkRenderingOpenGL2  # noqa: F401 (the render window's implementation)
 
 
@@ -10,6 +11,21 @@ def ray_image(mapper):
     image = vtkImageData()
     mapper.GetLastRayCastImage(image)
     return vtk_to_numpy(image.GetPointData().GetScalars()).copy()
+
+
+def wavelet_property(transparent_below):
+    """A volume property for vtkRTAnalyticSource's values (about 37..277): transparent up
+    to transparent_below, then opacity rising to 0.3 and colour from blue to orange at 250."""
+    opacity = vtkPiecewiseFunction()
+    opacity.AddPoint(transparent_below, 0.0)
+    opacity.AddPoint(250, 0.3)
+    color = vtkColorTransferFunction()
+    color.AddRGBPoint(transparent_below, 0.2, 0.3, 1.0)
+    color.AddRGBPoint(250, 1.0, 0.8, 0.3)
+    prop = vtkVolumeProperty()
+    prop.SetScalarOpacity(opacity)
+    prop.SetColor(color)
+    return prop
 
 
 def offscreen_window_showing(view_prop, size):
