@@ -638,8 +638,9 @@ std::size_t vtkPARCRasterizer::GetMemorySize() const
 std::size_t vtkPARCRasterizer::GetDriverMemorySize() const
 {
   const vtkInternals& in = *this->Internals;
-  return std::max(in.Driver.GetMemorySize(), in.GetObjectsMemorySize()) -
-    in.GetObjectsMemorySize();
+  const std::size_t measured = in.Driver.GetMemorySize();
+  const std::size_t objects = in.GetObjectsMemorySize();
+  return measured > objects ? measured - objects : 0;
 }
 
 void vtkPARCRasterizer::ReleaseGraphicsResources(vtkWindow* window)
