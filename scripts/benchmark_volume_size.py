@@ -15,7 +15,10 @@ off) at half a voxel, in a perspective view. For each volume and shading:
 - this mapper's casting cost (ns per sample per thread), mode and supercell size;
 - memory, in the first frame's processes: the resident size 5 frames add (after the
   window's GL context is made) against the volume's bytes, beside GetMemorySize (medians
-  over the rounds).
+  over the rounds); and once more in a process whose window has drawn the volume's outline
+  first, as a program showing anything else has: the GL implementation's start-up (its
+  first compiled program, about 25 MiB on llvmpipe, whichever drawing comes first) is then
+  paid before the mapper, and the growth is what the mapper's render adds.
 
 Prints markdown; writes CSV data and PNG plots into OUTDIR. The resized volumes are kept in
 OUTDIR/volumes while the section runs and removed after.
@@ -225,11 +228,27 @@ def resident():
         return int(f.read().split()[1]) * os.sysconf("SC_PAGE_SIZE")
 
 
-def first(outdir, factor, kind, name, shade, pixels):
+def draw_outline(window, image):
+    """Shows the volume's outline in window and draws it once."""
+    from vtkmodules.vtkFiltersModeling import vtkOutlineFilter
+    from vtkmodules.vtkRenderingCore import vtkActor, vtkPolyDataMapper
+    outline = vtkOutlineFilter()
+    outline.SetInputData(image)
+    mapper = vtkPolyDataMapper()
+    mapper.SetInputConnection(outline.GetOutputPort())
+    actor = vtkActor()
+    actor.SetMapper(mapper)
+    window.GetRenderers().GetFirstRenderer().AddActor(actor)
+    window.Render()
+
+
+def first(outdir, factor, kind, name, shade, pixels, outlined=False):
     """A new mapper in a new process: its first frame and the resident size MEMORY_FRAMES
-    frames add (JSON on stdout)."""
+    frames add (JSON on stdout); outlined: after the window has drawn the volume's outline."""
     image, values = load_image(outdir, factor, kind)
     window, volume, _ = scene(image, kind, shade, pixels)
+    if outlined:
+        draw_outline(window, image)
     gc.collect()
     before = resident()
     mapper = new_mapper(name, image)
@@ -290,6 +309,9 @@ def report(outdir, quick, factors=None, images=None):
                     if name == "parc":
                         row["memory_size_" + name] = min_median(
                             [run["memory_size"] for run in runs])[1]
+                    row["growth_outlined_" + name] = child(
+                        "--first", outdir, factor, kind, name, row["shade"], images[0],
+                        "outlined")["growth"]
             rows.extend(measured)
             os.remove(volume_path(outdir, factor, kind))
             print("(%s: %.0f s)" % (label(measured[0]), time.time() - started),
@@ -326,14 +348,17 @@ def tables(rows, images):
     print()
     print("| volume | shading | PARC mode, supercell size | PARC ns per sample per thread "
           "| edit frame / warm frame | resident growth: FixedPoint, PARC (x volume) "
+          "| the same after a drawn outline: FixedPoint, PARC (x volume) "
           "| PARC GetMemorySize (x volume) | GetMemorySize / growth |")
-    print("|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|")
     for r in rows:
         v = r["bytes"]
-        print("| %s | %s | %s, %s | %.1f | %.2fx | %.2f, %.2f | %.2f | %.2f |" % (
+        outlined = ("%.2f, %.2f" % (r["growth_outlined_fixed"] / v, r["growth_outlined_parc"] / v)
+                    if "growth_outlined_parc" in r else "-")  # not in runs saved before it
+        print("| %s | %s | %s, %s | %.1f | %.2fx | %.2f, %.2f | %s | %.2f | %.2f |" % (
             label(r), "shaded" if r["shade"] else "unshaded", r["mode"],
             "x".join(format(s, "g") for s in r["supercell"]), r["ns_per_sample"], r["edit"],
-            r["growth_fixed"] / v, r["growth_parc"] / v, r["memory_size_parc"] / v,
+            r["growth_fixed"] / v, r["growth_parc"] / v, outlined, r["memory_size_parc"] / v,
             r["memory_size_parc"] / max(r["growth_parc"], 1)))
     print()
 
@@ -378,6 +403,13 @@ def plots(outdir, rows, images):
                                    lambda r, k=kind, s=shade: r["kind"] == k and r["shade"] == s,
                                    lambda r, key=key: r["growth_" + key] / 2**20,
                                    PALETTE[2 * i + j], kind != kinds[0]))
+    for (key, title), colour in zip(mappers, (PALETTE[8], PALETTE[5])):
+        for kind in kinds:
+            series.append(line("%s unshaded, after a drawn outline" % title,
+                               lambda r, k=kind: r["kind"] == k and r["shade"] == 0
+                               and "growth_outlined_parc" in r,
+                               lambda r, key=key: r["growth_outlined_" + key] / 2**20, colour,
+                               kind != kinds[0]))
     for kind in kinds:
         series.append(line("PARC GetMemorySize", lambda r, k=kind: r["kind"] == k and r["shade"] == 0,
                            lambda r: r["memory_size_parc"] / 2**20, PALETTE[4], kind != kinds[0]))
@@ -401,7 +433,8 @@ def main(argv):
     elif argv[:1] == ["--measure"]:
         measure(argv[1], int(argv[2]), argv[3], [int(p) for p in argv[4].split(",")], int(argv[5]))
     elif argv[:1] == ["--first"]:
-        first(argv[1], int(argv[2]), argv[3], argv[4], int(argv[5]), int(argv[6]))
+        first(argv[1], int(argv[2]), argv[3], argv[4], int(argv[5]), int(argv[6]),
+              argv[7:] == ["outlined"])
     elif len(argv) == 2 and argv[1].startswith("--from="):  # the report of a saved run
         with open(argv[1][len("--from="):]) as f:
             saved = json.load(f)
