@@ -14,8 +14,8 @@ import argparse
 import os
 import sys
 
-from paraview.simple import (Connect, CreateRenderView, Hide, LoadPlugin, Render, SaveScreenshot,
-                             Show, Sphere)
+from paraview.simple import (Connect, CreateRenderView, Hide, LoadPlugin, PointDatatoCellData,
+                             Render, SaveScreenshot, Show, Sphere)
 from paraview import servermanager
 
 from parc_pvtesting import (CLOUD_COLORS, CLOUD_OPACITY, GREY, NEGHIP_OPACITY,
@@ -334,6 +334,38 @@ if one_rank_dir:
           "more than 16 levels off (ParaView's Volume: %.3f, %.5f)" % (
               ranks, mean, outliers, own_mean, own_outliers))
 Hide(sphere, view)
+
+# Cell scalars (the density averaged to cells): the mapper interpolates between the cells'
+# centres, so each rank's piece carries two layers of its neighbours' cells, and the N-rank
+# image is the 1-rank one, without acceleration and in Auto alike.
+cell_values = PointDatatoCellData(Input=reader)
+display.Visibility = 0
+cells_display = show_volume(cell_values, view, GREY, NEGHIP_OPACITY, "density", "CELLS")
+cells_display.SetRepresentationType("PARC Volume")
+
+
+def cells_shot(name, mode):
+    cells_display.PARCAccelerationMode = mode
+    Render(view)
+    path = os.path.join(out_dir, "%s-%d.png" % (name, ranks))
+    SaveScreenshot(path, view, ImageResolution=[SIZE, SIZE])
+    return read_png(path)[0]
+
+
+cells_none = cells_shot("parc-volume-cells-none", "None")
+cells_auto = cells_shot("parc-volume-cells-auto", "Auto")
+check(cells_auto == cells_none and cells_none != parc_none and
+      lit_pixels(cells_none) > 0.5 * lit_pixels(parc_none),
+      "cell scalars: the same pixels with acceleration None and Auto, an image of its own "
+      "(%d lit pixels, the point scalars' %d)" % (lit_pixels(cells_none), lit_pixels(parc_none)))
+if one_rank_dir:
+    mean, outliers = against_one_rank("parc-volume-cells-none", cells_none)
+    check(mean <= RANKS_MEAN_TOLERANCE and outliers <= RANKS_OUTLIER_TOLERANCE,
+          "cell scalars on %d ranks: mean difference to 1 rank %.3f <= %.1f grey levels, "
+          "%.5f of values more than 16 levels off" % (ranks, mean, RANKS_MEAN_TOLERANCE,
+                                                     outliers))
+Hide(cell_values, view)
+display.Visibility = 1
 
 # The filter, with the same opacity function.
 model = PARCPolygonModel(Input=reader)  # noqa: F821 (defined by LoadPlugin)

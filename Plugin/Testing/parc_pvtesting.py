@@ -20,12 +20,14 @@ def read_raw_volume(path, dimensions, array_name="density"):
     return reader
 
 
-def show_volume(reader, view, rgb_points, opacity_points, array_name="density"):
-    """reader's display in view, coloured by its point array array_name with these
-    transfer functions, one opacity unit per world unit. The lookup table and opacity
-    function are set on the display explicitly: ColorBy alone leaves it without them."""
+def show_volume(reader, view, rgb_points, opacity_points, array_name="density",
+                association="POINTS"):
+    """reader's display in view, coloured by its array array_name (of points, or of cells)
+    with these transfer functions, one opacity unit per world unit. The lookup table and
+    opacity function are set on the display explicitly: ColorBy alone leaves it without
+    them."""
     display = Show(reader, view)
-    ColorBy(display, ("POINTS", array_name))
+    ColorBy(display, (association, array_name))
     colors = GetColorTransferFunction(array_name)
     colors.RGBPoints = rgb_points
     opacity = GetOpacityTransferFunction(array_name)
