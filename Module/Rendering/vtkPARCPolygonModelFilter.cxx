@@ -17,8 +17,10 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkCellData.h"
+#include "vtkPiecewiseFunction.h"
 #include "vtkVolumeProperty.h"
 
+#include <set>
 #include <string>
 
 namespace
@@ -66,6 +68,14 @@ vtkMTimeType vtkPARCPolygonModelFilter::GetMTime()
   if (this->VolumeProperty)
   {
     time = std::max(time, this->VolumeProperty->GetMTime());
+    for (const int label : this->LabelMap ? this->VolumeProperty->GetLabelMapLabels()
+                                          : std::set<int>())
+    {
+      if (vtkPiecewiseFunction* opacity = this->VolumeProperty->GetLabelScalarOpacity(label))
+      {
+        time = std::max(time, opacity->GetMTime());
+      }
+    }
   }
   return time;
 }
@@ -121,6 +131,16 @@ int vtkPARCPolygonModelFilter::RequestData(
   vtkVolumeProperty* property =
     this->VolumeProperty ? this->VolumeProperty : in.DefaultProperty.Get();
   parc::vtk::ConvertProperty(property, in.Field.GetRange(), p, 0, parc::vtk::GradientUnit(image));
+  if (this->LabelMap)
+  {
+    if (!parc::TraitsOf(p.Blend).AppliesLabels)
+    {
+      vtkErrorMacro("A label map applies to composite blending.");
+      return 1;
+    }
+    parc::vtk::ConvertLabels(
+      property, in.Field.GetRange(), p, p.Labels, parc::vtk::GradientUnit(image));
+  }
   p.AverageRange[0] = this->AverageIPScalarRange[0];
   p.AverageRange[1] = this->AverageIPScalarRange[1];
   parc::ClassificationKey key = parc::vtk::ClassificationKeyOf(
@@ -207,4 +227,5 @@ void vtkPARCPolygonModelFilter::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "Model: " << (this->Model == COLOR_MODEL ? "Color" : "Depth") << "\n";
   os << indent << "MajorAxis: " << this->MajorAxis << "\n";
   os << indent << "MergeFaces: " << this->MergeFaces << "\n";
+  os << indent << "LabelMap: " << this->LabelMap << "\n";
 }

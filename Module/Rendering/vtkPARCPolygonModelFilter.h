@@ -114,8 +114,22 @@ public:
   vtkBooleanMacro(MergeFaces, bool);
   ///@}
 
+  ///@{
   /**
-   * Includes the property's (and its transfer functions') modification time.
+   * Classify as vtkPARCVolumeMapper does with a label-map mask (SetMaskTypeToLabelMap and
+   * a MaskBlendFactor above 0): a cell may contribute where the default scalar opacity or
+   * any label's (vtkVolumeProperty::SetLabelScalarOpacity) is non-zero in its range. Label
+   * maps apply to composite blending; other blend modes give an error and an empty output.
+   * Default off: the default scalar opacity only, as the mapper classifies without a mask.
+   */
+  vtkSetMacro(LabelMap, bool);
+  vtkGetMacro(LabelMap, bool);
+  vtkBooleanMacro(LabelMap, bool);
+  ///@}
+
+  /**
+   * Includes the property's (and its transfer functions') modification time, and with
+   * LabelMap its labels' scalar opacities'.
    */
   vtkMTimeType GetMTime() override;
 
@@ -133,6 +147,7 @@ protected:
   int Model = DEPTH_MODEL;
   int MajorAxis = 2;
   bool MergeFaces = false;
+  bool LabelMap = false;
 
 private:
   vtkPARCPolygonModelFilter(const vtkPARCPolygonModelFilter&) = delete;

@@ -1,13 +1,14 @@
 """vtkPARCPolygonModelFilter from Python: the depth model of the wavelet is a closed
 surface whose statistics match its polygons, merging keeps the area with fewer quads, the
 colour model numbers its planes from 0, a transfer-function change re-executes the
-filter, a bad supercell size gives an error and an empty model, and the model renders
-through vtkPolyDataMapper."""
+filter, with LabelMap the labels' opacities classify the cells as the mapper's with a
+label-map mask, a bad supercell size gives an error and an empty model, and the model
+renders through vtkPolyDataMapper."""
 import unittest
 
-from parc import vtkPARCPolygonModelFilter
-from vtkmodules.vtkCommonCore import vtkCommand
-from vtkmodules.vtkCommonDataModel import vtkPiecewiseFunction
+from parc import vtkPARCPolygonModelFilter, vtkPARCVolumeMapper
+from vtkmodules.vtkCommonCore import VTK_UNSIGNED_CHAR, vtkCommand
+from vtkmodules.vtkCommonDataModel import vtkImageData, vtkPiecewiseFunction
 from vtkmodules.vtkFiltersCore import vtkCleanPolyData, vtkFeatureEdges
 from vtkmodules.vtkFiltersVerdict import vtkCellSizeFilter
 from vtkmodules.vtkImagingCore import vtkRTAnalyticSource
@@ -15,7 +16,7 @@ from vtkmodules.vtkRenderingCore import (vtkActor, vtkPolyDataMapper, vtkVolumeP
                                          vtkWindowToImageFilter)
 from vtkmodules.vtkRenderingVolume import vtkVolumeMapper
 
-from parctesthelpers import offscreen_window_showing
+from parctesthelpers import offscreen_window, offscreen_window_showing
 
 
 def statistic(poly, name):
@@ -150,6 +151,50 @@ class TestPolygonModelFilter(unittest.TestCase):
         errors = ErrorObserver()
         self.filter.AddObserver(vtkCommand.ErrorEvent, errors)
         self.filter.SetSupercellSize(0, 1, 1)
+        self.filter.Update()
+        self.assertEqual(self.filter.GetOutput().GetNumberOfCells(), 0)
+        self.assertEqual(len(errors.messages), 1)
+
+    def label_map_counts(self):
+        """The filter's contributing supercells, and vtkPARCVolumeMapper's with a label map
+        (every voxel of label 1) at the same supercell size."""
+        poly, _ = self.model()
+        labels = vtkImageData()
+        labels.CopyStructure(self.source.GetOutput())
+        labels.AllocateScalars(VTK_UNSIGNED_CHAR, 1)
+        labels.GetPointData().GetScalars().Fill(1)
+        mapper = vtkPARCVolumeMapper()
+        mapper.SetInputConnection(self.source.GetOutputPort())
+        mapper.SetMaskInput(labels)
+        mapper.SetMaskTypeToLabelMap()
+        mapper.SetMaskBlendFactor(1.0)
+        mapper.SetAccelerationModeToDepthBuffer()
+        mapper.SetSupercellSize(2, 2, 2)
+        window = offscreen_window(mapper, self.property, 64)
+        window.Render()
+        return statistic(poly, "ContributingSupercells"), mapper.GetLastContributingSupercellCount()
+
+    def test_label_map_classifies_as_the_mapper(self):
+        default_only = statistic(self.model()[0], "ContributingSupercells")
+        label = vtkPiecewiseFunction()  # a band below the default opacity's
+        label.AddPoint(100, 0.0)
+        label.AddPoint(120, 0.3)
+        label.AddPoint(140, 0.0)
+        self.property.SetLabelScalarOpacity(1, label)
+        self.assertEqual(statistic(self.model()[0], "ContributingSupercells"), default_only,
+                         "without LabelMap the labels' functions are not read")
+        self.filter.LabelMapOn()
+        filtered, mapped = self.label_map_counts()
+        self.assertGreater(filtered, default_only)
+        self.assertEqual(filtered, mapped)
+        label.RemoveAllPoints()  # a label function edit re-executes the filter
+        label.AddPoint(0, 0.0)
+        filtered, mapped = self.label_map_counts()
+        self.assertEqual(filtered, default_only)
+        self.assertEqual(filtered, mapped)
+        errors = ErrorObserver()
+        self.filter.AddObserver(vtkCommand.ErrorEvent, errors)
+        self.filter.SetBlendMode(vtkVolumeMapper.MAXIMUM_INTENSITY_BLEND)
         self.filter.Update()
         self.assertEqual(self.filter.GetOutput().GetNumberOfCells(), 0)
         self.assertEqual(len(errors.messages), 1)
