@@ -992,6 +992,25 @@ TEST(ContributingCells, EveryPossiblyContributingCellIsInTheMap)
   EXPECT_FALSE(map.Covers(slice));
 }
 
+// Nodes past 32-bit indices (a field of more than 2^34 voxels) leave the map empty, so the
+// caster samples every cell instead of indexing past the codes; the largest field that
+// fits is mapped.
+TEST(ContributingCells, NodesBeyond32BitIndicesLeaveTheMapEmpty)
+{
+  const std::uint8_t code = 0; // SetNodes keeps the pointer; it reads no code
+  parc::CellMap map;
+  const int beyond[3] = { 2048, 2048, 512 }; // 2^31 nodes
+  map.SetNodes(&code, beyond);
+  EXPECT_TRUE(map.IsEmpty());
+  const int field[3] = { 2 * beyond[0], 2 * beyond[1], 2 * beyond[2] };
+  EXPECT_FALSE(map.Covers(field));
+  const int largest[3] = { 2048, 2048, 511 }; // 2^31 - 2^22 nodes
+  map.SetNodes(&code, largest);
+  EXPECT_FALSE(map.IsEmpty());
+  const int fits[3] = { 2 * largest[0] + 1, 2 * largest[1], 2 * largest[2] + 1 };
+  EXPECT_TRUE(map.Covers(fits));
+}
+
 // With exact codes (8-bit values) a cell is in the map exactly when the range of its node
 // of level 1 (its 2x2x2 cells) widened to whole sixteenths of the codes (level 1 is packed)
 // meets the rule: so is every cell of a node with a PC cell. Rules of one interval or
