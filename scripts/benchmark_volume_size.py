@@ -273,33 +273,50 @@ def label(row):
     return "x%d %s (%s MiB)" % (row["factor"], row["kind"], format(row["bytes"] / 2**20, ".0f"))
 
 
+def time_left(spent, volumes, volume_bytes, volume_rounds):
+    """The time the volumes left will take, from a line a + b bytes fitted to the seconds a
+    round of the volumes measured took (a volume's rounds share a fixed part, the start of
+    their processes, and a part that grows with its bytes); empty before two are measured."""
+    if len(spent) < 2:
+        return ""
+    x = np.array([b for b, _ in spent])
+    y = np.array([t for _, t in spent])
+    b = max(np.polyfit(x, y, 1)[0], 0.0) if np.ptp(x) > 0 else 0.0
+    a = max(float(np.mean(y - b * x)), 0.0)
+    seconds = sum(volume_rounds(kind, factor) * (a + b * volume_bytes(kind, factor))
+                  for kind, factor in volumes)
+    return "about %.0f min left" % (seconds / 60)
+
+
 def report(outdir, quick, factors=None, images=None):
     factors = factors or (QUICK_FACTORS if quick else FACTORS)
     images = images or (QUICK_IMAGES if quick else IMAGES)
     rounds = QUICK_ROUNDS if quick else ROUNDS
     os.makedirs(os.path.join(outdir, "volumes"), exist_ok=True)
     rows = []
-    # The volumes in order; the time left is estimated from their sizes (a volume's time
-    # grows with its bytes).
     volumes = [(kind, factor) for kind, kind_factors in factors.items() for factor in kind_factors]
-    weights = [factor ** 3 * np.dtype(kind).itemsize for kind, factor in volumes]
-    begun = time.time()
+
+    def volume_bytes(kind, factor):
+        return float(np.prod(volume_dims(factor))) * np.dtype(kind).itemsize
+
+    def volume_rounds(kind, factor):
+        small = not quick and volume_bytes(kind, factor) < SMALL_VOLUME_BYTES
+        return SMALL_VOLUME_ROUNDS if small else rounds
+
+    spent = []  # (bytes, seconds a round) of the volumes measured
     try:
         for index, (kind, factor) in enumerate(volumes):
-            done = sum(weights[:index])
-            left = ("about %.0f min left" % ((time.time() - begun) / 60 * (sum(weights) - done) / done)
-                    if done else "")
-            print("[volume size] %d/%d: x%d %s %s" % (index + 1, len(volumes), factor, kind, left),
+            print("[volume size] %d/%d: x%d %s %s" % (index + 1, len(volumes), factor, kind,
+                                                      time_left(spent, volumes[index:],
+                                                                volume_bytes, volume_rounds)),
                   file=sys.stderr, flush=True)
             started = time.time()
             child("--make", outdir, factor, kind)
-            small = not quick and np.prod(volume_dims(factor)) * np.dtype(kind).itemsize < SMALL_VOLUME_BYTES
-            volume_rounds = SMALL_VOLUME_ROUNDS if small else rounds
             measured = child("--measure", outdir, factor, kind, ",".join(map(str, images)),
-                             volume_rounds)
+                             volume_rounds(kind, factor))
             for row in measured:
                 fresh = {"fixed": [], "parc": []}
-                for _ in range(volume_rounds):
+                for _ in range(volume_rounds(kind, factor)):
                     for name in ("fixed", "parc"):
                         fresh[name].append(child("--first", outdir, factor, kind, name,
                                                  row["shade"], images[0]))
@@ -314,8 +331,9 @@ def report(outdir, quick, factors=None, images=None):
                         "outlined")["growth"]
             rows.extend(measured)
             os.remove(volume_path(outdir, factor, kind))
-            print("(%s: %.0f s)" % (label(measured[0]), time.time() - started),
-                  file=sys.stderr, flush=True)
+            seconds = time.time() - started
+            spent.append((volume_bytes(kind, factor), seconds / volume_rounds(kind, factor)))
+            print("(%s: %.0f s)" % (label(measured[0]), seconds), file=sys.stderr, flush=True)
     finally:
         shutil.rmtree(os.path.join(outdir, "volumes"), ignore_errors=True)
     with open(os.path.join(outdir, "volume-size.json"), "w") as f:
