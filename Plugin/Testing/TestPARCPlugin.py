@@ -83,10 +83,13 @@ def read_png(path):
         scalars.GetNumberOfComponents()
 
 
-def shot(name, representation, **settings):
-    display.SetRepresentationType(representation)
+def shot(name, representation, shown=None, **settings):
+    """The view's image with a display (default: the density's) in representation and
+    settings, written to OUTPUT_DIR/name-RANKS.png: its values and components."""
+    shown = display if shown is None else shown
+    shown.SetRepresentationType(representation)
     for key, value in settings.items():
-        setattr(display, key, value)
+        setattr(shown, key, value)
     Render(view)
     path = os.path.join(out_dir, "%s-%d.png" % (name, ranks))
     SaveScreenshot(path, view, ImageResolution=[SIZE, SIZE])
@@ -96,7 +99,7 @@ def shot(name, representation, **settings):
 def statistics(shown=None):
     """The PARC statistics of a display's last render (default: the density's), gathered
     from the rendering ranks: counts summed, times of the slowest rank."""
-    shown = shown or display
+    shown = display if shown is None else shown
     shown.UpdatePropertyInformation()
     return {name: shown.GetPropertyValue("PARCLast" + name)
             for name in ("SampleCount", "RayCount", "ShadowRayCount", "AccelerationMode",
@@ -341,19 +344,10 @@ Hide(sphere, view)
 cell_values = PointDatatoCellData(Input=reader)
 display.Visibility = 0
 cells_display = show_volume(cell_values, view, GREY, NEGHIP_OPACITY, "density", "CELLS")
-cells_display.SetRepresentationType("PARC Volume")
-
-
-def cells_shot(name, mode):
-    cells_display.PARCAccelerationMode = mode
-    Render(view)
-    path = os.path.join(out_dir, "%s-%d.png" % (name, ranks))
-    SaveScreenshot(path, view, ImageResolution=[SIZE, SIZE])
-    return read_png(path)[0]
-
-
-cells_none = cells_shot("parc-volume-cells-none", "None")
-cells_auto = cells_shot("parc-volume-cells-auto", "Auto")
+cells_none = shot("parc-volume-cells-none", "PARC Volume", cells_display,
+                  PARCAccelerationMode="None")[0]
+cells_auto = shot("parc-volume-cells-auto", "PARC Volume", cells_display,
+                  PARCAccelerationMode="Auto")[0]
 check(cells_auto == cells_none and cells_none != parc_none and
       lit_pixels(cells_none) > 0.5 * lit_pixels(parc_none),
       "cell scalars: the same pixels with acceleration None and Auto, an image of its own "
