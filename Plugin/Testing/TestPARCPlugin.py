@@ -246,6 +246,15 @@ def against_one_rank(name, image):
     return compare(read_png(os.path.join(one_rank_dir, name + "-1.png"))[0], image)
 
 
+def check_like_one_rank(name, image, what):
+    """Checks image against the 1-rank run's image of the same name, within the ranks'
+    tolerances."""
+    mean, outliers = against_one_rank(name, image)
+    check(mean <= RANKS_MEAN_TOLERANCE and outliers <= RANKS_OUTLIER_TOLERANCE,
+          "%s on %d ranks: mean difference to 1 rank %.3f <= %.1f grey levels, %.5f of "
+          "values more than 16 levels off" % (what, ranks, mean, RANKS_MEAN_TOLERANCE, outliers))
+
+
 if one_rank_dir:
     mean, outliers = against_one_rank("parc-volume-shaded", shaded)
     own_mean, own_outliers = against_one_rank("paraview-volume-shaded", own_shaded)
@@ -258,10 +267,7 @@ if one_rank_dir:
     check(mean <= own_mean and outliers <= own_outliers,
           "PARC's %d-rank image is as close to its 1-rank image as ParaView's Volume's" % ranks)
     # Shadow rays cross the other ranks' pieces, which each rank reads as border layers.
-    mean, outliers = against_one_rank("parc-volume-shadows", shadowed)
-    check(mean <= RANKS_MEAN_TOLERANCE and outliers <= RANKS_OUTLIER_TOLERANCE,
-          "shadows on %d ranks: mean difference to 1 rank %.3f <= %.1f grey levels, %.5f of "
-          "values more than 16 levels off" % (ranks, mean, RANKS_MEAN_TOLERANCE, outliers))
+    check_like_one_rank("parc-volume-shadows", shadowed, "shadows")
 
 # Several volumes: an opaque isosurface of the density and a faint cloud of a second copy
 # of it (its own array name, so its own transfer functions), both "PARC Volume": the view
@@ -308,11 +314,7 @@ check(surface_samples <= both < surface_samples + cloud_samples,
 check(auto_statistics["SampleCount"] < both,
       "Auto takes fewer samples (%d) for the two volumes" % auto_statistics["SampleCount"])
 if one_rank_dir:
-    mean, outliers = against_one_rank("parc-scene-none", together)
-    check(mean <= RANKS_MEAN_TOLERANCE and outliers <= RANKS_OUTLIER_TOLERANCE,
-          "two volumes on %d ranks: mean difference to 1 rank %.3f <= %.1f grey levels, "
-          "%.5f of values more than 16 levels off" % (ranks, mean, RANKS_MEAN_TOLERANCE,
-                                                     outliers))
+    check_like_one_rank("parc-scene-none", together, "two volumes")
 display.BlendMode = "Composite"
 
 # A translucent sphere beside the volume: the view peels its translucent geometry (for
@@ -353,11 +355,7 @@ check(cells_auto == cells_none and cells_none != parc_none and
       "cell scalars: the same pixels with acceleration None and Auto, an image of its own "
       "(%d lit pixels, the point scalars' %d)" % (lit_pixels(cells_none), lit_pixels(parc_none)))
 if one_rank_dir:
-    mean, outliers = against_one_rank("parc-volume-cells-none", cells_none)
-    check(mean <= RANKS_MEAN_TOLERANCE and outliers <= RANKS_OUTLIER_TOLERANCE,
-          "cell scalars on %d ranks: mean difference to 1 rank %.3f <= %.1f grey levels, "
-          "%.5f of values more than 16 levels off" % (ranks, mean, RANKS_MEAN_TOLERANCE,
-                                                     outliers))
+    check_like_one_rank("parc-volume-cells-none", cells_none, "cell scalars")
 Hide(cell_values, view)
 display.Visibility = 1
 
