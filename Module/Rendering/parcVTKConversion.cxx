@@ -366,6 +366,20 @@ std::string ConvertLabels(vtkVolumeProperty* property, const double range[2],
   return fixes;
 }
 
+vtkMTimeType LabelOpacitiesMTime(vtkVolumeProperty* property)
+{
+  vtkMTimeType time = 0;
+  for (const int label : property->GetLabelMapLabels())
+  {
+    vtkPiecewiseFunction* opacity = label > 0 ? property->GetLabelScalarOpacity(label) : nullptr;
+    if (opacity)
+    {
+      time = std::max(time, opacity->GetMTime());
+    }
+  }
+  return time;
+}
+
 ClassificationKey ClassificationKeyOf(vtkVolumeProperty* property, const CastParameters& p,
   std::uint64_t fieldVersion, int blend, const double average[2])
 {
@@ -375,13 +389,7 @@ ClassificationKey ClassificationKeyOf(vtkVolumeProperty* property, const CastPar
   key.FunctionsTime = property->GetMTime();
   key.Blend = blend;
   key.Labels = p.Labels.size();
-  for (const LabelFunctions& label : p.Labels)
-  {
-    if (vtkPiecewiseFunction* opacity = property->GetLabelScalarOpacity(label.Label))
-    {
-      key.LabelsTime = std::max(key.LabelsTime, opacity->GetMTime());
-    }
-  }
+  key.LabelsTime = p.Labels.empty() ? 0 : LabelOpacitiesMTime(property);
   std::copy_n(average, 2, key.Average);
   return key;
 }

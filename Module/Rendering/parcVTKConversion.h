@@ -131,6 +131,10 @@ std::string ConvertProperty(vtkVolumeProperty* property, const double range[2],
 std::string ConvertLabels(vtkVolumeProperty* property, const double range[2],
   const CastParameters& p, std::vector<LabelFunctions>& out, double gradientUnit = 1.0);
 
+/// The latest modification of the scalar opacities of the labels (> 0) of property's label
+/// map (vtkVolumeProperty::GetMTime does not include them); 0 without any.
+vtkMTimeType LabelOpacitiesMTime(vtkVolumeProperty* property);
+
 /// What a classification of the field of version fieldVersion is made from: property's
 /// transfer functions (and those of p's labels), the caller's VTK blend mode and its
 /// average-intensity range. Its supercell size is left 0 for the caller to set.

@@ -17,10 +17,8 @@
 #include "vtkPolyData.h"
 #include "vtkSmartPointer.h"
 #include "vtkCellData.h"
-#include "vtkPiecewiseFunction.h"
 #include "vtkVolumeProperty.h"
 
-#include <set>
 #include <string>
 
 namespace
@@ -68,13 +66,9 @@ vtkMTimeType vtkPARCPolygonModelFilter::GetMTime()
   if (this->VolumeProperty)
   {
     time = std::max(time, this->VolumeProperty->GetMTime());
-    for (const int label : this->LabelMap ? this->VolumeProperty->GetLabelMapLabels()
-                                          : std::set<int>())
+    if (this->LabelMap)
     {
-      if (vtkPiecewiseFunction* opacity = this->VolumeProperty->GetLabelScalarOpacity(label))
-      {
-        time = std::max(time, opacity->GetMTime());
-      }
+      time = std::max(time, parc::vtk::LabelOpacitiesMTime(this->VolumeProperty));
     }
   }
   return time;
