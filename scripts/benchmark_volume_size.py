@@ -273,18 +273,18 @@ def label(row):
     return "x%d %s (%s MiB)" % (row["factor"], row["kind"], format(row["bytes"] / 2**20, ".0f"))
 
 
-def time_left(spent, volumes, volume_bytes, volume_rounds):
-    """The time the volumes left will take, from a line a + b bytes fitted to the seconds a
-    round of the volumes measured took (a volume's rounds share a fixed part, the start of
-    their processes, and a part that grows with its bytes); empty before two are measured."""
+def time_left(spent, left):
+    """The time the volumes left, (bytes, rounds) each, will take, from a line a + b bytes
+    fitted to the seconds a round of the volumes measured, (bytes, seconds a round) each in
+    spent, took (a volume's rounds share a fixed part, the start of their processes, and a
+    part that grows with its bytes); empty before two are measured."""
     if len(spent) < 2:
         return ""
     x = np.array([b for b, _ in spent])
     y = np.array([t for _, t in spent])
     b = max(np.polyfit(x, y, 1)[0], 0.0) if np.ptp(x) > 0 else 0.0
-    a = max(float(np.mean(y - b * x)), 0.0)
-    seconds = sum(volume_rounds(kind, factor) * (a + b * volume_bytes(kind, factor))
-                  for kind, factor in volumes)
+    a = max(float(np.mean(y - b * x)), 0.0)  # the intercept of the line of slope b
+    seconds = sum(n * (a + b * size) for size, n in left)
     return "about %.0f min left" % (seconds / 60)
 
 
@@ -294,29 +294,25 @@ def report(outdir, quick, factors=None, images=None):
     rounds = QUICK_ROUNDS if quick else ROUNDS
     os.makedirs(os.path.join(outdir, "volumes"), exist_ok=True)
     rows = []
-    volumes = [(kind, factor) for kind, kind_factors in factors.items() for factor in kind_factors]
-
-    def volume_bytes(kind, factor):
-        return float(np.prod(volume_dims(factor))) * np.dtype(kind).itemsize
-
-    def volume_rounds(kind, factor):
-        small = not quick and volume_bytes(kind, factor) < SMALL_VOLUME_BYTES
-        return SMALL_VOLUME_ROUNDS if small else rounds
-
+    volumes = []  # (kind, factor, bytes, rounds) in order
+    for kind, kind_factors in factors.items():
+        for factor in kind_factors:
+            size = float(np.prod(volume_dims(factor))) * np.dtype(kind).itemsize
+            small = not quick and size < SMALL_VOLUME_BYTES
+            volumes.append((kind, factor, size, SMALL_VOLUME_ROUNDS if small else rounds))
     spent = []  # (bytes, seconds a round) of the volumes measured
     try:
-        for index, (kind, factor) in enumerate(volumes):
-            print("[volume size] %d/%d: x%d %s %s" % (index + 1, len(volumes), factor, kind,
-                                                      time_left(spent, volumes[index:],
-                                                                volume_bytes, volume_rounds)),
+        for index, (kind, factor, size, volume_rounds) in enumerate(volumes):
+            left = time_left(spent, [(b, n) for _, _, b, n in volumes[index:]])
+            print("[volume size] %d/%d: x%d %s %s" % (index + 1, len(volumes), factor, kind, left),
                   file=sys.stderr, flush=True)
             started = time.time()
             child("--make", outdir, factor, kind)
             measured = child("--measure", outdir, factor, kind, ",".join(map(str, images)),
-                             volume_rounds(kind, factor))
+                             volume_rounds)
             for row in measured:
                 fresh = {"fixed": [], "parc": []}
-                for _ in range(volume_rounds(kind, factor)):
+                for _ in range(volume_rounds):
                     for name in ("fixed", "parc"):
                         fresh[name].append(child("--first", outdir, factor, kind, name,
                                                  row["shade"], images[0]))
@@ -332,7 +328,7 @@ def report(outdir, quick, factors=None, images=None):
             rows.extend(measured)
             os.remove(volume_path(outdir, factor, kind))
             seconds = time.time() - started
-            spent.append((volume_bytes(kind, factor), seconds / volume_rounds(kind, factor)))
+            spent.append((size, seconds / volume_rounds))
             print("(%s: %.0f s)" % (label(measured[0]), seconds), file=sys.stderr, flush=True)
     finally:
         shutil.rmtree(os.path.join(outdir, "volumes"), ignore_errors=True)
