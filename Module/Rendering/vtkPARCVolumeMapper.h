@@ -356,8 +356,11 @@ public:
    * of that pass at the supercell size scaled by 1, 2, 4, ... (or 1/2, 1/4 when 2 is
    * slower), two frames a scale, and keeps the fastest: the paper's polygons against ray
    * steps, from the projection and casting times it measures (parc::SupercellSearch).
-   * The images are the same at every size. GetLastSupercellSize gives the size the last
-   * render used for the first input.
+   * When it settled on None only because the depth pass's projection cost more than the
+   * pass saved, it times the depth pass at 2, 4, ... times the size against None's frame
+   * and takes the pass if a size beats None (still frames only; GetAutoTrialsRemaining
+   * counts this search). The images are the same at every size. GetLastSupercellSize
+   * gives the size the last render used for the first input.
    */
   vtkSetMacro(AutoSupercellSize, vtkTypeBool);
   vtkGetMacro(AutoSupercellSize, vtkTypeBool);

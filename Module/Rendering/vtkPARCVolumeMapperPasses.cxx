@@ -135,8 +135,12 @@ void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
     }
     if (searchSizes && completed && !setUp)
     {
-      volume.Plan.Sizes.Record(
-        volume.Last.Candidate, volume.Plan.Auto.Settled, frame.Projection + frame.Casting);
+      parc::SupercellSearch& sizes = volume.Plan.Sizes;
+      const bool againstNone = sizes.IsSearchingAgainstNone();
+      sizes.Record(volume.Last.Candidate, volume.Plan.Auto.Settled,
+        frame.Projection + frame.Casting, volume.Plan.Auto.DepthMayBeatNoneAtTwiceTheSize());
+      // A search against None is Auto's last trial: its end settles the mode.
+      volume.Plan.Auto.Settled |= againstNone && sizes.IsDone();
     }
   }
 }
@@ -162,9 +166,12 @@ int vtkPARCVolumeMapper::vtkVolumeState::ChooseMode(
   // passes dear), the data, the ray function and the view: measure.
   // The eye is the frame's origin.
   state.Plan.Auto.SetView(camera.Direction, parc::Length(state.CoreVolume.Centre()));
-  if (settings.SearchSupercellSize && state.Plan.Sizes.IsSearching())
+  // The search's frames take its pass; one against None is a trial (none while interacting).
+  const parc::SupercellSearch& sizes = state.Plan.Sizes;
+  if (settings.SearchSupercellSize && sizes.IsSearching() &&
+    !(settings.Interactive && sizes.IsSearchingAgainstNone()))
   {
-    return AutoCandidates[state.Plan.Sizes.GetCandidate()]; // the search's frames take its pass
+    return AutoCandidates[sizes.GetCandidate()];
   }
   // No trial during interaction: a trial of a slow mode would break the frame budget.
   return AutoCandidates[state.Plan.Auto.Choose(

@@ -56,7 +56,9 @@ vtkIdType vtkPARCVolumeMapper::GetLastShadowCellCount()
 int vtkPARCVolumeMapper::GetAutoTrialsRemaining()
 {
   return this->Internals->Sum<int>([](const vtkVolumeState& v) {
-    return v.Last.SettledByClassification ? 0 : v.Plan.Auto.Remaining();
+    return v.Last.SettledByClassification
+      ? 0
+      : v.Plan.Auto.Remaining() + (v.Plan.Sizes.IsSearchingAgainstNone() ? 1 : 0);
   });
 }
 

@@ -267,6 +267,30 @@ TEST(AutoTrials, TriesOnlyThePassesPredictedToWin)
   EXPECT_EQ(autoTrials.Remaining(), 0);
 }
 
+TEST(AutoTrials, KnowsWhenOnlyTheDepthPassProjectionLost)
+{
+  // None took 0.19 s, the depth pass 0.15 s casting and 0.01, 0.05 or 0.2 s projection:
+  // with 0.01 the pass is the fastest; with 0.05 None is, but at twice the supercell size
+  // (a quarter of the projection) the pass may beat it; with 0.2 it may not.
+  const RayCostFit fit = ExactFit(10e-9);
+  const double samples = fit.Samples() * RayCostFit::ColumnStride;
+  for (const double projection : { 0.01, 0.05, 0.2 })
+  {
+    AutoTrials autoTrials;
+    ASSERT_EQ(autoTrials.Choose(1, 100, 200, 200), AutoTrials::Depth);
+    autoTrials.Record(1, 100, Frame(projection, 0.15, samples, fit), true);
+    autoTrials.Choose(1, 100, 200, 200);
+    EXPECT_FALSE(autoTrials.DepthMayBeatNoneAtTwiceTheSize()) << "None not measured";
+    autoTrials.Estimates[AutoTrials::None] = autoTrials.Estimates[AutoTrials::Depth];
+    autoTrials.Estimates[AutoTrials::None].Projection = 0.0;
+    autoTrials.Estimates[AutoTrials::None].Casting = 0.19;
+    autoTrials.Settled = true; // no trial to come
+    EXPECT_EQ(autoTrials.DepthMayBeatNoneAtTwiceTheSize(), projection == 0.05) << projection;
+    autoTrials.Choose(1, 100, 300, 300);
+    EXPECT_FALSE(autoTrials.DepthMayBeatNoneAtTwiceTheSize()) << "stale at another image size";
+  }
+}
+
 TEST(AutoTrials, TriesAPassPredictedFasterAndLearnsTheColourProjection)
 {
   AutoTrials autoTrials;
@@ -388,7 +412,29 @@ TEST(SupercellSearch, WaitsForAutoToSettleOnAPass)
   EXPECT_EQ(search.GetScale(), 1.0);
   search.Record(AutoTrials::Color, true, 1.0);
   EXPECT_TRUE(search.IsSearching());
+  EXPECT_FALSE(search.IsSearchingAgainstNone());
   EXPECT_EQ(search.GetCandidate(), AutoTrials::Color);
+}
+
+TEST(SupercellSearch, AgainstNoneTriesTheDepthPassAtLargerSizesOnly)
+{
+  // None took 1 s at scale 1; the depth pass takes 1.2 s at 2 and 0.8 s at 4, 0.9 at 8.
+  SupercellSearch search;
+  search.Record(AutoTrials::None, true, 1.0, true);
+  ASSERT_TRUE(search.IsSearchingAgainstNone());
+  EXPECT_EQ(search.GetCandidate(), AutoTrials::Depth);
+  const auto faster = [](double s) { return s == 4.0 ? 0.8 : s == 8.0 ? 0.9 : 1.2; };
+  EXPECT_EQ(RunSearch(search, AutoTrials::Depth, faster), (std::vector<double>{ 2, 2 }))
+    << "twice the size slower than None: smaller sizes are not tried";
+  EXPECT_TRUE(search.IsDone());
+  EXPECT_EQ(search.GetScale(), 1.0) << "back to the start";
+
+  SupercellSearch growing;
+  growing.Record(AutoTrials::None, true, 1.0, true);
+  const auto growingFaster = [](double s) { return s == 2.0 ? 0.95 : s == 4.0 ? 0.8 : 0.9; };
+  EXPECT_EQ(RunSearch(growing, AutoTrials::Depth, growingFaster),
+    (std::vector<double>{ 2, 2, 4, 4, 8, 8 }));
+  EXPECT_EQ(growing.GetScale(), 4.0);
 }
 
 TEST(SupercellSearch, GrowsWhileFasterAndKeepsTheFastest)

@@ -120,7 +120,7 @@ class TestPARCPipeline(unittest.TestCase):
         opacity.AddPoint(270, 0.5)
         order = ["DepthBuffer", "ColorBuffer", "DepthAndColorBuffer", "None"]
         used, images = [], []
-        for _ in range(10):
+        for _ in range(30):  # the trials, and a search of the depth pass against None
             window.Render()
             used.append(vtkPARCVolumeMapper.GetAccelerationModeAsString(
                 mapper.GetLastAccelerationMode()))

@@ -224,6 +224,20 @@ int AutoTrials::Remaining() const
   return remaining;
 }
 
+bool AutoTrials::DepthMayBeatNoneAtTwiceTheSize() const
+{
+  const Estimate& depth = this->Estimates[Depth];
+  const Estimate& none = this->Estimates[None];
+  // A provisional estimate of the depth pass is high (a first draw's costs): it may count.
+  const auto current = [this](const Estimate& e) {
+    return e.Measured && this->IsCurrent(e, this->LastModelVersion);
+  };
+  return current(depth) && current(none) &&
+    depth.Casting + 0.25 * depth.Projection < none.Casting + none.Projection &&
+    this->Remaining() == 0 &&
+    this->Best(this->LastModelVersion, this->LastContributing, false) == None;
+}
+
 void SupercellSearch::Begin(const int cells[3], const double size[3])
 {
   this->Reset();
@@ -248,7 +262,7 @@ void SupercellSearch::Begin(const int cells[3], const double size[3])
   this->Scale = this->BestScale = this->StartScale;
 }
 
-void SupercellSearch::Record(int candidate, bool settled, double seconds)
+void SupercellSearch::Record(int candidate, bool settled, double seconds, bool depthMayBeatNone)
 {
   if (this->State == Done)
   {
@@ -258,6 +272,16 @@ void SupercellSearch::Record(int candidate, bool settled, double seconds)
     candidate == AutoTrials::Both;
   if (this->State == Waiting)
   {
+    if (candidate == AutoTrials::None && depthMayBeatNone)
+    {
+      // None's frame is the time to beat, at the start scale; larger sizes from there.
+      this->State = Searching;
+      this->Candidate = AutoTrials::Depth;
+      this->BestSeconds = seconds;
+      this->AgainstNone = true;
+      this->Try(2.0 * this->Scale);
+      return;
+    }
     if (!settled || !pass)
     {
       return;
@@ -285,7 +309,7 @@ void SupercellSearch::Record(int candidate, bool settled, double seconds)
     return;
   }
   // Slower than the best: when the first step up was, try the other way.
-  if (this->Growing && this->BestScale == this->StartScale)
+  if (this->Growing && !this->AgainstNone && this->BestScale == this->StartScale)
   {
     this->Growing = false;
     this->Try(0.5 * this->BestScale);

@@ -132,6 +132,11 @@ struct AutoTrials
   /// Candidates not measured yet that are predicted to beat the measured ones (every
   /// candidate while none is measured; none once settled): the trials still to come.
   int Remaining() const;
+  /// Whether Auto takes None as the fastest, with no trial to come, though the depth pass
+  /// may beat it at twice the supercell size: both measured (the depth pass perhaps
+  /// provisionally) at this model, view and image size, its casting plus a quarter of its
+  /// projection (its polygons go as the supercells' faces) is less than None's frame.
+  bool DepthMayBeatNoneAtTwiceTheSize() const;
 
 private:
   /// The estimate of a measured candidate for this frame, and its projection part.
@@ -166,6 +171,11 @@ private:
 /// representative frames; a frame that set up (a new scale classifies and builds its
 /// models) is not one. Supercell sizes change the segments, never the samples, so the
 /// search changes times only. A large volume starts at a larger scale (Begin).
+/// When Auto settles on None only because the depth pass's projection cost more than it
+/// saved (AutoTrials::DepthMayBeatNoneAtTwiceTheSize), the depth pass is timed at twice
+/// the scale and more, against None's frame: a scale that beats it is kept, else the
+/// search ends at the start scale. Its end settles Auto, whose estimate of the depth pass
+/// (its projection scaled by the PC supercells) then predicts which of the two is faster.
 class SupercellSearch
 {
 public:
@@ -188,10 +198,14 @@ public:
   /// Whether a search is under way: its frames take its pass, GetCandidate().
   bool IsSearching() const { return this->State == Searching; }
   bool IsDone() const { return this->State == Done; }
+  /// Whether a search of the depth pass against None is under way: Auto's choice of a pass
+  /// is not known until it ends.
+  bool IsSearchingAgainstNone() const { return this->IsSearching() && this->AgainstNone; }
   int GetCandidate() const { return this->Candidate; }
   /// A representative frame of AutoTrials candidate `candidate` took `seconds` at
-  /// GetScale(); `settled`: Auto's trials of the modes are over.
-  void Record(int candidate, bool settled, double seconds);
+  /// GetScale(); `settled`: Auto's trials of the modes are over; `depthMayBeatNone`:
+  /// AutoTrials::DepthMayBeatNoneAtTwiceTheSize.
+  void Record(int candidate, bool settled, double seconds, bool depthMayBeatNone = false);
   /// Forgets everything: the next settled pass searches again from scale 1 (or Begin's).
   void Reset() { *this = SupercellSearch(); }
 
@@ -214,6 +228,9 @@ private:
   double ScaleSeconds = 0.0; ///< the least frame of Scale so far
   int ScaleFrames = 0;       ///< frames of Scale so far
   bool Growing = true;
+  /// A search of the depth pass against None's frame (larger sizes only: smaller ones only
+  /// cost more projection).
+  bool AgainstNone = false;
 };
 
 /// What a classification is made from, as its caller sees its inputs (the field's
