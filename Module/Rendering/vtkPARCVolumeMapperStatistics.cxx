@@ -55,10 +55,16 @@ vtkIdType vtkPARCVolumeMapper::GetLastShadowCellCount()
 }
 int vtkPARCVolumeMapper::GetAutoTrialsRemaining()
 {
-  return this->Internals->Sum<int>([](const vtkVolumeState& v) {
-    return v.Last.SettledByClassification
-      ? 0
-      : v.Plan.Auto.Remaining() + (v.Plan.Sizes.IsSearchingAgainstNone() ? 1 : 0);
+  const bool searchesSizes = this->AccelerationMode == ACCELERATION_AUTO && this->AutoSupercellSize;
+  return this->Internals->Sum<int>([searchesSizes](const vtkVolumeState& v) {
+    if (v.Last.SettledByClassification)
+    {
+      return 0;
+    }
+    const parc::AutoTrials& trials = v.Plan.Auto;
+    const bool againstNone =
+      searchesSizes && v.Plan.Sizes.SearchesAgainstNone(trials.DepthMayBeatNoneAtTwiceTheSize());
+    return trials.Remaining() + (againstNone ? 1 : 0);
   });
 }
 

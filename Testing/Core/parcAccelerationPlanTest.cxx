@@ -420,6 +420,8 @@ TEST(SupercellSearch, AgainstNoneTriesTheDepthPassAtLargerSizesOnly)
 {
   // None took 1 s at scale 1; the depth pass takes 1.2 s at 2 and 0.8 s at 4, 0.9 at 8.
   SupercellSearch search;
+  EXPECT_FALSE(search.SearchesAgainstNone(false));
+  EXPECT_TRUE(search.SearchesAgainstNone(true)) << "starts on None's next frame";
   search.Record(AutoTrials::None, true, 1.0, true);
   ASSERT_TRUE(search.IsSearchingAgainstNone());
   EXPECT_EQ(search.GetCandidate(), AutoTrials::Depth);
@@ -427,6 +429,7 @@ TEST(SupercellSearch, AgainstNoneTriesTheDepthPassAtLargerSizesOnly)
   EXPECT_EQ(RunSearch(search, AutoTrials::Depth, faster), (std::vector<double>{ 2, 2 }))
     << "twice the size slower than None: smaller sizes are not tried";
   EXPECT_TRUE(search.IsDone());
+  EXPECT_FALSE(search.SearchesAgainstNone(true)) << "once";
   EXPECT_EQ(search.GetScale(), 1.0) << "back to the start";
 
   SupercellSearch growing;

@@ -201,6 +201,12 @@ public:
   /// Whether a search of the depth pass against None is under way: Auto's choice of a pass
   /// is not known until it ends.
   bool IsSearchingAgainstNone() const { return this->IsSearching() && this->AgainstNone; }
+  /// The same, or one starts on the next representative frame of None (depthMayBeatNone:
+  /// AutoTrials::DepthMayBeatNoneAtTwiceTheSize).
+  bool SearchesAgainstNone(bool depthMayBeatNone) const
+  {
+    return this->IsSearchingAgainstNone() || (this->State == Waiting && depthMayBeatNone);
+  }
   int GetCandidate() const { return this->Candidate; }
   /// A representative frame of AutoTrials candidate `candidate` took `seconds` at
   /// GetScale(); `settled`: Auto's trials of the modes are over; `depthMayBeatNone`:
