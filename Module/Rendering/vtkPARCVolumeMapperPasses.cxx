@@ -137,10 +137,13 @@ void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
     {
       parc::SupercellSearch& sizes = volume.Plan.Sizes;
       const bool againstNone = sizes.IsSearchingAgainstNone();
-      sizes.Record(volume.Last.Candidate, volume.Plan.Auto.Settled,
-        frame.Projection + frame.Casting, volume.Plan.Auto.DepthMayBeatNoneAtTwiceTheSize());
-      // A search against None is Auto's last trial: its end settles the mode.
-      volume.Plan.Auto.Settled |= againstNone && sizes.IsDone();
+      sizes.Record(volume.Last.Candidate, volume.Plan.Auto.Settled, frame.Projection,
+        frame.Casting, volume.Plan.Auto.DepthMayBeatNoneAtTwiceTheSize());
+      double projection, casting;
+      if (againstNone && sizes.IsDone() && sizes.BeatNone(projection, casting))
+      {
+        volume.Plan.Auto.TakeSearchedDepth(projection, casting);
+      }
     }
   }
 }

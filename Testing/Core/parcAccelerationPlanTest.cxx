@@ -289,6 +289,24 @@ TEST(AutoTrials, KnowsWhenOnlyTheDepthPassProjectionLost)
     autoTrials.Choose(1, 100, 300, 300);
     EXPECT_FALSE(autoTrials.DepthMayBeatNoneAtTwiceTheSize()) << "stale at another image size";
   }
+  // A search kept a size where the pass took 0.17 s (whatever the new model's count of PC
+  // supercells): the trials go on from it, a pass next (not None at 0.19 s), and the
+  // depth pass's next frame measures it.
+  AutoTrials searched;
+  searched.Choose(1, 100, 200, 200);
+  searched.Record(1, 100, Frame(0.05, 0.15, samples, fit), true);
+  searched.Estimates[AutoTrials::None] = searched.Estimates[AutoTrials::Depth];
+  searched.Estimates[AutoTrials::None].Projection = 0.0;
+  searched.Estimates[AutoTrials::None].Casting = 0.19;
+  searched.Settled = true;
+  searched.TakeSearchedDepth(0.01, 0.16);
+  EXPECT_FALSE(searched.Settled);
+  EXPECT_GE(searched.Remaining(), 1);
+  EXPECT_NE(searched.Choose(2, 10, 200, 200), AutoTrials::None);
+  searched.Chosen = AutoTrials::Depth;
+  searched.Record(2, 10, Frame(0.012, 0.16, samples, fit), true);
+  EXPECT_FALSE(searched.Estimates[AutoTrials::Depth].Provisional);
+  EXPECT_DOUBLE_EQ(searched.Estimates[AutoTrials::Depth].Projection, 0.012);
 }
 
 TEST(AutoTrials, TriesAPassPredictedFasterAndLearnsTheColourProjection)
@@ -397,7 +415,7 @@ std::vector<double> RunSearch(SupercellSearch& search, int candidate, const Seco
   for (int frame = 0; frame < 100 && !search.IsDone(); ++frame)
   {
     scales.push_back(search.GetScale());
-    search.Record(candidate, true, seconds(search.GetScale()));
+    search.Record(candidate, true, 0.0, seconds(search.GetScale()));
   }
   return scales;
 }
@@ -406,11 +424,11 @@ std::vector<double> RunSearch(SupercellSearch& search, int candidate, const Seco
 TEST(SupercellSearch, WaitsForAutoToSettleOnAPass)
 {
   SupercellSearch search;
-  search.Record(AutoTrials::Depth, false, 1.0); // trials still under way
-  search.Record(AutoTrials::None, true, 1.0);   // settled on no pass
+  search.Record(AutoTrials::Depth, false, 0.0, 1.0); // trials still under way
+  search.Record(AutoTrials::None, true, 0.0, 1.0);   // settled on no pass
   EXPECT_FALSE(search.IsSearching());
   EXPECT_EQ(search.GetScale(), 1.0);
-  search.Record(AutoTrials::Color, true, 1.0);
+  search.Record(AutoTrials::Color, true, 0.0, 1.0);
   EXPECT_TRUE(search.IsSearching());
   EXPECT_FALSE(search.IsSearchingAgainstNone());
   EXPECT_EQ(search.GetCandidate(), AutoTrials::Color);
@@ -422,7 +440,7 @@ TEST(SupercellSearch, AgainstNoneTriesTheDepthPassAtLargerSizesOnly)
   SupercellSearch search;
   EXPECT_FALSE(search.SearchesAgainstNone(false));
   EXPECT_TRUE(search.SearchesAgainstNone(true)) << "starts on None's next frame";
-  search.Record(AutoTrials::None, true, 1.0, true);
+  search.Record(AutoTrials::None, true, 0.0, 1.0, true);
   ASSERT_TRUE(search.IsSearchingAgainstNone());
   EXPECT_EQ(search.GetCandidate(), AutoTrials::Depth);
   const auto faster = [](double s) { return s == 4.0 ? 0.8 : s == 8.0 ? 0.9 : 1.2; };
@@ -431,13 +449,17 @@ TEST(SupercellSearch, AgainstNoneTriesTheDepthPassAtLargerSizesOnly)
   EXPECT_TRUE(search.IsDone());
   EXPECT_FALSE(search.SearchesAgainstNone(true)) << "once";
   EXPECT_EQ(search.GetScale(), 1.0) << "back to the start";
+  double projection = -1.0, casting = -1.0;
+  EXPECT_FALSE(search.BeatNone(projection, casting));
 
   SupercellSearch growing;
-  growing.Record(AutoTrials::None, true, 1.0, true);
+  growing.Record(AutoTrials::None, true, 0.0, 1.0, true);
   const auto growingFaster = [](double s) { return s == 2.0 ? 0.95 : s == 4.0 ? 0.8 : 0.9; };
   EXPECT_EQ(RunSearch(growing, AutoTrials::Depth, growingFaster),
     (std::vector<double>{ 2, 2, 4, 4, 8, 8 }));
   EXPECT_EQ(growing.GetScale(), 4.0);
+  ASSERT_TRUE(growing.BeatNone(projection, casting));
+  EXPECT_EQ(projection + casting, 0.8) << "the fastest frame of the kept scale";
 }
 
 TEST(SupercellSearch, GrowsWhileFasterAndKeepsTheFastest)
@@ -476,10 +498,10 @@ TEST(SupercellSearch, KeepsTheBestWhenAutoLeavesThePassAndStartsAgainAfterAReset
   SupercellSearch search;
   for (int i = 0; i < 4; ++i) // scale 1, then 2 faster
   {
-    search.Record(AutoTrials::Depth, true, i < 2 ? 2.0 : 1.0);
+    search.Record(AutoTrials::Depth, true, 0.0, i < 2 ? 2.0 : 1.0);
   }
   EXPECT_EQ(search.GetScale(), 4.0);
-  search.Record(AutoTrials::None, true, 0.5);
+  search.Record(AutoTrials::None, true, 0.0, 0.5);
   EXPECT_TRUE(search.IsDone());
   EXPECT_EQ(search.GetScale(), 2.0);
   search.Reset();

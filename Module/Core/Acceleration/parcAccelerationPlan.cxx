@@ -262,8 +262,32 @@ void SupercellSearch::Begin(const int cells[3], const double size[3])
   this->Scale = this->BestScale = this->StartScale;
 }
 
-void SupercellSearch::Record(int candidate, bool settled, double seconds, bool depthMayBeatNone)
+void AutoTrials::TakeSearchedDepth(double projection, double casting)
 {
+  Estimate& depth = this->Estimates[Depth];
+  depth.Provisional = true;
+  depth.ModelVersion = 0;
+  depth.Contributing = 0; // the projection as measured, whatever the model
+  depth.Projection = projection;
+  depth.Casting = casting;
+  this->Settled = false;
+}
+
+bool SupercellSearch::BeatNone(double& projection, double& casting) const
+{
+  if (!this->AgainstNone || this->BestScale == this->StartScale)
+  {
+    return false;
+  }
+  projection = this->BestProjection;
+  casting = this->BestSeconds - this->BestProjection;
+  return true;
+}
+
+void SupercellSearch::Record(
+  int candidate, bool settled, double projection, double casting, bool depthMayBeatNone)
+{
+  const double seconds = projection + casting;
   if (this->State == Done)
   {
     return;
@@ -278,6 +302,7 @@ void SupercellSearch::Record(int candidate, bool settled, double seconds, bool d
       this->State = Searching;
       this->Candidate = AutoTrials::Depth;
       this->BestSeconds = seconds;
+      this->BestProjection = projection;
       this->AgainstNone = true;
       this->Try(2.0 * this->Scale);
       return;
@@ -296,7 +321,11 @@ void SupercellSearch::Record(int candidate, bool settled, double seconds, bool d
     this->Try(0.0); // Auto left the pass (a view or data change): keep the best so far
     return;
   }
-  this->ScaleSeconds = this->ScaleFrames == 0 ? seconds : std::min(this->ScaleSeconds, seconds);
+  if (this->ScaleFrames == 0 || seconds < this->ScaleSeconds)
+  {
+    this->ScaleSeconds = seconds;
+    this->ScaleProjection = projection;
+  }
   if (++this->ScaleFrames < FramesPerScale)
   {
     return;
@@ -304,6 +333,7 @@ void SupercellSearch::Record(int candidate, bool settled, double seconds, bool d
   if (this->ScaleSeconds < this->BestSeconds)
   {
     this->BestSeconds = this->ScaleSeconds;
+    this->BestProjection = this->ScaleProjection;
     this->BestScale = this->Scale;
     this->Try(this->Growing ? 2.0 * this->Scale : 0.5 * this->Scale);
     return;

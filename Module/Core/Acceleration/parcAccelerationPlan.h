@@ -137,6 +137,10 @@ struct AutoTrials
   /// provisionally) at this model, view and image size, its casting plus a quarter of its
   /// projection (its polygons go as the supercells' faces) is less than None's frame.
   bool DepthMayBeatNoneAtTwiceTheSize() const;
+  /// The depth pass's frame (projection, casting) at the supercell size a search against
+  /// None kept: the pass's estimate until its next frames measure it there (provisional,
+  /// of no model version), and the trials go on from it.
+  void TakeSearchedDepth(double projection, double casting);
 
 private:
   /// The estimate of a measured candidate for this frame, and its projection part.
@@ -174,8 +178,8 @@ private:
 /// When Auto settles on None only because the depth pass's projection cost more than it
 /// saved (AutoTrials::DepthMayBeatNoneAtTwiceTheSize), the depth pass is timed at twice
 /// the scale and more, against None's frame: a scale that beats it is kept, else the
-/// search ends at the start scale. Its end settles Auto, whose estimate of the depth pass
-/// (its projection scaled by the PC supercells) then predicts which of the two is faster.
+/// search ends at the start scale. A kept scale's fastest frame is Auto's estimate of the
+/// depth pass (AutoTrials::TakeSearchedDepth) until its frames measure it again.
 class SupercellSearch
 {
 public:
@@ -208,10 +212,13 @@ public:
     return this->IsSearchingAgainstNone() || (this->State == Waiting && depthMayBeatNone);
   }
   int GetCandidate() const { return this->Candidate; }
-  /// A representative frame of AutoTrials candidate `candidate` took `seconds` at
-  /// GetScale(); `settled`: Auto's trials of the modes are over; `depthMayBeatNone`:
-  /// AutoTrials::DepthMayBeatNoneAtTwiceTheSize.
-  void Record(int candidate, bool settled, double seconds, bool depthMayBeatNone = false);
+  /// A representative frame of AutoTrials candidate `candidate` took `projection` and
+  /// `casting` seconds at GetScale(); `settled`: Auto's trials of the modes are over;
+  /// `depthMayBeatNone`: AutoTrials::DepthMayBeatNoneAtTwiceTheSize.
+  void Record(int candidate, bool settled, double projection, double casting,
+    bool depthMayBeatNone = false);
+  /// Whether a search against None kept a larger scale, and its fastest frame's times.
+  bool BeatNone(double& projection, double& casting) const;
   /// Forgets everything: the next settled pass searches again from scale 1 (or Begin's).
   void Reset() { *this = SupercellSearch(); }
 
@@ -232,6 +239,7 @@ private:
   double LeastScale = MinScale;
   double Scale = 1.0, BestScale = 1.0, BestSeconds = 0.0;
   double ScaleSeconds = 0.0; ///< the least frame of Scale so far
+  double ScaleProjection = 0.0, BestProjection = 0.0; ///< the projection part of these
   int ScaleFrames = 0;       ///< frames of Scale so far
   bool Growing = true;
   /// A search of the depth pass against None's frame (larger sizes only: smaller ones only
