@@ -139,10 +139,11 @@ void vtkPARCVolumeMapper::vtkInternals::RecordAuto(
       const bool againstNone = sizes.IsSearchingAgainstNone();
       sizes.Record(volume.Last.Candidate, volume.Plan.Auto.Settled, frame.Projection,
         frame.Casting, volume.Plan.Auto.DepthMayBeatNoneAtTwiceTheSize());
-      double projection, casting;
-      if (againstNone && sizes.IsDone() && sizes.BeatNone(projection, casting))
+      if (againstNone && sizes.IsDone())
       {
-        volume.Plan.Auto.TakeSearchedDepth(projection, casting);
+        double projection = 0.0, casting = 0.0;
+        const bool depthWon = sizes.BeatNone(projection, casting);
+        volume.Plan.Auto.SettleAfterSearch(depthWon, projection, casting);
       }
     }
   }

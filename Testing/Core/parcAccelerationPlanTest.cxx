@@ -289,24 +289,32 @@ TEST(AutoTrials, KnowsWhenOnlyTheDepthPassProjectionLost)
     autoTrials.Choose(1, 100, 300, 300);
     EXPECT_FALSE(autoTrials.DepthMayBeatNoneAtTwiceTheSize()) << "stale at another image size";
   }
-  // A search kept a size where the pass took 0.17 s (whatever the new model's count of PC
-  // supercells): the trials go on from it, a pass next (not None at 0.19 s), and the
-  // depth pass's next frame measures it.
-  AutoTrials searched;
-  searched.Choose(1, 100, 200, 200);
-  searched.Record(1, 100, Frame(0.05, 0.15, samples, fit), true);
-  searched.Estimates[AutoTrials::None] = searched.Estimates[AutoTrials::Depth];
-  searched.Estimates[AutoTrials::None].Projection = 0.0;
-  searched.Estimates[AutoTrials::None].Casting = 0.19;
-  searched.Settled = true;
-  searched.TakeSearchedDepth(0.01, 0.16);
-  EXPECT_FALSE(searched.Settled);
-  EXPECT_GE(searched.Remaining(), 1);
-  EXPECT_NE(searched.Choose(2, 10, 200, 200), AutoTrials::None);
-  searched.Chosen = AutoTrials::Depth;
-  searched.Record(2, 10, Frame(0.012, 0.16, samples, fit), true);
-  EXPECT_FALSE(searched.Estimates[AutoTrials::Depth].Provisional);
-  EXPECT_DOUBLE_EQ(searched.Estimates[AutoTrials::Depth].Projection, 0.012);
+  // A search against None ends: with the depth pass at 0.17 s at the kept size, or none
+  // that beat None's 0.19 s. The next frame classifies anew (model 2; at the kept size 10
+  // PC supercells, at the start size 100 again): the estimate holds for it, so a slower
+  // frame after it does not turn the choice.
+  for (const bool depthWon : { true, false })
+  {
+    AutoTrials searched;
+    searched.Choose(1, 100, 200, 200);
+    searched.Record(1, 100, Frame(0.05, 0.15, samples, fit), true);
+    searched.Estimates[AutoTrials::None] = searched.Estimates[AutoTrials::Depth];
+    searched.Estimates[AutoTrials::None].Projection = 0.0;
+    searched.Estimates[AutoTrials::None].Casting = 0.19;
+    searched.SettleAfterSearch(depthWon, 0.01, 0.16);
+    EXPECT_TRUE(searched.Settled);
+    EXPECT_EQ(searched.Remaining(), 0);
+    const int expected = depthWon ? AutoTrials::Depth : AutoTrials::None;
+    const std::size_t contributing = depthWon ? 10 : 100;
+    for (int frame = 0; frame < 3; ++frame)
+    {
+      ASSERT_EQ(searched.Choose(2, contributing, 200, 200), expected) << depthWon << frame;
+      searched.Record(2, contributing, Frame(depthWon ? 0.02 : 0.0, 0.3, samples, fit), true);
+    }
+    const AutoTrials::Estimate& kept = searched.Estimates[expected];
+    EXPECT_EQ(kept.ModelVersion, 2u);
+    EXPECT_DOUBLE_EQ(kept.Projection + kept.Casting, depthWon ? 0.17 : 0.19);
+  }
 }
 
 TEST(AutoTrials, TriesAPassPredictedFasterAndLearnsTheColourProjection)

@@ -26,6 +26,14 @@ int AutoTrials::Choose(std::uint64_t modelVersion, std::size_t contributing, int
   this->Size[1] = height;
   this->LastModelVersion = modelVersion;
   this->LastContributing = contributing;
+  for (Estimate& e : this->Estimates)
+  {
+    if (e.Measured && e.ModelVersion == NextModel)
+    {
+      e.ModelVersion = modelVersion;
+      e.Contributing = contributing;
+    }
+  }
   const bool trials = allowTrials && !this->Settled;
   this->Chosen = std::max(this->Best(modelVersion, contributing, trials), 0);
   // The first frame that may try a pass but needs none ends the trials.
@@ -262,15 +270,19 @@ void SupercellSearch::Begin(const int cells[3], const double size[3])
   this->Scale = this->BestScale = this->StartScale;
 }
 
-void AutoTrials::TakeSearchedDepth(double projection, double casting)
+void AutoTrials::SettleAfterSearch(bool depthWon, double projection, double casting)
 {
-  Estimate& depth = this->Estimates[Depth];
-  depth.Provisional = true;
-  depth.ModelVersion = 0;
-  depth.Contributing = 0; // the projection as measured, whatever the model
-  depth.Projection = projection;
-  depth.Casting = casting;
-  this->Settled = false;
+  Estimate& e = this->Estimates[depthWon ? Depth : None];
+  if (depthWon)
+  {
+    e.Provisional = false;
+    e.ViewVersion = this->ViewVersion;
+    e.Rays = static_cast<double>(this->Size[0]) * this->Size[1];
+    e.Projection = projection;
+    e.Casting = casting;
+  }
+  e.ModelVersion = NextModel;
+  this->Settled = true;
 }
 
 bool SupercellSearch::BeatNone(double& projection, double& casting) const

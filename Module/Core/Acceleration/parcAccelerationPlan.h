@@ -90,6 +90,8 @@ struct AutoTrials
   /// interpolated or classified) against one that is interpolated and contributes nothing:
   /// the part of a sample's work that locating it is, about a third.
   static constexpr double EmptyCellCostShare = 0.3;
+  /// An estimate's model version that stands for the model of the next Choose.
+  static constexpr std::uint64_t NextModel = 0;
   struct Estimate
   {
     bool Measured = false;
@@ -137,10 +139,12 @@ struct AutoTrials
   /// provisionally) at this model, view and image size, its casting plus a quarter of its
   /// projection (its polygons go as the supercells' faces) is less than None's frame.
   bool DepthMayBeatNoneAtTwiceTheSize() const;
-  /// The depth pass's frame (projection, casting) at the supercell size a search against
-  /// None kept: the pass's estimate until its next frames measure it there (provisional,
-  /// of no model version), and the trials go on from it.
-  void TakeSearchedDepth(double projection, double casting);
+  /// Ends the trials after a search of the depth pass against None (SupercellSearch):
+  /// depthWon, the kept size's fastest frame (projection, casting) is the depth pass's
+  /// estimate; else None's stands. Either holds for the model of the next frame, which
+  /// classifies at the kept size, so that frames after the search replace it only when
+  /// faster, as after any trial.
+  void SettleAfterSearch(bool depthWon, double projection, double casting);
 
 private:
   /// The estimate of a measured candidate for this frame, and its projection part.
@@ -178,8 +182,7 @@ private:
 /// When Auto settles on None only because the depth pass's projection cost more than it
 /// saved (AutoTrials::DepthMayBeatNoneAtTwiceTheSize), the depth pass is timed at twice
 /// the scale and more, against None's frame: a scale that beats it is kept, else the
-/// search ends at the start scale. A kept scale's fastest frame is Auto's estimate of the
-/// depth pass (AutoTrials::TakeSearchedDepth) until its frames measure it again.
+/// search ends at the start scale; its end settles Auto (AutoTrials::SettleAfterSearch).
 class SupercellSearch
 {
 public:
