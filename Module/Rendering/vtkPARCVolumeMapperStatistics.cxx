@@ -55,7 +55,8 @@ vtkIdType vtkPARCVolumeMapper::GetLastShadowCellCount()
 }
 int vtkPARCVolumeMapper::GetAutoTrialsRemaining()
 {
-  const bool searchesSizes = this->AccelerationMode == ACCELERATION_AUTO && this->AutoSupercellSize;
+  const bool searchesSizes =
+    this->AccelerationMode == ACCELERATION_AUTO && this->AutoSupercellSize;
   return this->Internals->Sum<int>([searchesSizes](const vtkVolumeState& v) {
     if (v.Last.SettledByClassification)
     {

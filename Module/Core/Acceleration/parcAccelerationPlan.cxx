@@ -241,9 +241,25 @@ bool AutoTrials::DepthMayBeatNoneAtTwiceTheSize() const
     return e.Measured && this->IsCurrent(e, this->LastModelVersion);
   };
   return current(depth) && current(none) &&
-    depth.Casting + 0.25 * depth.Projection < none.Casting + none.Projection &&
+    depth.Casting + ProjectionShareAtTwiceTheSize * depth.Projection <
+      none.Casting + none.Projection &&
     this->Remaining() == 0 &&
     this->Best(this->LastModelVersion, this->LastContributing, false) == None;
+}
+
+void AutoTrials::SettleAfterSearch(bool depthWon, double projection, double casting)
+{
+  Estimate& e = this->Estimates[depthWon ? Depth : None];
+  if (depthWon)
+  {
+    e.Provisional = false;
+    e.ViewVersion = this->ViewVersion;
+    e.Rays = static_cast<double>(this->Size[0]) * this->Size[1];
+    e.Projection = projection;
+    e.Casting = casting;
+  }
+  e.ModelVersion = NextModel;
+  this->Settled = true;
 }
 
 void SupercellSearch::Begin(const int cells[3], const double size[3])
@@ -268,21 +284,6 @@ void SupercellSearch::Begin(const int cells[3], const double size[3])
     this->LeastScale *= 2.0;
   }
   this->Scale = this->BestScale = this->StartScale;
-}
-
-void AutoTrials::SettleAfterSearch(bool depthWon, double projection, double casting)
-{
-  Estimate& e = this->Estimates[depthWon ? Depth : None];
-  if (depthWon)
-  {
-    e.Provisional = false;
-    e.ViewVersion = this->ViewVersion;
-    e.Rays = static_cast<double>(this->Size[0]) * this->Size[1];
-    e.Projection = projection;
-    e.Casting = casting;
-  }
-  e.ModelVersion = NextModel;
-  this->Settled = true;
 }
 
 bool SupercellSearch::BeatNone(double& projection, double& casting) const

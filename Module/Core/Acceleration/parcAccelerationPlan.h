@@ -90,6 +90,9 @@ struct AutoTrials
   /// interpolated or classified) against one that is interpolated and contributes nothing:
   /// the part of a sample's work that locating it is, about a third.
   static constexpr double EmptyCellCostShare = 0.3;
+  /// The share of a pass's projection left at twice the supercell size: its polygons go
+  /// as the supercells' faces.
+  static constexpr double ProjectionShareAtTwiceTheSize = 0.25;
   /// An estimate's model version that stands for the model of the next Choose.
   static constexpr std::uint64_t NextModel = 0;
   struct Estimate
@@ -136,8 +139,8 @@ struct AutoTrials
   int Remaining() const;
   /// Whether Auto takes None as the fastest, with no trial to come, though the depth pass
   /// may beat it at twice the supercell size: both measured (the depth pass perhaps
-  /// provisionally) at this model, view and image size, its casting plus a quarter of its
-  /// projection (its polygons go as the supercells' faces) is less than None's frame.
+  /// provisionally) at this model, view and image size, its casting plus
+  /// ProjectionShareAtTwiceTheSize of its projection is less than None's frame.
   bool DepthMayBeatNoneAtTwiceTheSize() const;
   /// Ends the trials after a search of the depth pass against None (SupercellSearch):
   /// depthWon, the kept size's fastest frame (projection, casting) is the depth pass's
