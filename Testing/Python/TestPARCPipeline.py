@@ -109,8 +109,9 @@ class TestPARCPipeline(unittest.TestCase):
 
     def test_auto_settles(self):
         """Auto starts with depth (a frame that also builds or uploads a model is tried
-        again), tries in turn only the passes its measurements predict faster, then keeps
-        one; every frame gives the same float image; neither a transfer-function edit nor a
+        again), tries in turn only the passes its measurements predict faster (and, when it
+        would keep none only for the depth pass's projection, that pass at larger
+        supercells), then keeps one; every frame gives the same float image; neither a transfer-function edit nor a
         new ray image size brings new trials."""
         mapper, window = make_scene()
         volume = window.GetRenderers().GetFirstRenderer().GetVolumes().GetItemAsObject(0)
