@@ -55,8 +55,7 @@ vtkIdType vtkPARCVolumeMapper::GetLastShadowCellCount()
 }
 int vtkPARCVolumeMapper::GetAutoTrialsRemaining()
 {
-  const bool searchesSizes =
-    this->AccelerationMode == ACCELERATION_AUTO && this->AutoSupercellSize;
+  const bool searchesSizes = this->Internals->Settings.SearchSupercellSize; // the last render's
   return this->Internals->Sum<int>([searchesSizes](const vtkVolumeState& v) {
     if (v.Last.SettledByClassification)
     {

@@ -111,8 +111,8 @@ class TestPARCPipeline(unittest.TestCase):
         """Auto starts with depth (a frame that also builds or uploads a model is tried
         again), tries in turn only the passes its measurements predict faster (and, when it
         would keep none only for the depth pass's projection, that pass at larger
-        supercells), then keeps one; every frame gives the same float image; neither a transfer-function edit nor a
-        new ray image size brings new trials."""
+        supercells), then keeps one; every frame gives the same float image; neither a
+        transfer-function edit nor a new ray image size brings new trials."""
         mapper, window = make_scene()
         volume = window.GetRenderers().GetFirstRenderer().GetVolumes().GetItemAsObject(0)
         opacity = volume.GetProperty().GetScalarOpacity()
