@@ -1068,6 +1068,46 @@ TEST(ContributingCells, ExactCodesGiveTheNodesWhosePackedRangeMeetsTheRule)
   EXPECT_GT(widened, 0) << "the packed ranges are wider than the nodes'";
 }
 
+// A ray reads the map of contributing cells only where it crosses cells that cannot
+// contribute: along +x through a slab of 16 empty cells (32 samples), then 36 contributing
+// cells, a pocket of 2 empty cells (4 samples), and contributing cells again, it leaves out
+// the slab's samples after the block that found it, and not the pocket's, which the map
+// turned off by the cells before it does not see: fewer than the 36 samples in empty cells,
+// and the same bits and counts as a ray that interpolates every sample.
+TEST(ContributingCells, RaysReadTheMapOnlyWhereTheyCrossEmptyCells)
+{
+  const int dims[3] = { 96, 6, 6 };
+  const parc::ScalarField field = parctest::MakeField(dims, [](int i, int, int) {
+    const bool slab = i >= 8 && i <= 24, pocket = i >= 60 && i <= 62;
+    return slab || pocket ? 0.f : 200.f;
+  });
+  CastParameters p;
+  p.Blend = BlendMode::Composite;
+  parctest::SetOpacity(p, { 0.0, 100.0, 200.0 }, { 0.0, 0.0, 0.01 });
+  p.SampleDistance = 0.5;
+  p.TerminationOpacity = 1.0;
+  const ClassifiedCells cells(field, p);
+  parc::RayCaster plain, skipping;
+  ASSERT_TRUE(plain.Prepare({ &field, &p }));
+  ASSERT_TRUE(skipping.Prepare({ &field, &p }));
+  skipping.SetContributingCells(&cells.Map);
+  const parc::WholeRaySource whole;
+  std::vector<parc::Segment> segments;
+  std::vector<parc::LatticeRange> ranges;
+  const parc::Ray ray = parctest::MakeRay(Vec3(-3.0, 2.5, 2.5), Vec3(1.0, 0.0, 0.0));
+  float a[4], b[4];
+  parc::CastStatistics sa, sb;
+  const auto query = parc::RayQuery::Anywhere(ray);
+  plain.CastRay(query, whole, segments, ranges, a, sa);
+  skipping.CastRay(query, whole, segments, ranges, b, sb);
+  ASSERT_EQ(std::memcmp(a, b, sizeof(a)), 0);
+  ASSERT_EQ(sa.Samples, sb.Samples);
+  ASSERT_EQ(sa.ContributingSamples, sb.ContributingSamples);
+  EXPECT_GT(a[3], 0.f) << "the ray composites the contributing cells";
+  EXPECT_GE(sb.EmptyCellSamples, 12u) << "the slab's samples after its first block";
+  EXPECT_LE(sb.EmptyCellSamples, 24u) << "neither the slab's first block nor the pocket";
+}
+
 // Composite rays leave out the samples of cells that cannot contribute and give the same
 // bits and counts as rays that interpolate every sample; other ray functions, and nearest
 // interpolation, do not use the bits.

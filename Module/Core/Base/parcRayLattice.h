@@ -83,6 +83,11 @@ struct LatticeBlock
   float Fractions[3][Size];
   std::ptrdiff_t Offset[Size];
 
+  /// The lanes computed for count samples: whole groups of Lanes.
+  static constexpr int GroupedCount(int count) { return Lanes * ((count + Lanes - 1) / Lanes); }
+  /// The same lanes as bits 1 << j.
+  static constexpr unsigned GroupLanes(int count) { return (1u << GroupedCount(count)) - 1u; }
+
 #if defined(__SSE2__)
   /// The cells of lanes j .. j + 3 along axis, in a register.
   PARC_HOT_INLINE __m128i CellLanes(int axis, int j) const

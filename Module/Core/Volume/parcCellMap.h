@@ -61,6 +61,11 @@ public:
   {
     return this->Contributes[this->NodeCodes[this->Node(i, j, k)]] != 0;
   }
+  /// Whether the cell of lane j of block may contribute.
+  bool MayContribute(const LatticeBlock& block, int j) const
+  {
+    return this->MayContribute(block.Cell[0][j], block.Cell[1][j], block.Cell[2][j]);
+  }
   /// The lanes j < n (a multiple of LatticeBlock::Lanes) of block whose cell may
   /// contribute, as bits 1 << j.
   PARC_HOT_INLINE unsigned Lanes(const LatticeBlock& block, int n) const

@@ -127,8 +127,8 @@ public:
   PARC_HOT_INLINE unsigned SampleLattice(const RayLattice& lattice, double dt, long k0,
     int count, Interpolation mode, LatticeBlock& block, const CellMap* cells = nullptr) const
   {
-    const int n = LatticeBlock::Lanes * ((count + LatticeBlock::Lanes - 1) / LatticeBlock::Lanes);
-    const unsigned all = (1u << n) - 1u;
+    const int n = LatticeBlock::GroupedCount(count);
+    const unsigned all = LatticeBlock::GroupLanes(count);
     if (mode == Interpolation::Nearest)
     {
       for (int j = 0; j < n; ++j)
