@@ -521,17 +521,34 @@ TEST(SupercellSearch, ALargeVolumeStartsAtALargerScale)
 {
   const double size[3] = { 4, 4, 4 };
   SupercellSearch search;
-  const int small[3] = { 180, 216, 180 }; // 109,350 supercells of 4
+  const int small[3] = { 60, 60, 60 }; // 3,375 supercells of 4
   search.Begin(small, size);
   EXPECT_EQ(search.GetScale(), 1.0);
-  const int large[3] = { 720, 864, 720 }; // 7.0 million of 4, 875,000 of 8
-  search.Begin(large, size);
+  const int head[3] = { 180, 216, 180 }; // 109,350 of 4, 13,669 of 8
+  search.Begin(head, size);
   EXPECT_EQ(search.GetScale(), 2.0);
   // Twice that scale slower: the search tries half of it next, not half of 1.
   const auto seconds = [](double s) { return s == 2.0 ? 1.0 : 2.0; };
   const std::vector<double> scales = RunSearch(search, AutoTrials::Depth, seconds);
   EXPECT_EQ(scales, (std::vector<double>{ 2, 2, 4, 4, 1, 1 }));
   EXPECT_EQ(search.GetScale(), 2.0);
+  const int large[3] = { 720, 864, 720 }; // 109,350 of 16, 13,669 of 32
+  search.Begin(large, size);
+  EXPECT_EQ(search.GetScale(), SupercellSearch::MaxScale);
+}
+
+// Started at the largest scale, the search has nothing above it and goes down at once.
+TEST(SupercellSearch, FromTheLargestScaleTheSearchGoesDown)
+{
+  const double size[3] = { 4, 4, 4 };
+  const int large[3] = { 720, 864, 720 };
+  SupercellSearch search;
+  search.Begin(large, size);
+  const auto seconds = [](double s) { return 1.0 + std::abs(std::log2(s / 2.0)); };
+  const std::vector<double> scales = RunSearch(search, AutoTrials::Depth, seconds);
+  EXPECT_EQ(scales, (std::vector<double>{ 8, 8, 4, 4, 2, 2, 1, 1 }));
+  EXPECT_EQ(search.GetScale(), 2.0);
+  EXPECT_TRUE(search.IsDone());
 }
 
 TEST(SupercellSearch, NeverTriesMoreSupercellsThanTheGridAllows)
@@ -543,7 +560,7 @@ TEST(SupercellSearch, NeverTriesMoreSupercellsThanTheGridAllows)
   SupercellSearch search;
   search.Begin(large, size);
   const std::vector<double> scales = RunSearch(search, AutoTrials::Depth, [](double s) { return s; });
-  EXPECT_EQ(scales, (std::vector<double>{ 2, 2, 4, 4, 1, 1, 0.5, 0.5 }));
+  EXPECT_EQ(scales, (std::vector<double>{ 8, 8, 4, 4, 2, 2, 1, 1, 0.5, 0.5 }));
   EXPECT_EQ(search.GetScale(), 0.5);
   EXPECT_TRUE(search.IsDone());
 }

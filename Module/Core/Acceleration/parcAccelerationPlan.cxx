@@ -364,6 +364,13 @@ void SupercellSearch::Record(
 void SupercellSearch::Try(double scale)
 {
   this->ScaleFrames = 0;
+  if (scale > MaxScale && this->Growing && !this->AgainstNone &&
+    this->BestScale == this->StartScale)
+  {
+    // Nothing above the start: the other way.
+    this->Growing = false;
+    scale = 0.5 * this->BestScale;
+  }
   if (scale < this->LeastScale || scale > MaxScale)
   {
     this->State = Done;

@@ -193,14 +193,15 @@ public:
   static constexpr double MaxScale = 8.0;  ///< and up to 32
   static constexpr int FramesPerScale = 2;
   /// The most supercells of the scale a search starts from.
-  static constexpr double StartSupercells = 1 << 20;
+  static constexpr double StartSupercells = 1 << 16;
 
   /// Starts from the smallest power-of-two scale (at least 1) at which a field of `cells`
   /// cells per axis holds at most StartSupercells supercells of `size` times the scale
   /// (and never tries one that makes more than SupercellGrid::MaxSupercells):
-  /// the first passes of a large volume then draw tens of thousands of polygons, not
-  /// millions (each costs pass time and, on a software GL, about a kilobyte of the
-  /// driver's memory).
+  /// the first passes then draw thousands of polygons, not millions (the first frame's
+  /// pass costs more the more there are, and each polygon, on a software GL, about a
+  /// kilobyte of the driver's memory), and the search finds smaller supercells where
+  /// they pay.
   void Begin(const int cells[3], const double size[3]);
 
   /// The scale of the supercell size for the next frame.
