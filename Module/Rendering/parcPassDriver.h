@@ -55,6 +55,8 @@ public:
   const std::string& GetLastError() const { return this->View->GetLastError(); }
   /// Models uploaded so far by the view's passes (statistics).
   std::uint64_t GetUploadCount() const { return this->View->GetUploadCount(); }
+  /// Passes whose model or target the view freed so far (ReleaseUnused).
+  std::uint64_t GetReleaseCount() const { return this->View->GetReleaseCount(); }
   /// Seconds the view's passes spent setting up (see vtkPARCRasterizer::GetSetUpTime).
   double GetSetUpTime() const { return this->View->GetSetUpTime(); }
   /// Bytes of the GL models and targets of the view's and the lights' passes.

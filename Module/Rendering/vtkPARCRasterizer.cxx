@@ -612,6 +612,7 @@ void vtkPARCRasterizer::ReleasePass(vtkRenderWindow* window, Pass pass)
   in.Context->MakeCurrent();
   in.Models[slot].Release();
   in.Targets[slot].Release();
+  ++this->ReleaseCount;
 }
 
 double vtkPARCRasterizer::GetSetUpTime() const
@@ -796,5 +797,6 @@ void vtkPARCRasterizer::PrintSelf(ostream& os, vtkIndent indent)
 {
   this->Superclass::PrintSelf(os, indent);
   os << indent << "UploadCount: " << this->UploadCount << "\n";
+  os << indent << "ReleaseCount: " << this->ReleaseCount << "\n";
   os << indent << "LastError: " << this->LastError << "\n";
 }

@@ -104,6 +104,8 @@ public:
   const std::string& GetLastError() const { return this->LastError; }
   /// How many times a model was uploaded to the GPU (statistics).
   std::uint64_t GetUploadCount() const { return this->UploadCount; }
+  /// How many times ReleasePass freed a pass's model or render target (statistics).
+  std::uint64_t GetReleaseCount() const { return this->ReleaseCount; }
   /// Seconds the passes spent so far setting up rather than drawing: making the context
   /// current, compiling the programs, uploading models, allocating render targets.
   double GetSetUpTime() const;
@@ -133,6 +135,7 @@ private:
   std::unique_ptr<vtkInternals> Internals;
   std::string LastError;
   std::uint64_t UploadCount = 0;
+  std::uint64_t ReleaseCount = 0;
 };
 
 #endif

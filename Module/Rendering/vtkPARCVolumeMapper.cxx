@@ -442,7 +442,7 @@ void vtkPARCVolumeMapper::vtkInternals::ReturnFreedMemory()
       const parc::AccelerationPlan& plan = volume->Plan;
       work += plan.GetPyramidBuilds() + plan.GetClassifications() + plan.GetModelBuilds() +
         plan.GetCellClassifications() + volume->Passes.GetUploadCount() +
-        volume->Scalars.Version;
+        volume->Passes.GetReleaseCount() + volume->Scalars.Version;
     }
   }
   if (work != this->SetUpWorkReturned)

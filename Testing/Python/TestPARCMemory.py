@@ -74,5 +74,22 @@ class TestPARCMemory(unittest.TestCase):
         mapper.ReleaseGraphicsResources(self.window)
         self.assertLess(mapper.GetMemorySize(), first, "the GL part goes with the resources")
 
+    @unittest.skipUnless(sys.platform.startswith("linux"), "reads /proc/self/statm")
+    def test_released_pass_leaves_the_process(self):
+        """The colour pass's model, targets and buffers, freed when the mapper no longer draws
+        it, leave the process too: the allocator's free pages go back to the system."""
+        mapper = self.show(vtkPARCVolumeMapper.ACCELERATION_COLOR_BUFFER)
+        for _ in range(2):
+            self.window.Render()
+        held, before = mapper.GetMemorySize(), resident()
+        mapper.SetAccelerationModeToNone()
+        for _ in range(2):
+            self.window.Render()
+        freed, returned = held - mapper.GetMemorySize(), before - resident()
+        print("freed %d bytes, resident size %d bytes less" % (freed, returned))
+        self.assertGreater(freed, 1 << 20, "the colour pass held its targets and model")
+        self.assertGreater(returned, freed // 2, "what was freed left the process")
+
+
 if __name__ == "__main__":
     unittest.main()
