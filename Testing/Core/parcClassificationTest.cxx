@@ -1068,6 +1068,35 @@ TEST(ContributingCells, ExactCodesGiveTheNodesWhosePackedRangeMeetsTheRule)
   EXPECT_GT(widened, 0) << "the packed ranges are wider than the nodes'";
 }
 
+namespace
+{
+/// The same rays cast by a caster that interpolates every sample and by one that reads
+/// the map of contributing cells.
+struct PlainAndSkipping
+{
+  parc::RayCaster Plain, Skipping;
+  const parc::WholeRaySource Whole;
+  std::vector<parc::Segment> Segments;
+  std::vector<parc::LatticeRange> Ranges;
+
+  PlainAndSkipping(
+    const parc::ScalarField& field, const CastParameters& p, const ClassifiedCells& cells)
+  {
+    EXPECT_TRUE(this->Plain.Prepare({ &field, &p }));
+    EXPECT_TRUE(this->Skipping.Prepare({ &field, &p }));
+    this->Skipping.SetContributingCells(&cells.Map);
+  }
+  /// The ray's colours (plain a, skipping b) and counts (sa, sb).
+  void Cast(const parc::Ray& ray, float a[4], float b[4], parc::CastStatistics& sa,
+    parc::CastStatistics& sb)
+  {
+    const auto query = parc::RayQuery::Anywhere(ray);
+    this->Plain.CastRay(query, this->Whole, this->Segments, this->Ranges, a, sa);
+    this->Skipping.CastRay(query, this->Whole, this->Segments, this->Ranges, b, sb);
+  }
+};
+}
+
 // A ray reads the map of contributing cells only where it crosses cells that cannot
 // contribute: along +x through a slab of 16 empty cells (32 samples), then 36 contributing
 // cells, a pocket of 2 empty cells (4 samples), and contributing cells again, it leaves out
@@ -1087,19 +1116,10 @@ TEST(ContributingCells, RaysReadTheMapOnlyWhereTheyCrossEmptyCells)
   p.SampleDistance = 0.5;
   p.TerminationOpacity = 1.0;
   const ClassifiedCells cells(field, p);
-  parc::RayCaster plain, skipping;
-  ASSERT_TRUE(plain.Prepare({ &field, &p }));
-  ASSERT_TRUE(skipping.Prepare({ &field, &p }));
-  skipping.SetContributingCells(&cells.Map);
-  const parc::WholeRaySource whole;
-  std::vector<parc::Segment> segments;
-  std::vector<parc::LatticeRange> ranges;
-  const parc::Ray ray = parctest::MakeRay(Vec3(-3.0, 2.5, 2.5), Vec3(1.0, 0.0, 0.0));
+  PlainAndSkipping casters(field, p, cells);
   float a[4], b[4];
   parc::CastStatistics sa, sb;
-  const auto query = parc::RayQuery::Anywhere(ray);
-  plain.CastRay(query, whole, segments, ranges, a, sa);
-  skipping.CastRay(query, whole, segments, ranges, b, sb);
+  casters.Cast(parctest::MakeRay(Vec3(-3.0, 2.5, 2.5), Vec3(1.0, 0.0, 0.0)), a, b, sa, sb);
   ASSERT_EQ(std::memcmp(a, b, sizeof(a)), 0);
   ASSERT_EQ(sa.Samples, sb.Samples);
   ASSERT_EQ(sa.ContributingSamples, sb.ContributingSamples);
@@ -1131,23 +1151,14 @@ TEST(ContributingCells, CastingLeavesOutEmptyCellsExactly)
         p.Lights.push_back(parc::Light());
         p.Lights.back().Position = { 0, 0, 1 };
         const ClassifiedCells cells(field, p);
-        parc::RayCaster plain, skipping;
-        ASSERT_TRUE(plain.Prepare({ &field, &p }));
-        ASSERT_TRUE(skipping.Prepare({ &field, &p }));
-        skipping.SetContributingCells(&cells.Map);
-        const parc::WholeRaySource whole;
-        std::vector<parc::Segment> segments;
-        std::vector<parc::LatticeRange> ranges;
+        PlainAndSkipping casters(field, p, cells);
         for (int r = 0; r < 30; ++r)
         {
           const Vec3 target(7 + 7 * u(rng), 5.5 + 5 * u(rng), 8 + 8 * u(rng));
           const Vec3 dir(u(rng), u(rng), u(rng));
-          const parc::Ray ray = parctest::MakeRay(target - 30.0 * parc::Normalized(dir), dir);
           float a[4], b[4];
           parc::CastStatistics sa, sb;
-          const auto query = parc::RayQuery::Anywhere(ray);
-          plain.CastRay(query, whole, segments, ranges, a, sa);
-          skipping.CastRay(query, whole, segments, ranges, b, sb);
+          casters.Cast(parctest::MakeRay(target - 30.0 * parc::Normalized(dir), dir), a, b, sa, sb);
           ASSERT_EQ(std::memcmp(a, b, sizeof(a)), 0) << "blend " << static_cast<int>(blend);
           ASSERT_EQ(sa.Samples, sb.Samples);
           ASSERT_EQ(sa.ContributingSamples, sb.ContributingSamples);
