@@ -353,8 +353,8 @@ public:
   /**
    * In ACCELERATION_AUTO, whether Auto also chooses the supercell size (default on, off
    * once SetSupercellSize is called): it starts from the supercell size scaled by the
-   * least of 1, 2, 4 and 8 at which the volume holds at most 65,536 supercells (a 7 MB
-   * head starts at 8 cells, a 434 MB volume at 32), and once it has settled on a pass it
+   * least of 1, 2, 4 and 8 at which the volume holds at most 65,536 supercells, else 8 (a
+   * 7 MB head starts at 8 cells, a 434 MB volume at 32), and once it has settled on a pass it
    * times the frames of that pass at that scale, then twice it, four times, ... (or half,
    * a quarter, ... when twice is slower or out of range), two frames a scale, and keeps
    * the fastest: the paper's polygons against ray steps, from the projection and casting

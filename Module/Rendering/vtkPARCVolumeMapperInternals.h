@@ -353,10 +353,9 @@ public:
   /// searchSizes (Auto chooses the size, and the frame is not interactive).
   void RecordAuto(const std::vector<SetUpWork>& before, bool completed, bool searchSizes);
   /// After a render that set anything up (pyramids, classifications, models, uploads:
-  /// their temporaries freed) or freed a pass Auto no longer draws, gives the allocator's
-  /// free pages back to the system. glibc
-  /// keeps them otherwise, and a process rendering a large volume would hold 1.5-2 times
-  /// what the mapper holds.
+  /// their temporaries freed) or freed a pass it no longer draws, gives the allocator's
+  /// free pages back to the system. glibc keeps them otherwise, and a process rendering a
+  /// large volume would hold 1.5-2 times what the mapper holds.
   void ReturnFreedMemory();
   std::uint64_t SetUpWorkReturned = 0; ///< the set-up work counted at the last return
 

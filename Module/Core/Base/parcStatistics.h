@@ -80,10 +80,11 @@ struct CastStatistics
   std::uint64_t Segments = 0;            ///< segments handed to the caster
   std::uint64_t Samples = 0;             ///< scalar samples taken on the lattice
   std::uint64_t ContributingSamples = 0; ///< non-zero opacity, or isosurface crossings
-  /// Samples the caster found in cells that cannot contribute (RayCaster::SetContributingCells):
-  /// never interpolated when their whole group of lanes lies in such cells. A ray reads the
-  /// map only where it crosses such cells (RayContext::ReadsMap), so samples in such cells
-  /// among cells that may contribute are sampled and not counted here.
+  /// Samples the caster found in cells that cannot contribute
+  /// (RayCaster::SetContributingCells): never interpolated when their whole group of lanes
+  /// lies in such cells. A ray reads the map only where it crosses such cells
+  /// (RayContext::ReadsMap): samples in such cells among cells that may contribute are
+  /// interpolated and not counted here.
   std::uint64_t EmptyCellSamples = 0;
   std::uint64_t GradientEvaluations = 0;
   /// Cells whose voxel differences were loaded for gradients (the rest were cached).

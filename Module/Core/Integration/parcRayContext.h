@@ -69,7 +69,7 @@ struct RayContext
   /// Whether the next block reads Cells. Reading it costs about a tenth of a sample and
   /// pays only where the ray crosses cells that cannot contribute: a block whose lanes all
   /// lie in cells that may turns it off, a block whose last lane lies in one that cannot
-  /// turns it on. Either way the samples that count are the same.
+  /// turns it on. Either way the same samples and bits.
   bool ReadsMap = true;
   /// The corrected opacities of the block's lanes (RenderConstants::OpacityByValue; 0 for
   /// the lanes LaneOpacities was not given).
