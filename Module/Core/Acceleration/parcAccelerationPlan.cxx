@@ -351,7 +351,11 @@ void SupercellSearch::Record(
     this->Try(this->Growing ? 2.0 * this->Scale : 0.5 * this->Scale);
     return;
   }
-  // Slower than the best: when the first step up was, try the other way.
+  this->TurnOrEnd(); // slower than the best
+}
+
+void SupercellSearch::TurnOrEnd()
+{
   if (this->Growing && !this->AgainstNone && this->BestScale == this->StartScale)
   {
     this->Growing = false;
@@ -364,12 +368,10 @@ void SupercellSearch::Record(
 void SupercellSearch::Try(double scale)
 {
   this->ScaleFrames = 0;
-  if (scale > MaxScale && this->Growing && !this->AgainstNone &&
-    this->BestScale == this->StartScale)
+  if (scale > MaxScale && this->Growing)
   {
-    // Nothing above the start: the other way.
-    this->Growing = false;
-    scale = 0.5 * this->BestScale;
+    this->TurnOrEnd(); // nothing above
+    return;
   }
   if (scale < this->LeastScale || scale > MaxScale)
   {

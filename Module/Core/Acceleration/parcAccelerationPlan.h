@@ -230,8 +230,12 @@ public:
   void Reset() { *this = SupercellSearch(); }
 
 private:
-  /// Moves on to scale, or ends the search at the best scale when it is out of range.
+  /// Moves on to scale, or ends the search at the best scale when it is out of range
+  /// (TurnOrEnd above the largest).
   void Try(double scale);
+  /// After the first step up from the start, slower or out of range, tries the other way
+  /// (not against None: larger sizes only); else ends the search at the best scale.
+  void TurnOrEnd();
 
   enum
   {
