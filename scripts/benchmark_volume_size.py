@@ -12,7 +12,8 @@ off) at half a voxel, in a perspective view. For each volume and shading:
   its pass and supercell size), then rounds interleaved (A B A B): minimum and median
   (3 rounds, 7 below 128 MiB);
 - the frame after a transfer-function edit against a warm frame (this mapper);
-- this mapper's casting cost (ns per sample per thread), mode and supercell size;
+- this mapper's casting cost in warm frames (ns per thread: per sample, per sample taken,
+  per contributing sample; medians) against the smallest volume's, mode and supercell size;
 - memory, in the first frame's processes: the resident size 5 frames add (after the
   window's GL context is made) against the volume's bytes, beside GetMemorySize (medians
   over the rounds); and once more in a process whose window has drawn the volume's outline
@@ -45,6 +46,8 @@ ROUNDS, QUICK_ROUNDS = 3, 2
 # Volumes below this size render in well under a second, where the shared machine's noise
 # moves a ratio most: more rounds there (not in a quick run).
 SMALL_VOLUME_BYTES, SMALL_VOLUME_ROUNDS = 2**27, 7
+# The casting costs of a warm frame (sample_costs), in the tables' order.
+SAMPLE_COSTS = ("ns_per_sample", "ns_per_sample_taken", "ns_per_contributing_sample")
 WARM_UP_FRAMES = 20  # enough for Auto's trials and its supercell search
 MEMORY_FRAMES = 5
 CT_SCALE, CT_OFFSET = 12, -1024  # int16 = 12 * uint8 - 1024: a CT-like range
@@ -158,6 +161,17 @@ def supercell_size(mapper):
     return tuple(mapper.GetSupercellSize())
 
 
+def sample_costs(mapper):
+    """The casting time of the mapper's last frame, in ns per thread: per sample; per sample
+    taken (the samples less those the map of contributing cells left out, whose share
+    changes with the mode and supercell size); per contributing sample."""
+    ns = 1e9 * mapper.GetLastCastingTime() * mapper.GetLastNumberOfThreads()
+    samples = mapper.GetLastSampleCount()
+    return {"ns_per_sample": ns / max(samples, 1),
+            "ns_per_sample_taken": ns / max(samples - mapper.GetLastEmptyCellSampleCount(), 1),
+            "ns_per_contributing_sample": ns / max(mapper.GetLastContributingSampleCount(), 1)}
+
+
 def warm_up(window, mapper):
     """Renders this mapper until Auto's mode and supercell size have held for 6 frames."""
     if not mapper.IsA("vtkPARCVolumeMapper"):
@@ -194,17 +208,19 @@ def measure(outdir, factor, kind, images, rounds):
                 volume.SetMapper(mappers[name])
                 warm_up(window, mappers[name])
             times = {"parc": [], "fixed": []}
+            costs = []  # this mapper's casting cost of each warm frame
             for _ in range(rounds):
                 for name in ("parc", "fixed"):
                     volume.SetMapper(mappers[name])
                     times[name].append(timed(window))
+                costs.append(sample_costs(parc))
             for name, t in times.items():
                 row["warm_%s_%d" % (name, pixels)] = min_median(t)
             if pixels == images[0]:
                 row["mode"] = parc.GetAccelerationModeAsString(parc.GetLastAccelerationMode())
                 row["supercell"] = supercell_size(parc)
-                row["ns_per_sample"] = (1e9 * parc.GetLastCastingTime() * parc.GetLastNumberOfThreads()
-                                        / max(parc.GetLastSampleCount(), 1))
+                for key in costs[0]:
+                    row[key] = min_median([c[key] for c in costs])[1]
         window.SetSize(images[0], images[0])
         volume.SetMapper(parc)
         warm_up(window, parc)
@@ -360,18 +376,26 @@ def tables(rows, images):
             cells += ["%.3f (%.3f), %.3f (%.3f)" % (f[1], f[0], c[1], c[0]), "%.2fx" % (f[1] / c[1])]
         print("| %s | %s | %s |" % (label(r), "shaded" if r["shade"] else "unshaded", " | ".join(cells)))
     print()
-    print("| volume | shading | PARC mode, supercell size | PARC ns per sample per thread "
+    print("| volume | shading | PARC mode, supercell size | PARC ns per thread: a sample, a "
+          "sample taken, a contributing sample | the same against the smallest volume's "
           "| edit frame / warm frame | resident growth: FixedPoint, PARC (x volume) "
           "| the same after a drawn outline: FixedPoint, PARC (x volume) "
           "| PARC GetMemorySize (x volume) | GetMemorySize / growth |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|")
+    smallest = {}  # the first row of each type and shading (the volumes in growing order)
+    for r in rows:
+        smallest.setdefault((r["kind"], r["shade"]), r)
     for r in rows:
         v = r["bytes"]
         outlined = ("%.2f, %.2f" % (r["growth_outlined_fixed"] / v, r["growth_outlined_parc"] / v)
                     if "growth_outlined_parc" in r else "-")  # not in runs saved before it
-        print("| %s | %s | %s, %s | %.1f | %.2fx | %.2f, %.2f | %s | %.2f | %.2f |" % (
+        keys = [k for k in SAMPLE_COSTS if k in r]  # runs saved before had one cost
+        base = smallest[(r["kind"], r["shade"])]
+        print("| %s | %s | %s, %s | %s | %s | %.2fx | %.2f, %.2f | %s | %.2f | %.2f |" % (
             label(r), "shaded" if r["shade"] else "unshaded", r["mode"],
-            "x".join(format(s, "g") for s in r["supercell"]), r["ns_per_sample"], r["edit"],
+            "x".join(format(s, "g") for s in r["supercell"]),
+            ", ".join("%.1f" % r[k] for k in keys),
+            ", ".join("%.2fx" % (r[k] / base[k]) for k in keys), r["edit"],
             r["growth_fixed"] / v, r["growth_parc"] / v, outlined, r["memory_size_parc"] / v,
             r["memory_size_parc"] / max(r["growth_parc"], 1)))
     print()
