@@ -219,7 +219,7 @@ def measure(outdir, factor, kind, images, rounds):
             if pixels == images[0]:
                 row["mode"] = parc.GetAccelerationModeAsString(parc.GetLastAccelerationMode())
                 row["supercell"] = supercell_size(parc)
-                for key in costs[0]:
+                for key in SAMPLE_COSTS:
                     row[key] = min_median([c[key] for c in costs])[1]
         window.SetSize(images[0], images[0])
         volume.SetMapper(parc)
