@@ -1078,12 +1078,13 @@ struct PlainAndSkipping
   const parc::WholeRaySource Whole;
   std::vector<parc::Segment> Segments;
   std::vector<parc::LatticeRange> Ranges;
+  bool Prepared = false; ///< both casters prepared (a test asserts it before casting)
 
   PlainAndSkipping(
     const parc::ScalarField& field, const CastParameters& p, const ClassifiedCells& cells)
   {
-    EXPECT_TRUE(this->Plain.Prepare({ &field, &p }));
-    EXPECT_TRUE(this->Skipping.Prepare({ &field, &p }));
+    this->Prepared =
+      this->Plain.Prepare({ &field, &p }) && this->Skipping.Prepare({ &field, &p });
     this->Skipping.SetContributingCells(&cells.Map);
   }
   /// The ray's colours (plain a, skipping b) and counts (sa, sb).
@@ -1117,6 +1118,7 @@ TEST(ContributingCells, RaysReadTheMapOnlyWhereTheyCrossEmptyCells)
   p.TerminationOpacity = 1.0;
   const ClassifiedCells cells(field, p);
   PlainAndSkipping casters(field, p, cells);
+  ASSERT_TRUE(casters.Prepared);
   float a[4], b[4];
   parc::CastStatistics sa, sb;
   casters.Cast(parctest::MakeRay(Vec3(-3.0, 2.5, 2.5), Vec3(1.0, 0.0, 0.0)), a, b, sa, sb);
@@ -1152,6 +1154,7 @@ TEST(ContributingCells, CastingLeavesOutEmptyCellsExactly)
         p.Lights.back().Position = { 0, 0, 1 };
         const ClassifiedCells cells(field, p);
         PlainAndSkipping casters(field, p, cells);
+        ASSERT_TRUE(casters.Prepared);
         for (int r = 0; r < 30; ++r)
         {
           const Vec3 target(7 + 7 * u(rng), 5.5 + 5 * u(rng), 8 + 8 * u(rng));
