@@ -422,11 +422,12 @@ struct RayContext
       nonZero |= static_cast<unsigned>(a[j] != 0.f) << j;
     }
 #endif
-    this->CorrectOpacities(a);
+    this->CorrectOpacities(a, nonZero);
     return lanes & nonZero;
   }
-  /// CorrectOpacity for every lane of a.
-  PARC_HOT_INLINE void CorrectOpacities(float* a) const
+  /// CorrectOpacity for every lane of a (the lanes of a group of four without a bit in
+  /// nonZero are 0 and stay 0).
+  PARC_HOT_INLINE void CorrectOpacities(float* a, unsigned nonZero) const
   {
     const float exponent = this->K.OpacityExponent;
     if (exponent == 1.f)
@@ -434,28 +435,25 @@ struct RayContext
       return;
     }
 #if defined(__SSE2__)
-    if (const int roots = this->K.OpacityRoots)
+    const int roots = this->K.OpacityRoots;
+    const __m128 one = _mm_set1_ps(1.f), e = _mm_set1_ps(exponent);
+    for (int j = 0; j < LatticeBlock::Size; j += 4)
     {
-      const __m128 one = _mm_set1_ps(1.f);
-      for (int j = 0; j < LatticeBlock::Size; j += 4)
+      if (!((nonZero >> j) & 0xFu))
       {
-        const __m128 v = _mm_loadu_ps(a + j);
-        __m128 root = _mm_sub_ps(one, v);
-        for (int r = 0; r < roots; ++r)
-        {
-          root = _mm_sqrt_ps(root);
-        }
-        const __m128 opaque = _mm_cmpge_ps(v, one);
-        const __m128 corrected = _mm_sub_ps(one, root);
-        _mm_storeu_ps(a + j, Select(opaque, v, corrected));
+        continue;
       }
-      return;
+      const __m128 v = _mm_loadu_ps(a + j);
+      _mm_storeu_ps(a + j, Select(_mm_cmpge_ps(v, one), v,
+        _mm_sub_ps(one, Transparency(_mm_sub_ps(one, v), roots, e))));
     }
-#endif
+#else
+    (void)nonZero;
     for (int j = 0; j < LatticeBlock::Size; ++j)
     {
       a[j] = this->CorrectOpacity(a[j]);
     }
+#endif
   }
   /// The lanes j < n of the block whose opacity may be non-zero, as bits 1 << j: the
   /// others are 0 without evaluating the opacity function.
@@ -575,17 +573,31 @@ struct RayContext
     {
       return a;
     }
-    float transparency = 1.f - a;
-    if (const int roots = this->K.OpacityRoots) // see RenderConstants::OpacityRoots
-    {
-      for (int r = 0; r < roots; ++r)
-      {
-        transparency = std::sqrt(transparency);
-      }
-      return 1.f - transparency;
-    }
-    return 1.f - std::pow(transparency, exponent);
+#if defined(__SSE2__)
+    // The lanes' computation, so that a sample gets the bits it gets in a block.
+    return 1.f -
+      _mm_cvtss_f32(Transparency(_mm_set1_ps(1.f - a), this->K.OpacityRoots, _mm_set1_ps(exponent)));
+#else
+    return 1.f - std::pow(1.f - a, exponent);
+#endif
   }
+#if defined(__SSE2__)
+  /// The corrected transparency t^exponent of transparencies t in (0, 1]: by `roots`
+  /// square roots when the exponent is 2^-roots (see RenderConstants::OpacityRoots), else
+  /// by PowOfUnitInterval.
+  static PARC_HOT_INLINE __m128 Transparency(__m128 t, int roots, __m128 exponent)
+  {
+    if (roots == 0)
+    {
+      return PowOfUnitInterval(t, exponent);
+    }
+    for (int r = 0; r < roots; ++r)
+    {
+      t = _mm_sqrt_ps(t);
+    }
+    return t;
+  }
+#endif
   float SpecularTerm(float ndh) const;
   Vec3 WorldPosition(double t) const { return this->WorldRay.Origin + t * this->WorldRay.Direction; }
   /// The factor of the terms of light `index` at world point x, for a light whose shadow
