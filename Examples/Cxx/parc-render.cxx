@@ -67,6 +67,7 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
   --shade               shade with the headlight (on by default for iso)
   --shading-model M     exact (default) or quantized (quantized voxel normals, as
                         vtkFixedPointVolumeRayCastMapper shades)
+  --specular-power P    the volume property's specular power (default VTK's, 10)
   --size N | WxH        image size in pixels (default 300)
   --azimuth DEG --elevation DEG --zoom F     camera around the volume (after a reset)
   --camera-position X,Y,Z [--focal-point X,Y,Z] [--view-up X,Y,Z]   explicit camera
@@ -170,6 +171,7 @@ struct Options
   int Width = 300, Height = 300, Repeat = 1;
   std::vector<std::array<double, 3>> Lights;
   bool Shadows = false, Floor = false, QuantizedNormals = false;
+  double SpecularPower = -1.0; ///< below 0: the property's default
 };
 
 [[noreturn]] void Fail(const std::string& message)
@@ -237,6 +239,7 @@ Options Parse(int argc, char* argv[])
     else if (a == "--iso") { o.Iso = ToNumber(a, value()); o.HasIso = true; }
     else if (a == "--shade") { o.Shade = true; }
     else if (a == "--shading-model") { o.QuantizedNormals = ShadingModelNamed(value()); }
+    else if (a == "--specular-power") { o.SpecularPower = ToNumber(a, value()); }
     else if (a == "--azimuth") { o.Azimuth = ToNumber(a, value()); }
     else if (a == "--elevation") { o.Elevation = ToNumber(a, value()); }
     else if (a == "--zoom") { o.Zoom = ToNumber(a, value()); }
@@ -509,6 +512,10 @@ int main(int argc, char* argv[])
   }
   vtkNew<vtkVolumeProperty> property;
   SetUpProperty(image, blend, o.TF, o.HasIso, o.Iso, o.Shade, property);
+  if (o.SpecularPower >= 0.0)
+  {
+    property->SetSpecularPower(o.SpecularPower);
+  }
 
   vtkNew<vtkPARCVolumeMapper> mapper;
   mapper->SetInputData(image);

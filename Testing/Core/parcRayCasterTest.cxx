@@ -435,6 +435,36 @@ TEST(RayCaster, HighlightsTakeTheLightsSpecularColour)
   }
 }
 
+// Whole and fractional specular powers on an opaque composited plane lit at 45 degrees
+// (n.l = cos 45, n.h = cos 22.5): the lanes shaded together (a directional light) and one
+// by one (a positional light far along the same direction) take std::pow's power to float
+// precision.
+TEST(RayCaster, SpecularPowersShadeLikeThePower)
+{
+  ShadedPlane scene;
+  CastParameters& p = scene.P;
+  p.Blend = BlendMode::Composite;
+  p.SampleDistance = 0.25; // the first sample on the face x = 10
+  const double diagonal = std::sqrt(0.5);
+  const double ndh = std::cos(std::acos(-1.0) / 8.0);
+  parc::Light& light = p.Lights[0];
+  for (const double power : { 10.0, 7.5, 12.25, 0.5 })
+  {
+    p.SpecularPower = power;
+    const double expected = 0.2 + 0.3 * diagonal + 0.1 * std::pow(ndh, power);
+    for (const bool positional : { false, true })
+    {
+      light.Positional = positional;
+      const double far = positional ? 1e4 : 100.0;
+      light.Position = { 10.0 + far * diagonal, 2.0 + far * diagonal, 2.0 };
+      light.FocalPoint = { 10.0, 2.0, 2.0 };
+      const auto r = CastOne(scene.Field, p, scene.Ray);
+      EXPECT_EQ(r.Stats.ContributingSamples, 1u);
+      EXPECT_NEAR(r.RGBA[0], expected, 2e-6) << "power " << power << ", positional " << positional;
+    }
+  }
+}
+
 TEST(RayCaster, GradientOpacityUsesTheWorldGradient)
 {
   const int n[3] = { 11, 5, 5 };

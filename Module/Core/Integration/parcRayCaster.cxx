@@ -223,6 +223,7 @@ bool RayCaster::Prepare(const Volume& volume)
     (power >= 0.0 && power <= MaxIntegerSpecularPower && power == std::floor(power))
     ? static_cast<int>(power)
     : -1;
+  k.SpecularPower = static_cast<float>(power);
   k.DirectionalLights.clear();
   k.PositionalLights.clear();
   for (std::size_t i = 0; i < parameters->Lights.size(); ++i)
@@ -272,7 +273,6 @@ bool RayCaster::Prepare(const Volume& volume)
     });
   k.ShadeLanesTogether = parameters->Shade && !k.QuantizedNormals &&
     k.PositionalLights.empty() && k.DirectionalLights.size() <= MaxHoistedLights &&
-    k.IntegerSpecularPower >= 0 &&
     std::none_of(k.DirectionalLights.begin(), k.DirectionalLights.end(),
       [](const DirectionalLight& light) { return light.ShadowAttenuation > 0.f; });
   return true;

@@ -297,7 +297,7 @@ public:
     /// ... and so does its colour: the composite function works in stages over a block.
     bool ColorByValue = false;
     /// Shaded samples are shaded several at a time: exact shading, directional lights only
-    /// (at most 8, none casting shadows) and a whole specular power.
+    /// (at most 8, none casting shadows).
     bool ShadeLanesTogether = false;
     /// The opacity function is 0 at every sample value s <= ZeroOpacityBelow or s >=
     /// ZeroOpacityAbove (floats on the safe side of its first and last non-zero value).
@@ -311,6 +311,7 @@ public:
     alignas(16) float GradientToWorldColumns[3][4] = { { 1.f, 0.f, 0.f, 0.f },
       { 0.f, 1.f, 0.f, 0.f }, { 0.f, 0.f, 1.f, 0.f } };
     int IntegerSpecularPower = -1; ///< SpecularPower when it is a small whole number
+    float SpecularPower = 10.f;    ///< CastParameters::SpecularPower
     /// Whether every directional light's diffuse and specular factors are the same for
     /// red, green and blue (white lights): one channel's shading serves all three.
     bool GreyLights = false;

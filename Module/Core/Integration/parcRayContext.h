@@ -598,7 +598,12 @@ struct RayContext
     return t;
   }
 #endif
+  /// ndh^SpecularPower for 0 < ndh (about 1 at most).
   float SpecularTerm(float ndh) const;
+#if defined(__SSE2__)
+  /// SpecularTerm lane by lane (any value for lanes whose ndh is not above 0).
+  PARC_HOT_INLINE __m128 SpecularLanes(__m128 ndh) const;
+#endif
   Vec3 WorldPosition(double t) const { return this->WorldRay.Origin + t * this->WorldRay.Direction; }
   /// The factor of the terms of light `index` at world point x, for a light whose shadow
   /// attenuation is attenuation: 1 - attenuation (1 - T), T the transmittance from x

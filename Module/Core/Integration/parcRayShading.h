@@ -131,10 +131,39 @@ PARC_HOT_INLINE void SetColourSums(EventCompositor& out, __m128 sums)
 template <class View>
 inline float RayContext<View>::SpecularTerm(float ndh) const
 {
-  return this->K.IntegerSpecularPower >= 0
-    ? IntegerPower(ndh, this->K.IntegerSpecularPower)
-    : std::pow(ndh, static_cast<float>(this->P.SpecularPower));
+  if (this->K.IntegerSpecularPower >= 0)
+  {
+    return IntegerPower(ndh, this->K.IntegerSpecularPower);
+  }
+#if defined(__SSE2__)
+  // ShadeLanes' power, so that a sample gets the bits it gets in a batch.
+  return _mm_cvtss_f32(PowOfUnitInterval(_mm_set1_ps(ndh), _mm_set1_ps(this->K.SpecularPower)));
+#else
+  return std::pow(ndh, this->K.SpecularPower);
+#endif
 }
+
+#if defined(__SSE2__)
+template <class View>
+PARC_HOT_INLINE __m128 RayContext<View>::SpecularLanes(__m128 ndh) const
+{
+  if (this->K.IntegerSpecularPower < 0)
+  {
+    return PowOfUnitInterval(ndh, _mm_set1_ps(this->K.SpecularPower));
+  }
+  // IntegerPower, lane by lane.
+  __m128 power = _mm_set1_ps(1.f), x = ndh;
+  for (int e = this->K.IntegerSpecularPower; e > 0; e >>= 1)
+  {
+    if (e & 1)
+    {
+      power = _mm_mul_ps(power, x);
+    }
+    x = _mm_mul_ps(x, x);
+  }
+  return power;
+}
+#endif
 
 template <class View>
 PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f& g) const
@@ -216,16 +245,7 @@ void RayContext<View>::ShadeLanes()
       const __m128 ndl = dot(nx, ny, nz, light.ToLight);
       const __m128 lit = _mm_and_ps(valid, _mm_cmpgt_ps(ndl, zero));
       const __m128 ndh = dot(nx, ny, nz, this->HalfVectors[l]);
-      // IntegerPower, lane by lane.
-      __m128 power = one, x = ndh;
-      for (int e = this->K.IntegerSpecularPower; e > 0; e >>= 1)
-      {
-        if (e & 1)
-        {
-          power = _mm_mul_ps(power, x);
-        }
-        x = _mm_mul_ps(x, x);
-      }
+      const __m128 power = this->SpecularLanes(ndh);
       const __m128 spec = _mm_and_ps(_mm_cmpgt_ps(ndh, zero), power);
       for (int c = 0; c < channels; ++c)
       {
