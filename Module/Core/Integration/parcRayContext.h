@@ -575,8 +575,9 @@ struct RayContext
     }
 #if defined(__SSE2__)
     // The lanes' computation, so that a sample gets the bits it gets in a block.
+    const __m128 transparency = _mm_set1_ps(1.f - a);
     return 1.f -
-      _mm_cvtss_f32(Transparency(_mm_set1_ps(1.f - a), this->K.OpacityRoots, _mm_set1_ps(exponent)));
+      _mm_cvtss_f32(Transparency(transparency, this->K.OpacityRoots, _mm_set1_ps(exponent)));
 #else
     return 1.f - std::pow(1.f - a, exponent);
 #endif

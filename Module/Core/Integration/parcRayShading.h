@@ -137,7 +137,8 @@ inline float RayContext<View>::SpecularTerm(float ndh) const
   }
 #if defined(__SSE2__)
   // ShadeLanes' power, so that a sample gets the bits it gets in a batch.
-  return _mm_cvtss_f32(PowOfUnitInterval(_mm_set1_ps(ndh), _mm_set1_ps(this->K.SpecularPower)));
+  const __m128 power = _mm_set1_ps(this->K.SpecularPower);
+  return _mm_cvtss_f32(PowOfUnitInterval(_mm_set1_ps(ndh), power));
 #else
   return std::pow(ndh, this->K.SpecularPower);
 #endif
