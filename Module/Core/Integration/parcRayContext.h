@@ -445,7 +445,7 @@ struct RayContext
       }
       const __m128 v = _mm_loadu_ps(a + j);
       _mm_storeu_ps(a + j, Select(_mm_cmpge_ps(v, one), v,
-        _mm_sub_ps(one, Transparency(_mm_sub_ps(one, v), roots, e))));
+        _mm_sub_ps(one, CorrectedTransparency(_mm_sub_ps(one, v), roots, e))));
     }
 #else
     (void)nonZero;
@@ -575,9 +575,8 @@ struct RayContext
     }
 #if defined(__SSE2__)
     // The lanes' computation, so that a sample gets the bits it gets in a block.
-    const __m128 transparency = _mm_set1_ps(1.f - a);
-    return 1.f -
-      _mm_cvtss_f32(Transparency(transparency, this->K.OpacityRoots, _mm_set1_ps(exponent)));
+    const __m128 transparency = _mm_set1_ps(1.f - a), e = _mm_set1_ps(exponent);
+    return 1.f - _mm_cvtss_f32(CorrectedTransparency(transparency, this->K.OpacityRoots, e));
 #else
     return 1.f - std::pow(1.f - a, exponent);
 #endif
@@ -586,7 +585,7 @@ struct RayContext
   /// The corrected transparency t^exponent of transparencies t in (0, 1]: by `roots`
   /// square roots when the exponent is 2^-roots (see RenderConstants::OpacityRoots), else
   /// by PowOfUnitInterval.
-  static PARC_HOT_INLINE __m128 Transparency(__m128 t, int roots, __m128 exponent)
+  static PARC_HOT_INLINE __m128 CorrectedTransparency(__m128 t, int roots, __m128 exponent)
   {
     if (roots == 0)
     {
