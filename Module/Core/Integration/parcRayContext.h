@@ -426,7 +426,7 @@ struct RayContext
     return lanes & nonZero;
   }
   /// CorrectOpacity for every lane of a (the lanes of a group of four without a bit in
-  /// nonZero are 0 and stay 0).
+  /// nonZero are 0 and stay 0: a power leaves them out).
   PARC_HOT_INLINE void CorrectOpacities(float* a, unsigned nonZero) const
   {
     const float exponent = this->K.OpacityExponent;
@@ -439,7 +439,7 @@ struct RayContext
     const __m128 one = _mm_set1_ps(1.f), e = _mm_set1_ps(exponent);
     for (int j = 0; j < LatticeBlock::Size; j += 4)
     {
-      if (!((nonZero >> j) & 0xFu))
+      if (roots == 0 && !((nonZero >> j) & 0xFu)) // a power costs more than the branch
       {
         continue;
       }
