@@ -128,22 +128,6 @@ PARC_HOT_INLINE void SetColourSums(EventCompositor& out, __m128 sums)
 }
 #endif
 
-template <class View>
-inline float RayContext<View>::SpecularTerm(float ndh) const
-{
-  if (this->K.IntegerSpecularPower >= 0)
-  {
-    return IntegerPower(ndh, this->K.IntegerSpecularPower);
-  }
-#if defined(__SSE2__)
-  // ShadeLanes' power, so that a sample gets the bits it gets in a batch.
-  const __m128 power = _mm_set1_ps(this->K.SpecularPower);
-  return _mm_cvtss_f32(PowOfUnitInterval(_mm_set1_ps(ndh), power));
-#else
-  return std::pow(ndh, this->K.SpecularPower);
-#endif
-}
-
 #if defined(__SSE2__)
 template <class View>
 PARC_HOT_INLINE __m128 RayContext<View>::SpecularLanes(__m128 ndh) const
@@ -165,6 +149,18 @@ PARC_HOT_INLINE __m128 RayContext<View>::SpecularLanes(__m128 ndh) const
   return power;
 }
 #endif
+
+template <class View>
+inline float RayContext<View>::SpecularTerm(float ndh) const
+{
+#if defined(__SSE2__)
+  // SpecularLanes on one lane, so that a sample gets the bits it gets in a batch.
+  return _mm_cvtss_f32(this->SpecularLanes(_mm_set1_ps(ndh)));
+#else
+  return this->K.IntegerSpecularPower >= 0 ? IntegerPower(ndh, this->K.IntegerSpecularPower)
+                                           : std::pow(ndh, this->K.SpecularPower);
+#endif
+}
 
 template <class View>
 PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f& g) const
