@@ -13,7 +13,9 @@ off) at half a voxel, in a perspective view. For each volume and shading:
   (3 rounds, 7 below 128 MiB);
 - the frame after a transfer-function edit against a warm frame (this mapper);
 - this mapper's casting cost in warm frames (ns per thread: per sample, per sample taken,
-  per contributing sample; medians) against the smallest volume's, mode and supercell size;
+  per contributing sample; medians), mode and supercell size; and against the head's own
+  size of the same type (x1), whose warm frames, in the same process and window, take
+  turns with the volume's at the first image size: the median of the rounds' ratios;
 - memory, in the first frame's processes: the resident size 5 frames add (after the
   window's GL context is made) against the volume's bytes, beside GetMemorySize (medians
   over the rounds); and once more in a process whose window has drawn the volume's outline
@@ -195,6 +197,9 @@ def min_median(values):
 def measure(outdir, factor, kind, images, rounds):
     """Times of one volume (both shadings): a JSON list of rows on stdout."""
     image, values = load_image(outdir, factor, kind)
+    # The head at its own size (the same world bounds and view), for casting costs measured
+    # in turns with the volume's.
+    reference = load_image(outdir, 1, kind) if factor != 1 else None
     rows = []
     for shade in (0, 1):
         window, volume, opacity = scene(image, kind, shade, images[0])
@@ -204,16 +209,26 @@ def measure(outdir, factor, kind, images, rounds):
         parc = mappers["parc"]
         for pixels in images:
             window.SetSize(pixels, pixels)
-            for name in ("parc", "fixed"):
+            compared = reference is not None and pixels == images[0]
+            if compared:
+                mappers["reference"] = new_mapper("parc", reference[0])
+            for name in mappers:
                 volume.SetMapper(mappers[name])
                 warm_up(window, mappers[name])
             times = {"parc": [], "fixed": []}
             costs = []  # this mapper's casting cost of each warm frame
+            against = []  # its ratio to the reference's in the same round
             for _ in range(rounds):
                 for name in ("parc", "fixed"):
                     volume.SetMapper(mappers[name])
                     times[name].append(timed(window))
                 costs.append(sample_costs(parc))
+                if compared:
+                    volume.SetMapper(mappers["reference"])
+                    window.Render()
+                    own = sample_costs(mappers["reference"])
+                    against.append({k: costs[-1][k] / own[k] for k in SAMPLE_COSTS})
+            mappers.pop("reference", None)
             for name, t in times.items():
                 row["warm_%s_%d" % (name, pixels)] = min_median(t)
             if pixels == images[0]:
@@ -221,6 +236,8 @@ def measure(outdir, factor, kind, images, rounds):
                 row["supercell"] = supercell_size(parc)
                 for key in SAMPLE_COSTS:
                     row[key] = min_median([c[key] for c in costs])[1]
+                    if against:
+                        row["against_head_" + key] = min_median([a[key] for a in against])[1]
         window.SetSize(images[0], images[0])
         volume.SetMapper(parc)
         warm_up(window, parc)
@@ -323,7 +340,9 @@ def report(outdir, quick, factors=None, images=None):
             print("[volume size] %d/%d: x%d %s %s" % (index + 1, len(volumes), factor, kind, left),
                   file=sys.stderr, flush=True)
             started = time.time()
-            child("--make", outdir, factor, kind)
+            for made in {1, factor}:
+                if not os.path.exists(volume_path(outdir, made, kind)):
+                    child("--make", outdir, made, kind)
             measured = child("--measure", outdir, factor, kind, ",".join(map(str, images)),
                              volume_rounds)
             for row in measured:
@@ -342,7 +361,8 @@ def report(outdir, quick, factors=None, images=None):
                         "--first", outdir, factor, kind, name, row["shade"], images[0],
                         "outlined")["growth"]
             rows.extend(measured)
-            os.remove(volume_path(outdir, factor, kind))
+            if factor != 1:  # the head's own size is every volume's reference
+                os.remove(volume_path(outdir, factor, kind))
             seconds = time.time() - started
             spent.append((size, seconds / volume_rounds))
             print("(%s: %.0f s)" % (label(measured[0]), seconds), file=sys.stderr, flush=True)
@@ -377,7 +397,8 @@ def tables(rows, images):
         print("| %s | %s | %s |" % (label(r), "shaded" if r["shade"] else "unshaded", " | ".join(cells)))
     print()
     print("| volume | shading | PARC mode, supercell size | PARC ns per thread: a sample, a "
-          "sample taken, a contributing sample | the same against the smallest volume's "
+          "sample taken, a contributing sample | the same against the head's (x1) in turns "
+          "(* the smallest volume's, another process) "
           "| edit frame / warm frame | resident growth: FixedPoint, PARC (x volume) "
           "| the same after a drawn outline: FixedPoint, PARC (x volume) "
           "| PARC GetMemorySize (x volume) | GetMemorySize / growth |")
@@ -391,11 +412,15 @@ def tables(rows, images):
                     if "growth_outlined_parc" in r else "-")  # not in runs saved before it
         keys = [k for k in SAMPLE_COSTS if k in r]  # runs saved before had one cost
         base = smallest[(r["kind"], r["shade"])]
+        if "against_head_" + keys[0] in r:
+            against = ", ".join("%.2fx" % r["against_head_" + k] for k in keys)
+        else:  # the smallest volume itself, and runs saved before the turns
+            against = ", ".join("%.2fx" % (r[k] / base[k]) for k in keys) + " *"
         print("| %s | %s | %s, %s | %s | %s | %.2fx | %.2f, %.2f | %s | %.2f | %.2f |" % (
             label(r), "shaded" if r["shade"] else "unshaded", r["mode"],
             "x".join(format(s, "g") for s in r["supercell"]),
             ", ".join("%.1f" % r[k] for k in keys),
-            ", ".join("%.2fx" % (r[k] / base[k]) for k in keys), r["edit"],
+            against, r["edit"],
             r["growth_fixed"] / v, r["growth_parc"] / v, outlined, r["memory_size_parc"] / v,
             r["memory_size_parc"] / max(r["growth_parc"], 1)))
     print()
