@@ -205,7 +205,7 @@ def measure(outdir, factor, kind, images, rounds):
         window, volume, opacity = scene(image, kind, shade, images[0])
         row = {"factor": factor, "kind": kind, "shade": shade, "voxels": int(values.size),
                "bytes": int(values.nbytes)}
-        mappers = {name: new_mapper(name, image) for name in ("fixed", "parc")}
+        mappers = {name: new_mapper(name, image) for name in ("parc", "fixed")}
         parc = mappers["parc"]
         for pixels in images:
             window.SetSize(pixels, pixels)
