@@ -120,6 +120,7 @@ const char* Usage = R"(usage: parc-render VOLUME [options]
                         AutoAdjustSampleDistances, rotations interleaved (A B A B): frame
                         times against the budget 1/RATE (table)
   --memory              print the bytes the mapper holds, per structure
+  --bricked-copy        the mapper samples a copy of the scalars in bricks (BrickedCopy)
   --second VOLUME       a second volume in the same image (vtkPARCMultiVolume, input
                         port 1), its centre on the first's; with --second-blend MODE
                         (default composite), --second-tf NAME|FILE and --second-iso VALUE
@@ -170,7 +171,7 @@ struct Options
   std::string Playback, ScreenshotPrefix = "parc-view";
   int Width = 300, Height = 300, Repeat = 1;
   std::vector<std::array<double, 3>> Lights;
-  bool Shadows = false, Floor = false, QuantizedNormals = false;
+  bool Shadows = false, Floor = false, QuantizedNormals = false, BrickedCopy = false;
   double SpecularPower = -1.0; ///< below 0: the property's default
 };
 
@@ -271,6 +272,7 @@ Options Parse(int argc, char* argv[])
     else if (a == "--threads") { o.Threads = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--multisamples") { o.MultiSamples = static_cast<int>(ToNumber(a, value())); }
     else if (a == "--memory") { o.Memory = true; }
+    else if (a == "--bricked-copy") { o.BrickedCopy = true; }
     else if (a == "--supercell") { ToTriple(a, value(), o.Supercell); o.SupercellSet = true; }
     else if (a == "--compare-acceleration") { o.CompareAcceleration = true; }
     else if (a == "--sweep-supercells")
@@ -526,6 +528,7 @@ int main(int argc, char* argv[])
     mapper->SetSupercellSize(o.Supercell);
   }
   mapper->SetSampleDistance(o.SampleDistance);
+  mapper->SetBrickedCopy(o.BrickedCopy);
   mapper->SetShadingModel(o.QuantizedNormals ? vtkPARCVolumeMapper::SHADING_QUANTIZED_NORMALS
                                              : vtkPARCVolumeMapper::SHADING_EXACT);
   if (o.ImageSampleDistance > 0.0)

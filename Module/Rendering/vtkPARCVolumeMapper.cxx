@@ -599,6 +599,7 @@ void vtkPARCVolumeMapper::PrintSelf(ostream& os, vtkIndent indent)
   os << indent << "SampleDistance: " << this->SampleDistance << "\n";
   os << indent << "ImageSampleDistance: " << this->ImageSampleDistance << "\n";
   os << indent << "TerminationOpacity: " << this->TerminationOpacity << "\n";
+  os << indent << "BrickedCopy: " << this->BrickedCopy << "\n";
   os << indent << "IntermixIntersectingGeometry: " << this->IntermixIntersectingGeometry << "\n";
   os << indent << "LastSampleDistance: " << this->LastSampleDistance << "\n";
   os << indent << "AutoAdjustSampleDistances: " << this->AutoAdjustSampleDistances << "\n";

@@ -402,6 +402,24 @@ public:
 
   ///@{
   /**
+   * Whether the mapper keeps a copy of the rendered scalars in bricks of 32^3 cells (each
+   * stored with its 33^3 voxels), which the rays sample instead of the input's slices
+   * (default off). On volumes much larger than the processor's caches the voxels a ray
+   * reads next then lie near each other in memory, and casting takes less time per sample
+   * (Documentation/Performance.md measures it: about a fifth less at 429 MB, nothing to
+   * gain on volumes of a few tens of MB). The copy costs memory, about 1.1 times the
+   * rendered scalars' bytes, and is made on the first render after the scalars change; it
+   * is freed when this is turned off. Images are the same bit for bit with and without it.
+   * When the memory cannot be had, the mapper warns and renders from the input.
+   * GetMemorySize counts the copy.
+   */
+  vtkSetMacro(BrickedCopy, vtkTypeBool);
+  vtkGetMacro(BrickedCopy, vtkTypeBool);
+  vtkBooleanMacro(BrickedCopy, vtkTypeBool);
+  ///@}
+
+  ///@{
+  /**
    * Brightness and contrast of the displayed image, as vtkFixedPointVolumeRayCastMapper
    * and vtkSmartVolumeMapper define them: each displayed premultiplied colour becomes
    * rgb / window + (1/2 - level / window) alpha, kept within [0, alpha]; alpha is unchanged.
@@ -713,6 +731,8 @@ protected:
    * false on bad input.
    */
   bool PrepareField(vtkVolumeState& state, vtkVolume* prop);
+  /** Makes or frees the copies in bricks of the volume's fields, as BrickedCopy asks. */
+  void PrepareBricks(vtkVolumeState& state);
   /** Wraps the mask for port 0's volume, with a label map's functions (their fixes added
    * to fixes); false (nothing drawn) on a bad mask. */
   bool PrepareMask(vtkVolumeState& state, vtkVolumeProperty* property, std::string& fixes);
@@ -762,6 +782,7 @@ protected:
   double SampleDistance = 0.0;
   double ImageSampleDistance = 1.0;
   double TerminationOpacity = 0.99;
+  vtkTypeBool BrickedCopy = 0;
   vtkTypeBool IntermixIntersectingGeometry = 1;
   double LastSampleDistance = 0.0;
   vtkTypeBool AutoAdjustSampleDistances = 1;

@@ -101,6 +101,7 @@ constexpr AccelerationTraits TraitsOf(int mode)
 namespace SetUpProgress
 {
 constexpr double Scalars = 0.05;    ///< wrapping (and scanning) new scalars
+constexpr double Bricks = 0.1;      ///< copying the scalars into bricks (BrickedCopy)
 constexpr double Cells = 0.2;       ///< classifying the cells for the caster
 constexpr double Supercells = 0.35; ///< classifying the supercells, building the models
 }

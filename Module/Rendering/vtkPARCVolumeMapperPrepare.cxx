@@ -240,6 +240,7 @@ bool vtkPARCVolumeMapper::PrepareVolumes(vtkRenderer* ren, vtkVolume* vol)
       in.Rendered.clear();
       return false;
     }
+    this->PrepareBricks(volume);
     in.Rendered.emplace_back(&volume, input.second);
   }
   if (in.Rendered.empty())
@@ -249,6 +250,33 @@ bool vtkPARCVolumeMapper::PrepareVolumes(vtkRenderer* ren, vtkVolume* vol)
     return false;
   }
   return true;
+}
+
+//------------------------------------------------------------------------------
+void vtkPARCVolumeMapper::PrepareBricks(vtkVolumeState& state)
+{
+  std::vector<parc::ScalarField*> fields{ &state.Field };
+  for (const auto& component : state.Components)
+  {
+    fields.push_back(&component->Field);
+  }
+  for (parc::ScalarField* field : fields)
+  {
+    if (this->BrickedCopy && !field->IsBricked())
+    {
+      this->ReportSetUp("copying the scalars into bricks", SetUpProgress::Bricks);
+      if (!field->SetBricked(true))
+      {
+        vtkWarningMacro("BrickedCopy: no memory for a copy of the scalars in bricks ("
+          << parc::BrickGrid(field->GetDimensions()).NumberOfValues() << " values); the "
+          << "rays sample the input's scalars.");
+      }
+    }
+    else if (!this->BrickedCopy)
+    {
+      field->SetBricked(false);
+    }
+  }
 }
 
 //------------------------------------------------------------------------------

@@ -213,7 +213,12 @@ void vtkPARCVolumeMapper::PrintStatistics(ostream& os)
 std::vector<std::pair<const char*, std::size_t>>
 vtkPARCVolumeMapper::vtkVolumeState::Memory() const
 {
-  return { { "scalar copy", this->Field.GetMemorySize() },
+  std::size_t bricks = this->Field.GetBrickedMemorySize();
+  for (const auto& component : this->Components)
+  {
+    bricks += component->Field.GetBrickedMemorySize();
+  }
+  return { { "scalar copy", this->Field.GetMemorySize() }, { "bricked copy", bricks },
     { "mask copy", this->Mask.GetMemorySize() },
     { "quantized normals", this->Normals.GetMemorySize() },
     { "normal shading table", this->Caster.GetShadingTableMemorySize() },

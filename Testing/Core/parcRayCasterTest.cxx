@@ -810,3 +810,67 @@ TEST(RayCaster, LabelMapClassificationGivesBitIdenticalImages)
   EXPECT_LT(s2.Samples, s1.Samples);
   EXPECT_EQ(s1.ContributingSamples, s2.ContributingSamples);
 }
+
+// A field's copy in bricks (ScalarField::SetBricked) changes where the samples' voxels are
+// read from, never the image: every ray function, shaded or not, with gradient opacity,
+// across the bricks' faces, bit for bit.
+TEST(RayCaster, BrickedFieldGivesBitIdenticalImages)
+{
+  const int n[3] = { 140, 70, 68 }; // 3 x 2 x 2 bricks, the last ones filled in part
+  std::vector<std::uint8_t> values;
+  for (int k = 0; k < n[2]; ++k)
+  {
+    for (int j = 0; j < n[1]; ++j)
+    {
+      for (int i = 0; i < n[0]; ++i)
+      {
+        const double r2 = 0.001 * ((i - 60) * (i - 60) + (j - 35) * (j - 35) + (k - 33) * (k - 33));
+        values.push_back(static_cast<std::uint8_t>(255.0 * std::exp(-r2) + (i * 7 + j * 3) % 11));
+      }
+    }
+  }
+  parc::ScalarField linear, bricked;
+  linear.Wrap(values.data(), n);
+  bricked.Wrap(values.data(), n);
+  ASSERT_TRUE(bricked.SetBricked(true));
+  struct Case
+  {
+    BlendMode Blend;
+    bool Shade, GradientOpacity;
+  };
+  for (const Case c : { Case{ BlendMode::Composite, false, false },
+         Case{ BlendMode::Composite, true, false }, Case{ BlendMode::Composite, false, true },
+         Case{ BlendMode::MaximumIntensity, false, false },
+         Case{ BlendMode::IsoSurface, true, false } })
+  {
+    CastParameters p;
+    p.Opacity.SetNodes({ 0.0, 40.0, 120.0, 255.0 }, { 0.0, 0.0, 0.2, 0.9 }, true);
+    p.Color.SetTable(0.0, 255.0, { 1.f, 0.f, 0.f, 0.f, 1.f, 0.5f });
+    p.Blend = c.Blend;
+    p.Shade = c.Shade;
+    p.IsoValues = { 100.0 };
+    p.UseGradientOpacity = c.GradientOpacity;
+    p.GradientOpacity.SetNodes({ 0.0, 30.0 }, { 0.2, 1.0 }, true);
+    p.SampleDistance = 0.41;
+    parc::Light light;
+    light.Position = { 0.0, 80.0, 80.0 };
+    p.Lights = { light };
+    const parc::Camera view = ParallelView(64, 48, 0.7, 90.0);
+    std::vector<float> images[2];
+    parc::CastStatistics stats[2];
+    for (int b = 0; b < 2; ++b)
+    {
+      parc::RayCaster caster;
+      ASSERT_TRUE(caster.Prepare({ b ? &bricked : &linear, &p }));
+      images[b].assign(4 * 64 * 48, 0.f);
+      caster.CastImage(view, nullptr, parc::WholeRaySource(), images[b].data(), stats[b]);
+    }
+    SCOPED_TRACE(static_cast<int>(c.Blend));
+    EXPECT_EQ(0, std::memcmp(images[0].data(), images[1].data(), images[0].size() * sizeof(float)))
+      << "shade " << c.Shade << " gradient opacity " << c.GradientOpacity;
+    EXPECT_EQ(stats[0].Samples, stats[1].Samples);
+    EXPECT_GT(*std::max_element(images[0].begin(), images[0].end()), 0.1f);
+    EXPECT_EQ(stats[0].GradientEvaluations, stats[1].GradientEvaluations);
+    EXPECT_EQ(stats[1].GradientEvaluations > 0, c.Shade || c.GradientOpacity);
+  }
+}

@@ -36,15 +36,17 @@ TEST(ScalarField, TrilinearReproducesLinearFieldsAndVoxelValues)
 
 namespace
 {
-// A 9x7x8 field of random values over T's whole range (every `stride`-th of them read),
-// sampled in lattice blocks along random rays: each sample must be the same bits as the
-// sample at its own position, and its location the cell and fractions of that position.
-// Returns the number of samples outside the box (clamped).
+// A field of random values over T's whole range (every `stride`-th of them read; 9x7x8
+// voxels, or 140x70x68 in 3x2x2 bricks when bricked), sampled in lattice blocks along random
+// rays: each sample must be the same bits as the sample at its own position, and its
+// location the cell and fractions of that position. Returns the number of samples outside
+// the box (clamped).
 template <typename T>
-std::size_t CheckLatticeBlocks(int stride, unsigned seed)
+std::size_t CheckLatticeBlocks(int stride, unsigned seed, bool bricked = false)
 {
-  const int n[3] = { 9, 7, 8 };
-  std::vector<T> values(static_cast<std::size_t>(stride) * 9 * 7 * 8);
+  const int small[3] = { 9, 7, 8 }, large[3] = { 140, 70, 68 };
+  const int* n = bricked ? large : small;
+  std::vector<T> values(static_cast<std::size_t>(stride) * n[0] * n[1] * n[2]);
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   for (auto& v : values)
@@ -57,7 +59,11 @@ std::size_t CheckLatticeBlocks(int stride, unsigned seed)
   }
   parc::ScalarField field;
   field.Wrap(values.data(), n, stride);
-  std::uniform_real_distribution<double> u(-2.0, 10.0);
+  EXPECT_TRUE(field.SetBricked(bricked));
+  EXPECT_EQ(field.IsBricked(), bricked);
+  EXPECT_EQ(field.GetBrickedMemorySize(), bricked ? 3 * 2 * 2 * 67 * 67 * 67 * sizeof(T) : 0);
+  const double extent = *std::max_element(n, n + 3);
+  std::uniform_real_distribution<double> u(-2.0, extent + 1.0);
   std::size_t outside = 0;
   for (int ray = 0; ray < 300; ++ray)
   {
@@ -80,15 +86,16 @@ std::size_t CheckLatticeBlocks(int stride, unsigned seed)
           << ray << " " << j << ": " << expected << " " << block.Values[j];
         if (mode == parc::Interpolation::Linear)
         {
-          const parc::SampleLocation where = block.Location(j);
           const parc::Vec3 g = field.Dispatch([&](const auto& view) {
+            const parc::SampleLocation where = block.Location(j);
             parc::CellDifferences differences;
             return view.Gradient(p, mode, differences, &where);
           });
           const parc::Vec3 expectedG = field.Gradient(p, mode);
           EXPECT_EQ(0, std::memcmp(&g, &expectedG, sizeof(g))) << ray << " " << j;
         }
-        outside += (p.X < 0.0 || p.X > 8.0 || p.Y < 0.0 || p.Y > 6.0 || p.Z < 0.0 || p.Z > 7.0);
+        outside += (p.X < 0.0 || p.X > n[0] - 1 || p.Y < 0.0 || p.Y > n[1] - 1 || p.Z < 0.0 ||
+          p.Z > n[2] - 1);
       }
     }
   }
@@ -109,6 +116,34 @@ TEST(ScalarField, LatticeBlocksAreTheSamplesAtTheirPositions)
     CheckLatticeBlocks<std::int16_t>(stride, 8);
     CheckLatticeBlocks<float>(stride, 9);
   }
+}
+
+// A copy in bricks (ScalarField::SetBricked) gives the same samples, locations and
+// gradients, across the bricks' faces and in the last bricks, which the field fills only
+// in part; Wrap frees it.
+TEST(ScalarField, BrickedLatticeBlocksAreTheSamplesAtTheirPositions)
+{
+  for (int stride : { 1, 2 })
+  {
+    SCOPED_TRACE(stride);
+    EXPECT_GT(CheckLatticeBlocks<std::uint8_t>(stride, 15, true), 100u);
+    CheckLatticeBlocks<std::int8_t>(stride, 16, true);
+    CheckLatticeBlocks<std::uint16_t>(stride, 17, true);
+    CheckLatticeBlocks<std::int16_t>(stride, 18, true);
+    CheckLatticeBlocks<float>(stride, 19, true);
+    CheckLatticeBlocks<double>(stride, 20, true);
+  }
+  const int n[3] = { 80, 3, 2 };
+  std::vector<std::uint8_t> values(80 * 3 * 2, 7);
+  parc::ScalarField field;
+  field.Wrap(values.data(), n);
+  ASSERT_TRUE(field.SetBricked(true));
+  EXPECT_EQ(field.GetBrickedMemorySize(), 2u * 67 * 67 * 67);
+  field.Wrap(values.data(), n);
+  EXPECT_FALSE(field.IsBricked()) << "new values, no bricks of the old ones";
+  EXPECT_TRUE(field.SetBricked(false));
+  parc::ScalarField empty;
+  EXPECT_FALSE(empty.SetBricked(true)) << "no values, no bricks";
 }
 
 // A ray's lattice points lie on the ray, within float rounding of the field's size,

@@ -81,6 +81,8 @@ struct LatticeBlock
   float Values[Size];
   int Cell[3][Size];
   float Fractions[3][Size];
+  /// The cells' first voxels in the values sampled (FieldView::CellOffsets: the field's
+  /// own, or its copy in bricks).
   std::ptrdiff_t Offset[Size];
 
   /// The lanes computed for count samples: whole groups of Lanes.

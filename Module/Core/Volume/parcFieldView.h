@@ -40,6 +40,55 @@ struct CellDifferences
   alignas(16) float Values[8][4];
 };
 
+/// The layout of a field's copy in bricks (ScalarField::SetBricked): cubes of Cells^3
+/// cells, each stored whole with the voxels its cells' gradients read (Side^3 voxels: one
+/// layer before the cube along each axis, two after), x fastest within a brick, the bricks
+/// in x, y, z order. A cell's 8 corners and their neighbours lie in one brick, with x
+/// neighbours next to each other, and voxels near each other in space lie near each other
+/// in memory whichever way a ray goes through them. Voxels outside the field (in the first
+/// and last bricks) repeat its nearest one.
+struct BrickGrid
+{
+  static constexpr int CellShift = 6;
+  static constexpr int Cells = 1 << CellShift; ///< cells along each axis of a brick
+  static constexpr int Side = Cells + 3;       ///< voxels along each axis of a brick
+  static constexpr std::ptrdiff_t Voxels = std::ptrdiff_t(Side) * Side * Side;
+  /// A brick's first voxel along an axis: the one before its first cell.
+  static constexpr int First(int brick) { return brick * Cells - 1; }
+  /// From a brick's first voxel to its first cell's first voxel.
+  static constexpr std::ptrdiff_t Apron = 1 + Side + std::ptrdiff_t(Side) * Side;
+
+  explicit BrickGrid(const int dims[3])
+  {
+    for (int a = 0; a < 3; ++a)
+    {
+      const int cells = std::max(dims[a] - 1, 1);
+      this->Count[a] = (cells + Cells - 1) / Cells;
+    }
+    this->Step[0] = Voxels;
+    this->Step[1] = Voxels * this->Count[0];
+    this->Step[2] = this->Step[1] * this->Count[1];
+  }
+  std::size_t NumberOfValues() const
+  {
+    return static_cast<std::size_t>(this->Step[2]) * static_cast<std::size_t>(this->Count[2]);
+  }
+  /// Where the copy holds cell (i, j, k)'s first voxel.
+  std::ptrdiff_t CellOffset(const int cell[3]) const
+  {
+    std::ptrdiff_t offset = Apron, scale = 1;
+    for (int a = 0; a < 3; ++a)
+    {
+      offset += (cell[a] >> CellShift) * this->Step[a] + (cell[a] & (Cells - 1)) * scale;
+      scale *= Side;
+    }
+    return offset;
+  }
+
+  int Count[3];           ///< bricks along x, y, z
+  std::ptrdiff_t Step[3]; ///< elements from a brick to the next along x, y, z
+};
+
 /// Typed, non-owning read access to a field's values (see the file comment).
 template <typename T>
 class FieldView
@@ -53,8 +102,12 @@ class FieldView
 #endif
 
 public:
-  FieldView(const T* data, const int dims[3], std::ptrdiff_t stride)
+  /// bricks (optional): the same values in a BrickGrid of dims, which SampleLattice and the
+  /// gradients at its locations read instead of data.
+  FieldView(const T* data, const int dims[3], std::ptrdiff_t stride, const T* bricks = nullptr)
     : Data(data)
+    , Bricks(bricks)
+    , Grid(dims)
   {
     for (int a = 0; a < 3; ++a)
     {
@@ -70,11 +123,9 @@ public:
     {
       this->StepsFitIn32Bits &= step >= 0 && step <= std::numeric_limits<std::uint32_t>::max();
     }
-    for (int n = 0; n < 8; ++n)
-    {
-      this->Corner[n] = ((n & 1) ? this->Step[0] : 0) + ((n & 2) ? this->Step[1] : 0) +
-        ((n & 4) ? this->Step[2] : 0);
-    }
+    SetCorners(this->Step, this->Corner);
+    this->BrickStepsFitIn32Bits = this->Grid.Step[2] <= std::numeric_limits<std::uint32_t>::max();
+    this->SetRead();
   }
 
   const int* GetDimensions() const { return this->Dims; }
@@ -84,6 +135,8 @@ public:
   {
     FieldView view = *this;
     view.Data += elements;
+    view.Bricks = nullptr; // the bricks hold this view's values only
+    view.SetRead();
     return view;
   }
   /// The first value of row (j, k), voxels (0 .. nx-1, j, k) being GetXStep() elements
@@ -199,7 +252,7 @@ public:
   {
     SampleLocation w;
     this->Locate(p, w.Cell, w.Fractions);
-    w.Offset = this->CellOffset(w.Cell);
+    w.Offset = this->Bricks ? this->Grid.CellOffset(w.Cell) : this->CellOffset(w.Cell);
     return w;
   }
   /// Whether central differences in every point of cell need no voxel outside the box.
@@ -260,7 +313,7 @@ private:
   {
     if (w.Offset != differences.Offset)
     {
-      this->LoadDifferences(this->Data + w.Offset, differences.Values);
+      this->LoadDifferences(this->Read.Values + w.Offset, differences.Values);
       differences.Offset = w.Offset;
     }
   }
@@ -311,9 +364,15 @@ private:
 #endif
   }
   /// The offsets of the located cells of block's lanes j < n (a multiple of
-  /// LatticeBlock::Lanes) from the first voxel.
+  /// LatticeBlock::Lanes) from the first voxel of the values SampleGroup reads (the bricks
+  /// when there are bricks).
   PARC_HOT_INLINE void CellOffsets(LatticeBlock& block, int n) const
   {
+    if (this->Bricks)
+    {
+      this->BrickOffsets(block, n);
+      return;
+    }
 #if defined(__SSE2__)
     if (this->StepsFitIn32Bits)
     {
@@ -347,17 +406,70 @@ private:
         block.Cell[2][j] * this->Step[2];
     }
   }
+  /// CellOffsets in the bricks.
+  PARC_HOT_INLINE void BrickOffsets(LatticeBlock& block, int n) const
+  {
+#if defined(__SSE2__)
+    if (this->BrickStepsFitIn32Bits)
+    {
+      // BrickGrid::CellOffset: the brick's offset as in CellOffsets, from the cell's bits
+      // above CellShift; the cell's in the brick from those below, in 32 bits (factors
+      // below 2^16: the low and high halves of the products of the 16-bit low halves,
+      // whose high halves are 0).
+      const __m128i s0 = _mm_set1_epi32(static_cast<int>(this->Grid.Step[0]));
+      const __m128i s1 = _mm_set1_epi32(static_cast<int>(this->Grid.Step[1]));
+      const __m128i s2 = _mm_set1_epi32(static_cast<int>(this->Grid.Step[2]));
+      const __m128i low = _mm_set1_epi32(BrickGrid::Cells - 1);
+      const __m128i side = _mm_set1_epi32(BrickGrid::Side);
+      const __m128i slice = _mm_set1_epi32(BrickGrid::Side * BrickGrid::Side);
+      const __m128i apron = _mm_set1_epi32(static_cast<int>(BrickGrid::Apron));
+      static_assert(BrickGrid::Side * BrickGrid::Side < (1 << 16), "16-bit factors");
+      const auto product = [](__m128i a, __m128i b) {
+        return _mm_add_epi32(_mm_mullo_epi16(a, b), _mm_slli_epi32(_mm_mulhi_epu16(a, b), 16));
+      };
+      const __m128i zero = _mm_setzero_si128();
+      for (int j = 0; j < n; j += 4)
+      {
+        const __m128i cx = block.CellLanes(0, j);
+        const __m128i cy = block.CellLanes(1, j);
+        const __m128i cz = block.CellLanes(2, j);
+        const __m128i x = _mm_srli_epi32(cx, BrickGrid::CellShift);
+        const __m128i y = _mm_srli_epi32(cy, BrickGrid::CellShift);
+        const __m128i z = _mm_srli_epi32(cz, BrickGrid::CellShift);
+        const __m128i local = _mm_add_epi32(_mm_add_epi32(apron, _mm_and_si128(cx, low)),
+          _mm_add_epi32(product(_mm_and_si128(cy, low), side),
+            product(_mm_and_si128(cz, low), slice)));
+        const __m128i even = _mm_add_epi64(_mm_mul_epu32(x, s0),
+          _mm_add_epi64(_mm_mul_epu32(y, s1), _mm_mul_epu32(z, s2)));
+        const __m128i odd = _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(x, 32), s0),
+          _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(y, 32), s1),
+            _mm_mul_epu32(_mm_srli_epi64(z, 32), s2)));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(block.Offset + j),
+          _mm_add_epi64(_mm_unpacklo_epi64(even, odd), _mm_unpacklo_epi32(local, zero)));
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(block.Offset + j + 2),
+          _mm_add_epi64(_mm_unpackhi_epi64(even, odd), _mm_unpackhi_epi32(local, zero)));
+      }
+      return;
+    }
+#endif
+    for (int j = 0; j < n; ++j)
+    {
+      const int cell[3] = { block.Cell[0][j], block.Cell[1][j], block.Cell[2][j] };
+      block.Offset[j] = this->Grid.CellOffset(cell);
+    }
+  }
   /// The lanes of a LatticeBlock::Lanes group.
   static constexpr unsigned GroupBits = (1u << LatticeBlock::Lanes) - 1u;
   /// Interpolates the located lanes of block's group from lane first into its values.
   PARC_HOT_INLINE void SampleGroup(LatticeBlock& block, int first) const
   {
-    const std::ptrdiff_t* corner = this->Corner;
+    const T* data = this->Read.Values;
+    const std::ptrdiff_t* corner = this->Read.Corner;
     const std::ptrdiff_t* offsets = block.Offset + first;
 #if defined(__SSE2__)
     static_assert(LatticeBlock::Lanes == 4, "four lanes to an SSE register");
     __m128 c[8];
-    this->LoadGroupCorners(offsets, corner, c);
+    LoadGroupCorners(data, offsets, corner, this->Read.Paired, c);
     const __m128 fx = _mm_loadu_ps(block.Fractions[0] + first);
     const __m128 fy = _mm_loadu_ps(block.Fractions[1] + first);
     const __m128 fz = _mm_loadu_ps(block.Fractions[2] + first);
@@ -368,7 +480,7 @@ private:
       float v[8];
       for (int m = 0; m < 8; ++m)
       {
-        v[m] = static_cast<float>(static_cast<LaneValue>(this->Data[offsets[l] + corner[m]]));
+        v[m] = static_cast<float>(static_cast<LaneValue>(data[offsets[l] + corner[m]]));
       }
       const int j = first + l;
       const float f[3] = { block.Fractions[0][j], block.Fractions[1][j], block.Fractions[2][j] };
@@ -377,25 +489,24 @@ private:
 #endif
   }
 #if defined(__SSE2__)
-  /// The corner values c[corner] of the cells at offsets[0 .. 3], lane by lane, as floats;
-  /// held in registers (no store and load again). With x neighbours next to each other
-  /// (Step[0] = 1) each pair of corners (x offsets 0 and 1) is loaded at once and split
-  /// apart four lanes at a time (TypedLoads): the same values as one load
-  /// a corner.
-  PARC_HOT_INLINE void LoadGroupCorners(
-    const std::ptrdiff_t* offsets, const std::ptrdiff_t corner[8], __m128 c[8]) const
+  /// The corner values c[corner] of the cells at offsets[0 .. 3] of data, lane by lane,
+  /// as floats; held in registers (no store and load again). With x neighbours next to
+  /// each other (paired) each pair of corners (x offsets 0 and 1) is loaded at once and
+  /// split apart four lanes at a time (TypedLoads): the same values as one load a corner.
+  static PARC_HOT_INLINE void LoadGroupCorners(const T* data, const std::ptrdiff_t* offsets,
+    const std::ptrdiff_t corner[8], bool paired, __m128 c[8])
   {
     if constexpr (Loads::PairedCorners)
     {
-      if (this->Step[0] == 1)
+      if (paired)
       {
         if constexpr (sizeof(T) == 1)
         {
-          Loads::BytePairs(this->Data, offsets, corner, c);
+          Loads::BytePairs(data, offsets, corner, c);
         }
         else
         {
-          Loads::CornerPairs(this->Data, offsets, corner, c);
+          Loads::CornerPairs(data, offsets, corner, c);
         }
         return;
       }
@@ -403,7 +514,7 @@ private:
     for (int m = 0; m < 8; ++m)
     {
       auto value = [&](int l) {
-        return static_cast<float>(static_cast<LaneValue>(this->Data[offsets[l] + corner[m]]));
+        return static_cast<float>(static_cast<LaneValue>(data[offsets[l] + corner[m]]));
       };
       c[m] = _mm_setr_ps(value(0), value(1), value(2), value(3));
     }
@@ -456,14 +567,14 @@ private:
 #if defined(__SSE2__)
     if constexpr (Loads::PairedCorners)
     {
-      if (this->Step[0] == 1)
+      if (this->Read.Paired)
       {
         this->LoadDifferencesOfRows(v, d);
         return;
       }
     }
 #endif
-    const std::ptrdiff_t* corner = this->Corner;
+    const std::ptrdiff_t* corner = this->Read.Corner;
     LaneValue c[8];
     for (int n = 0; n < 8; ++n)
     {
@@ -472,7 +583,7 @@ private:
     LaneValue e[8][4];
     for (int a = 0; a < 3; ++a)
     {
-      const std::ptrdiff_t s = this->Step[a];
+      const std::ptrdiff_t s = this->Read.Step[a];
       const int bit = 1 << a;
       for (int n = 0; n < 8; ++n)
       {
@@ -516,7 +627,7 @@ private:
   /// time; the differences of four corners are taken together and turned corner by corner.
   PARC_HOT_INLINE void LoadDifferencesOfRows(const T* v, float d[8][4]) const
   {
-    const std::ptrdiff_t sy = this->Step[1], sz = this->Step[2];
+    const std::ptrdiff_t sy = this->Read.Step[1], sz = this->Read.Step[2];
     // row[y + 2 z]: x = -1 .. 2 of the cell's row (y, z).
     __m128i row[4];
     for (int r = 0; r < 4; ++r)
@@ -591,13 +702,46 @@ private:
     return g;
   }
 
+  /// The corner offsets of a layout whose neighbours are step[a] apart along axis a
+  /// (corner n: x offset n & 1, y (n >> 1) & 1, z (n >> 2) & 1).
+  static void SetCorners(const std::ptrdiff_t step[3], std::ptrdiff_t corner[8])
+  {
+    for (int n = 0; n < 8; ++n)
+    {
+      corner[n] = ((n & 1) ? step[0] : 0) + ((n & 2) ? step[1] : 0) + ((n & 4) ? step[2] : 0);
+    }
+  }
+
+  /// Read: the bricks when there are bricks, else the values.
+  void SetRead()
+  {
+    const std::ptrdiff_t inBrick[3] = { 1, BrickGrid::Side, BrickGrid::Side * BrickGrid::Side };
+    this->Read.Values = this->Bricks ? this->Bricks : this->Data;
+    std::copy_n(this->Bricks ? inBrick : this->Step, 3, this->Read.Step);
+    SetCorners(this->Read.Step, this->Read.Corner);
+    this->Read.Paired = this->Read.Step[0] == 1;
+  }
+
   const T* Data;
+  const T* Bricks; ///< the same values in Grid, or null
   std::ptrdiff_t Step[3]; ///< elements between neighbours along x, y, z
   /// Whether every step is a 32-bit unsigned number (cell offsets four lanes at a time).
   bool StepsFitIn32Bits = false;
   /// The offsets of a cell's 8 corners from its first voxel (corner n: x offset n & 1,
   /// y (n >> 1) & 1, z (n >> 2) & 1).
   std::ptrdiff_t Corner[8];
+  BrickGrid Grid; ///< the layout of Bricks
+  /// Whether Grid's offsets are 32-bit unsigned numbers (BrickOffsets four lanes at a time).
+  bool BrickStepsFitIn32Bits = false;
+  /// The values SampleLattice and the gradients at its locations read: the field's own,
+  /// or its bricks (Step and Corner within a brick).
+  struct Layout
+  {
+    const T* Values;
+    std::ptrdiff_t Step[3];
+    std::ptrdiff_t Corner[8];
+    bool Paired; ///< x neighbours next to each other (Step[0] = 1)
+  } Read;
   int Dims[3];
   double Last[3]; ///< the last index coordinate along x, y, z
   int LastCell[3]; ///< the last cell index along x, y, z

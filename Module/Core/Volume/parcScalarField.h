@@ -24,6 +24,7 @@
 #include <cstring>
 #include <limits>
 #include <memory>
+#include <new>
 #include <type_traits>
 #include <vector>
 
@@ -84,8 +85,21 @@ public:
   }
   /// The finite range of the values.
   const double* GetRange() const { return this->Range; }
-  /// Bytes of values the field holds itself (0 when it refers to the caller's values).
+  /// Bytes of values the field holds itself (0 when it refers to the caller's values),
+  /// not counting its bricks.
   std::size_t GetMemorySize() const { return this->Owned ? this->Owned->size() : 0; }
+
+  /// Keeps (true) or frees (false) a copy of the values in bricks (BrickGrid), which the
+  /// ray caster's lattice samples read instead of the values: the same values, so the same
+  /// samples, from memory nearer each other along a ray. Wrap and Assign free it. Returns
+  /// false when a copy was asked for and not made (no memory for it, or no values).
+  bool SetBricked(bool bricked);
+  bool IsBricked() const { return static_cast<bool>(this->Bricks); }
+  /// Bytes of the copy in bricks (0 without one).
+  std::size_t GetBrickedMemorySize() const
+  {
+    return this->Bricks ? BrickGrid(this->Dims).NumberOfValues() * this->ValueSize() : 0;
+  }
 
   /// Calls f(FieldView<T>) for the field's value type T and returns its result.
   template <class F>
@@ -146,8 +160,16 @@ private:
   template <typename T>
   FieldView<T> View() const
   {
-    return FieldView<T>(static_cast<const T*>(this->Data), this->Dims, this->Stride);
+    return FieldView<T>(static_cast<const T*>(this->Data), this->Dims, this->Stride,
+      reinterpret_cast<const T*>(this->Bricks.get()));
   }
+  /// Bytes of a value.
+  std::size_t ValueSize() const
+  {
+    return this->Dispatch([](const auto& v) { return sizeof(*v.Row(0, 0)); });
+  }
+  template <typename T>
+  void MakeBricks();
   template <typename T>
   void CopyValues(const T* values, int stride);
   template <typename T>
@@ -160,7 +182,70 @@ private:
   double Range[2] = { 0.0, 0.0 };
   /// The copy, when there is one (shared by copies of the field: it never changes).
   std::shared_ptr<std::vector<unsigned char>> Owned;
+  /// The copy in bricks, when there is one (shared by copies of the field).
+  std::shared_ptr<unsigned char[]> Bricks;
 };
+
+inline bool ScalarField::SetBricked(bool bricked)
+{
+  if (!bricked || this->GetNumberOfValues() == 0)
+  {
+    this->Bricks.reset();
+    return !bricked;
+  }
+  if (!this->Bricks)
+  {
+    try
+    {
+      this->Dispatch([&](const auto& view) {
+        using T = std::remove_const_t<std::remove_pointer_t<decltype(view.Row(0, 0))>>;
+        this->MakeBricks<T>();
+      });
+    }
+    catch (const std::bad_alloc&)
+    {
+      return false;
+    }
+  }
+  return true;
+}
+
+template <typename T>
+void ScalarField::MakeBricks()
+{
+  const BrickGrid grid(this->Dims);
+  // Not value-initialized: every element is written below.
+  std::shared_ptr<unsigned char[]> bricks(new unsigned char[grid.NumberOfValues() * sizeof(T)]);
+  T* out = reinterpret_cast<T*>(bricks.get());
+  const FieldView<T> view = this->View<T>();
+  const std::ptrdiff_t stride = view.GetXStep();
+  const int* dims = this->Dims;
+  const vtkIdType count = static_cast<vtkIdType>(grid.Count[0]) * grid.Count[1] * grid.Count[2];
+  vtkSMPTools::For(0, count, [&](vtkIdType b0, vtkIdType b1) {
+    for (vtkIdType b = b0; b < b1; ++b)
+    {
+      const int brick[3] = { static_cast<int>(b % grid.Count[0]),
+        static_cast<int>(b / grid.Count[0] % grid.Count[1]),
+        static_cast<int>(b / grid.Count[0] / grid.Count[1]) };
+      T* v = out + b * BrickGrid::Voxels;
+      const auto clamped = [&](int axis, int l) {
+        return std::min(std::max(BrickGrid::First(brick[axis]) + l, 0), dims[axis] - 1);
+      };
+      for (int lz = 0; lz < BrickGrid::Side; ++lz)
+      {
+        for (int ly = 0; ly < BrickGrid::Side; ++ly, v += BrickGrid::Side)
+        {
+          const T* row = view.Row(clamped(1, ly), clamped(2, lz));
+          for (int lx = 0; lx < BrickGrid::Side; ++lx)
+          {
+            v[lx] = row[clamped(0, lx) * stride];
+          }
+        }
+      }
+    }
+  });
+  this->Bricks = std::move(bricks);
+}
 
 template <typename T>
 void ScalarField::CopyValues(const T* values, int stride)
@@ -275,6 +360,7 @@ std::size_t ScalarField::Wrap(const T* values, const int dims[3], int stride)
   this->Data = values;
   this->Stride = stride;
   this->Owned.reset();
+  this->Bricks.reset();
   return this->Scan<T>();
 }
 
@@ -284,6 +370,7 @@ std::size_t ScalarField::Assign(const T* values, const int dims[3], int stride)
   this->Type = ScalarTypeOf<T>();
   std::copy_n(dims, 3, this->Dims);
   this->CopyValues(values, stride);
+  this->Bricks.reset();
   return this->Scan<T>();
 }
 
