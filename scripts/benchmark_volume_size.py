@@ -11,6 +11,9 @@ off) at half a voxel, in a perspective view. For each volume and shading:
 - warm frames at each image size: both mappers warmed up (this one until Auto has chosen
   its pass and supercell size), then rounds interleaved (A B A B): minimum and median
   (3 rounds, 7 below 128 MiB);
+- the same warm frames of this mapper with a copy of the scalars in bricks (BrickedCopy),
+  a third mapper in the same rounds (A B C A B C), its casting cost against the head's and
+  its GetMemorySize;
 - the frame after a transfer-function edit against a warm frame (this mapper);
 - this mapper's casting cost in warm frames (ns per thread: per sample, per sample taken,
   per contributing sample; medians), mode and supercell size; and against the head's own
@@ -137,9 +140,10 @@ def scene(image, kind, shade, pixels):
 def new_mapper(name, image):
     from vtkmodules.vtkRenderingVolume import vtkFixedPointVolumeRayCastMapper
     from parc import vtkPARCVolumeMapper
-    if name == "parc":
+    if name in ("parc", "bricked"):
         mapper = vtkPARCVolumeMapper()
         mapper.SetAccelerationModeToAuto()
+        mapper.SetBrickedCopy(name == "bricked")
     else:
         mapper = vtkFixedPointVolumeRayCastMapper()
         mapper.SetAutoAdjustSampleDistances(0)
@@ -205,8 +209,8 @@ def measure(outdir, factor, kind, images, rounds):
         window, volume, opacity = scene(image, kind, shade, images[0])
         row = {"factor": factor, "kind": kind, "shade": shade, "voxels": int(values.size),
                "bytes": int(values.nbytes)}
-        mappers = {name: new_mapper(name, image) for name in ("parc", "fixed")}
-        parc = mappers["parc"]
+        mappers = {name: new_mapper(name, image) for name in ("parc", "fixed", "bricked")}
+        parc, bricked = mappers["parc"], mappers["bricked"]
         for pixels in images:
             window.SetSize(pixels, pixels)
             compared = reference is not None and pixels == images[0]
@@ -215,19 +219,25 @@ def measure(outdir, factor, kind, images, rounds):
             for name in mappers:
                 volume.SetMapper(mappers[name])
                 warm_up(window, mappers[name])
-            times = {"parc": [], "fixed": []}
+            times = {"parc": [], "fixed": [], "bricked": []}
             costs = []  # this mapper's casting cost of each warm frame
             against = []  # its ratio to the reference's in the same round
+            bricked_against = []  # the same with the bricked copy
             for _ in range(rounds):
-                for name in ("parc", "fixed"):
+                for name in ("parc", "fixed", "bricked"):
                     volume.SetMapper(mappers[name])
                     times[name].append(timed(window))
-                costs.append(sample_costs(parc))
+                    if name == "bricked":
+                        bricked_costs = sample_costs(bricked)
+                    if name == "parc":
+                        costs.append(sample_costs(parc))
                 if compared:
                     volume.SetMapper(mappers["reference"])
                     window.Render()
                     own = sample_costs(mappers["reference"])
                     against.append({k: costs[-1][k] / own[k] for k in SAMPLE_COSTS})
+                    bricked_against.append(
+                        {k: bricked_costs[k] / own[k] for k in SAMPLE_COSTS})
             mappers.pop("reference", None)
             for name, t in times.items():
                 row["warm_%s_%d" % (name, pixels)] = min_median(t)
@@ -238,6 +248,9 @@ def measure(outdir, factor, kind, images, rounds):
                     row[key] = min_median([c[key] for c in costs])[1]
                     if against:
                         row["against_head_" + key] = min_median([a[key] for a in against])[1]
+                        row["bricked_against_head_" + key] = min_median(
+                            [a[key] for a in bricked_against])[1]
+                row["bricked_memory_size"] = bricked.GetMemorySize()
         window.SetSize(images[0], images[0])
         volume.SetMapper(parc)
         warm_up(window, parc)
@@ -423,6 +436,28 @@ def tables(rows, images):
             against, r["edit"],
             r["growth_fixed"] / v, r["growth_parc"] / v, outlined, r["memory_size_parc"] / v,
             r["memory_size_parc"] / max(r["growth_parc"], 1)))
+    print()
+    bricked = [r for r in rows if "bricked_memory_size" in r]  # not in runs saved before it
+    if not bricked:
+        return
+    print("With a copy of the scalars in bricks (BrickedCopy), warm frames in the same rounds:")
+    print()
+    print("| volume | shading | " + " | ".join(
+        "warm %d^2: PARC, PARC bricked median (min) (s) | PARC / bricked | FixedPoint / bricked"
+        % p for p in images) + " | bricked ns per thread against the head's (x1) in turns "
+          "| bricked GetMemorySize (x volume) |")
+    print("|---|---|" + "---|---|---|" * len(images) + "---|---|")
+    for r in bricked:
+        cells = []
+        for p in images:
+            f, c, b = r["warm_fixed_%d" % p], r["warm_parc_%d" % p], r["warm_bricked_%d" % p]
+            cells += ["%.3f (%.3f), %.3f (%.3f)" % (c[1], c[0], b[1], b[0]),
+                      "%.2fx" % (c[1] / b[1]), "%.2fx" % (f[1] / b[1])]
+        keys = [k for k in SAMPLE_COSTS if "bricked_against_head_" + k in r]
+        against = ", ".join("%.2fx" % r["bricked_against_head_" + k] for k in keys) or "-"
+        print("| %s | %s | %s | %s | %.2f |" % (
+            label(r), "shaded" if r["shade"] else "unshaded", " | ".join(cells), against,
+            r["bricked_memory_size"] / r["bytes"]))
     print()
 
 
