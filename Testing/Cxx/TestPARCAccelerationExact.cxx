@@ -284,9 +284,9 @@ int TestPARCAccelerationExact(int argc, char* argv[])
           ++cases;
           if (parctest::RayImage(mapper) != reference)
           {
-            std::cerr << "FAIL: the bricked copy changed the image: blend " << blend << ", shade "
-                      << shade << ", mode " << vtkPARCVolumeMapper::GetAccelerationModeAsString(mode)
-                      << "\n";
+            std::cerr << "FAIL: the bricked copy changed the image: blend " << blend
+                      << ", shade " << shade << ", mode "
+                      << vtkPARCVolumeMapper::GetAccelerationModeAsString(mode) << "\n";
             ++failures;
           }
         }
