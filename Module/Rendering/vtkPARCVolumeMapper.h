@@ -412,7 +412,8 @@ public:
    * times where it does not (1.41 times at 429 MB). It is made on the first render after
    * the scalars change (about a second at 429 MB) and freed when this is turned off.
    * Images are the same bit for bit with and without it. When the memory cannot be had,
-   * the mapper warns and samples the input. GetMemorySize counts the copy.
+   * or the copy would hold more than twice the values (scalars thinner than a brick along
+   * some axis), the mapper warns once and samples the input. GetMemorySize counts the copy.
    */
   vtkSetMacro(BrickedCopy, vtkTypeBool);
   vtkGetMacro(BrickedCopy, vtkTypeBool);

@@ -166,6 +166,8 @@ public:
   /// What Field was wrapped from (its Version: what the pyramid and the classification
   /// were made from).
   parc::vtk::WrappedScalars Scalars;
+  /// The Scalars.Version for which BrickedCopy warned that no copy was made (0: none).
+  std::uint64_t BricksDeclined = 0;
   /// The binary mask's values (port 0), and what they were wrapped from.
   parc::ScalarField Mask;
   parc::vtk::WrappedScalars MaskScalars;

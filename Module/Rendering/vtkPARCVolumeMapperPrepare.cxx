@@ -253,6 +253,13 @@ bool vtkPARCVolumeMapper::PrepareVolumes(vtkRenderer* ren, vtkVolume* vol)
 }
 
 //------------------------------------------------------------------------------
+namespace
+{
+/// A copy in bricks larger than this many times the values (a volume thinner than a brick
+/// along some axis) is not made: it would gain nothing for its memory.
+constexpr std::size_t MaxBrickedCopyRatio = 2;
+}
+
 void vtkPARCVolumeMapper::PrepareBricks(vtkVolumeState& state)
 {
   std::vector<parc::ScalarField*> fields{ &state.Field };
@@ -262,19 +269,30 @@ void vtkPARCVolumeMapper::PrepareBricks(vtkVolumeState& state)
   }
   for (parc::ScalarField* field : fields)
   {
-    if (this->BrickedCopy && !field->IsBricked())
+    if (!this->BrickedCopy || field->IsBricked())
     {
-      this->ReportSetUp("copying the scalars into bricks", SetUpProgress::Bricks);
-      if (!field->SetBricked(true))
-      {
-        vtkWarningMacro("BrickedCopy: no memory for a copy of the scalars in bricks ("
-          << parc::BrickGrid(field->GetDimensions()).NumberOfValues() << " values); the "
-          << "rays sample the input's scalars.");
-      }
+      field->SetBricked(this->BrickedCopy);
+      continue;
     }
-    else if (!this->BrickedCopy)
+    if (state.BricksDeclined == state.Scalars.Version)
     {
-      field->SetBricked(false);
+      continue; // warned once for these scalars
+    }
+    const std::size_t values = parc::BrickGrid(field->GetDimensions()).NumberOfValues();
+    if (values > MaxBrickedCopyRatio * field->GetNumberOfValues())
+    {
+      vtkWarningMacro("BrickedCopy: the scalars are too thin for bricks of "
+        << parc::BrickGrid::Cells << "^3 cells (a copy would hold " << values << " values for "
+        << field->GetNumberOfValues() << "); the rays sample the input's scalars.");
+      state.BricksDeclined = state.Scalars.Version;
+      continue;
+    }
+    this->ReportSetUp("copying the scalars into bricks", SetUpProgress::Bricks);
+    if (!field->SetBricked(true))
+    {
+      vtkWarningMacro("BrickedCopy: no memory for a copy of the scalars in bricks ("
+        << values << " values); the rays sample the input's scalars.");
+      state.BricksDeclined = state.Scalars.Version;
     }
   }
 }

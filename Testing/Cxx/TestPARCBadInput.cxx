@@ -1,9 +1,9 @@
 // Bad input gives a clear error (or a documented result) and never a crash, a hang or a
 // stale image: no input, an empty image, one voxel, one slice, zero spacing, cell scalars
-// one cell thick,
-// an unsupported scalar type, a scalar array shorter than the image, NaN/Inf scalars, no
-// transfer function set, NaN or out-of-range transfer-function values (the same image in
-// every acceleration mode), unusable sample distances, isosurfaces without a usable value.
+// one cell thick, an unsupported scalar type, a scalar array shorter than the image, NaN/Inf
+// scalars, a bricked copy of scalars thinner than a brick, no transfer function set, NaN or
+// out-of-range transfer-function values (the same image in every acceleration mode),
+// unusable sample distances, isosurfaces without a usable value.
 #include "parcTestScene.h"
 
 #include <vtkCellData.h>
@@ -15,6 +15,7 @@
 #include <cstring>
 #include <iostream>
 #include <limits>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -120,6 +121,32 @@ int TestPARCBadInput(int, char*[])
     parctest::MaxAlpha(h.Mapper) <= 1.0;
   std::cout << "NaN/Inf scalars: " << (nanOk ? "replaced, image finite" : "UNEXPECTED") << "\n";
   ok &= nanOk;
+
+  // BrickedCopy on a volume thinner than a brick: a warning, once for the same scalars, no
+  // copy, and the image it renders without.
+  {
+    vtkSmartPointer<vtkImageData> thin = Image(200, 3, 300);
+    h.Mapper->SetInputData(thin);
+    h.Renderer->ResetCamera();
+    h.Window->Render();
+    const std::vector<float> without = parctest::RayImage(h.Mapper);
+    h.Observer->Clear();
+    h.Mapper->BrickedCopyOn();
+    h.Window->Render();
+    const bool warned = h.Observer->GetWarning() &&
+      h.Observer->GetWarningMessage().find("too thin for bricks") != std::string::npos;
+    h.Observer->Clear();
+    h.Window->Render();
+    std::ostringstream memory;
+    h.Mapper->PrintMemory(memory);
+    const bool thinOk = warned && !h.Observer->GetWarning() && !h.Observer->GetError() &&
+      memory.str().find("bricked copy (bytes): 0\n") != std::string::npos &&
+      parctest::RayImage(h.Mapper) == without;
+    std::cout << "BrickedCopy on thin scalars: "
+              << (thinOk ? "warned once, no copy, the same image" : "UNEXPECTED") << "\n";
+    ok &= thinOk;
+    h.Mapper->BrickedCopyOff();
+  }
 
   // No transfer function set: the property's defaults render without error.
   h.Observer->Clear();
