@@ -26,6 +26,7 @@ void CopySettings(vtkPARCVolumeMapper* from, vtkPARCVolumeMapper* to)
   to->SetAutoSupercellSize(from->GetAutoSupercellSize());
   to->SetSampleDistance(from->GetSampleDistance());
   to->SetNumberOfThreads(from->GetNumberOfThreads());
+  to->SetBrickedCopy(from->GetBrickedCopy());
   to->SetShadowMode(from->GetShadowMode());
   to->SetColorRangeType(from->GetColorRangeType());
   to->SetCropping(from->GetCropping());

@@ -110,6 +110,11 @@ void vtkPARCVolumeRepresentation::SetNumberOfThreads(int threads)
   this->GetPARCMapper()->SetNumberOfThreads(threads);
 }
 
+void vtkPARCVolumeRepresentation::SetBrickedCopy(bool bricked)
+{
+  this->GetPARCMapper()->SetBrickedCopy(bricked);
+}
+
 void vtkPARCVolumeRepresentation::SetShadows(bool shadows)
 {
   const int mode =

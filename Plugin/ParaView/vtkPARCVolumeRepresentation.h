@@ -39,6 +39,7 @@ public:
   void SetAutoSupercellSize(bool automatic);
   void SetSampleDistance(double distance);
   void SetNumberOfThreads(int threads);
+  void SetBrickedCopy(bool bricked);
   ///@}
 
   /**

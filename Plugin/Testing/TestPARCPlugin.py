@@ -231,6 +231,10 @@ shaded_auto, _ = shot("parc-volume-shaded-auto", "PARC Volume", PARCAcceleration
 own_shaded, _ = shot("paraview-volume-shaded", "Volume")
 check(shaded_auto == shaded and shaded != parc_none,
       "shaded PARC Volume gives the same pixels with acceleration None and Auto")
+if ranks == 1:  # a rank's piece of the 64^3 volume is thinner than a brick: not copied
+    bricked, _ = shot("parc-volume-shaded-bricked", "PARC Volume", PARCBrickedCopy=1)
+    display.PARCBrickedCopy = 0
+    check(bricked == shaded_auto, "PARCBrickedCopy gives the same pixels")
 check(statistics()["ShadowRayCount"] == 0, "no shadow ray without PARCShadows")
 shadowed, _ = shot("parc-volume-shadows", "PARC Volume", PARCShadows=1,
                    PARCAccelerationMode="None")
