@@ -488,6 +488,11 @@ def plots(outdir, rows, images):
                                    False))
                 series.append(line("%s %s first frame" % (title, shading), select,
                                    lambda r, key=key: first_frames(r, key)[1], colour, True))
+            bricked = lambda r, shade=shade: (r["kind"] == kind and r["shade"] == shade and
+                                              "warm_bricked_%d" % images[0] in r)
+            series.append(line("PARC Auto, BrickedCopy, %s (warm)" % shading, bricked,
+                               lambda r: r["warm_bricked_%d" % images[0]][1],
+                               PALETTE[4 + 4 * i], False))
         name = "volume-size-time-%s.png" % kind
         title = "%s: warm frame (median) and first frame against volume size, %d^2" % (kind, images[0])
         draw(series, os.path.join(outdir, name), title, "voxels", "seconds", True, True,
