@@ -258,12 +258,12 @@ int TestPARCAccelerationExact(int argc, char* argv[])
       vtkVolume::SafeDownCast(ren->GetVolumes()->GetItemAsObject(0))->SetMapper(nullptr);
     }
   }
-  // A copy of the scalars in bricks (BrickedCopy; 80^3 voxels are 2 x 2 x 2 bricks) gives
+  // A copy of the scalars in bricks (BrickedCopy; 129^3 voxels are 2 x 2 x 2 bricks) gives
   // the same images in every mode, shaded or not, with shadows; GetMemorySize counts it, and
   // it is freed when turned off.
   {
     window->GetRenderers()->RemoveAllItems();
-    vtkSmartPointer<vtkImageData> large = parctest::MakeBlobs(80);
+    vtkSmartPointer<vtkImageData> large = parctest::MakeBlobs(129);
     for (int blend : { vtkVolumeMapper::COMPOSITE_BLEND, vtkVolumeMapper::ISOSURFACE_BLEND })
     {
       for (bool shade : { false, true })
