@@ -58,6 +58,7 @@ struct BrickGrid
   /// From a brick's first voxel to its first cell's first voxel.
   static constexpr std::ptrdiff_t Apron = 1 + Side + std::ptrdiff_t(Side) * Side;
 
+  BrickGrid() = default; ///< no bricks
   explicit BrickGrid(const int dims[3])
   {
     for (int a = 0; a < 3; ++a)
@@ -85,8 +86,8 @@ struct BrickGrid
     return offset;
   }
 
-  int Count[3];           ///< bricks along x, y, z
-  std::ptrdiff_t Step[3]; ///< elements from a brick to the next along x, y, z
+  int Count[3] = { 0, 0, 0 };           ///< bricks along x, y, z
+  std::ptrdiff_t Step[3] = { 0, 0, 0 }; ///< elements from a brick to the next along x, y, z
 };
 
 /// Typed, non-owning read access to a field's values (see the file comment).
@@ -107,7 +108,7 @@ public:
   FieldView(const T* data, const int dims[3], std::ptrdiff_t stride, const T* bricks = nullptr)
     : Data(data)
     , Bricks(bricks)
-    , Grid(dims)
+    , Grid(bricks ? BrickGrid(dims) : BrickGrid())
   {
     for (int a = 0; a < 3; ++a)
     {
@@ -376,26 +377,13 @@ private:
 #if defined(__SSE2__)
     if (this->StepsFitIn32Bits)
     {
-      // Cells are not negative: 32 x 32 -> 64-bit products of unsigned numbers, two lanes at
-      // a time (0 and 2, then 1 and 3), summed in 64 bits.
-      const __m128i s0 = _mm_set1_epi32(static_cast<int>(this->Step[0]));
-      const __m128i s1 = _mm_set1_epi32(static_cast<int>(this->Step[1]));
-      const __m128i s2 = _mm_set1_epi32(static_cast<int>(this->Step[2]));
+      const Steps32 steps(this->Step);
       for (int j = 0; j < n; j += 4)
       {
-        const __m128i x = block.CellLanes(0, j);
-        const __m128i y = block.CellLanes(1, j);
-        const __m128i z = block.CellLanes(2, j);
-        const __m128i even = _mm_add_epi64(_mm_mul_epu32(x, s0),
-          _mm_add_epi64(_mm_mul_epu32(y, s1), _mm_mul_epu32(z, s2)));
-        const __m128i odd = _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(x, 32), s0),
-          _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(y, 32), s1),
-            _mm_mul_epu32(_mm_srli_epi64(z, 32), s2)));
-        static_assert(sizeof(std::ptrdiff_t) == 8, "64-bit offsets");
-        _mm_storeu_si128(
-          reinterpret_cast<__m128i*>(block.Offset + j), _mm_unpacklo_epi64(even, odd));
-        _mm_storeu_si128(
-          reinterpret_cast<__m128i*>(block.Offset + j + 2), _mm_unpackhi_epi64(even, odd));
+        __m128i low, high;
+        steps.Sums(block.CellLanes(0, j), block.CellLanes(1, j), block.CellLanes(2, j), low, high);
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(block.Offset + j), low);
+        _mm_storeu_si128(reinterpret_cast<__m128i*>(block.Offset + j + 2), high);
       }
       return;
     }
@@ -406,6 +394,34 @@ private:
         block.Cell[2][j] * this->Step[2];
     }
   }
+#if defined(__SSE2__)
+  /// Three steps below 2^32, for sums x s0 + y s1 + z s2 of four lanes of cells.
+  struct Steps32
+  {
+    explicit Steps32(const std::ptrdiff_t step[3])
+    {
+      for (int a = 0; a < 3; ++a)
+      {
+        this->S[a] = _mm_set1_epi32(static_cast<int>(step[a]));
+      }
+    }
+    /// The sums of lanes 0, 1 (low) and 2, 3 (high) in 64 bits: cells are not negative, so
+    /// 32 x 32 -> 64-bit products of unsigned numbers, two lanes at a time (0 and 2, then
+    /// 1 and 3).
+    PARC_HOT_INLINE void Sums(__m128i x, __m128i y, __m128i z, __m128i& low, __m128i& high) const
+    {
+      const __m128i even = _mm_add_epi64(_mm_mul_epu32(x, this->S[0]),
+        _mm_add_epi64(_mm_mul_epu32(y, this->S[1]), _mm_mul_epu32(z, this->S[2])));
+      const __m128i odd = _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(x, 32), this->S[0]),
+        _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(y, 32), this->S[1]),
+          _mm_mul_epu32(_mm_srli_epi64(z, 32), this->S[2])));
+      static_assert(sizeof(std::ptrdiff_t) == 8, "64-bit offsets");
+      low = _mm_unpacklo_epi64(even, odd);
+      high = _mm_unpackhi_epi64(even, odd);
+    }
+    __m128i S[3];
+  };
+#endif
   /// CellOffsets in the bricks.
   PARC_HOT_INLINE void BrickOffsets(LatticeBlock& block, int n) const
   {
@@ -416,9 +432,7 @@ private:
       // above CellShift; the cell's in the brick from those below, in 32 bits (factors
       // below 2^16: the low and high halves of the products of the 16-bit low halves,
       // whose high halves are 0).
-      const __m128i s0 = _mm_set1_epi32(static_cast<int>(this->Grid.Step[0]));
-      const __m128i s1 = _mm_set1_epi32(static_cast<int>(this->Grid.Step[1]));
-      const __m128i s2 = _mm_set1_epi32(static_cast<int>(this->Grid.Step[2]));
+      const Steps32 steps(this->Grid.Step);
       const __m128i low = _mm_set1_epi32(BrickGrid::Cells - 1);
       const __m128i side = _mm_set1_epi32(BrickGrid::Side);
       const __m128i slice = _mm_set1_epi32(BrickGrid::Side * BrickGrid::Side);
@@ -439,15 +453,12 @@ private:
         const __m128i local = _mm_add_epi32(_mm_add_epi32(apron, _mm_and_si128(cx, low)),
           _mm_add_epi32(product(_mm_and_si128(cy, low), side),
             product(_mm_and_si128(cz, low), slice)));
-        const __m128i even = _mm_add_epi64(_mm_mul_epu32(x, s0),
-          _mm_add_epi64(_mm_mul_epu32(y, s1), _mm_mul_epu32(z, s2)));
-        const __m128i odd = _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(x, 32), s0),
-          _mm_add_epi64(_mm_mul_epu32(_mm_srli_epi64(y, 32), s1),
-            _mm_mul_epu32(_mm_srli_epi64(z, 32), s2)));
+        __m128i first, second; // the bricks' offsets of lanes 0, 1 and 2, 3
+        steps.Sums(x, y, z, first, second);
         _mm_storeu_si128(reinterpret_cast<__m128i*>(block.Offset + j),
-          _mm_add_epi64(_mm_unpacklo_epi64(even, odd), _mm_unpacklo_epi32(local, zero)));
+          _mm_add_epi64(first, _mm_unpacklo_epi32(local, zero)));
         _mm_storeu_si128(reinterpret_cast<__m128i*>(block.Offset + j + 2),
-          _mm_add_epi64(_mm_unpackhi_epi64(even, odd), _mm_unpackhi_epi32(local, zero)));
+          _mm_add_epi64(second, _mm_unpackhi_epi32(local, zero)));
       }
       return;
     }
@@ -715,10 +726,19 @@ private:
   /// Read: the bricks when there are bricks, else the values.
   void SetRead()
   {
-    const std::ptrdiff_t inBrick[3] = { 1, BrickGrid::Side, BrickGrid::Side * BrickGrid::Side };
-    this->Read.Values = this->Bricks ? this->Bricks : this->Data;
-    std::copy_n(this->Bricks ? inBrick : this->Step, 3, this->Read.Step);
-    SetCorners(this->Read.Step, this->Read.Corner);
+    if (this->Bricks)
+    {
+      const std::ptrdiff_t inBrick[3] = { 1, BrickGrid::Side, BrickGrid::Side * BrickGrid::Side };
+      this->Read.Values = this->Bricks;
+      std::copy_n(inBrick, 3, this->Read.Step);
+      SetCorners(inBrick, this->Read.Corner);
+    }
+    else
+    {
+      this->Read.Values = this->Data;
+      std::copy_n(this->Step, 3, this->Read.Step);
+      std::copy_n(this->Corner, 8, this->Read.Corner);
+    }
     this->Read.Paired = this->Read.Step[0] == 1;
   }
 
