@@ -13,7 +13,8 @@ off) at half a voxel, in a perspective view. For each volume and shading:
   (3 rounds, 7 below 128 MiB);
 - the same warm frames of this mapper with a copy of the scalars in bricks (BrickedCopy),
   a third mapper in the same rounds (A B C A B C), its casting cost against the head's and
-  its GetMemorySize;
+  its GetMemorySize; and once in a process of its own, its first frame (the copy's build
+  included) and the resident size its 5 frames add beside its GetMemorySize;
 - the frame after a transfer-function edit against a warm frame (this mapper);
 - this mapper's casting cost in warm frames (ns per thread: per sample, per sample taken,
   per contributing sample; medians), mode and supercell size; and against the head's own
@@ -303,7 +304,7 @@ def first(outdir, factor, kind, name, shade, pixels, outlined=False):
     for _ in range(MEMORY_FRAMES - 1):
         window.Render()
     result["growth"] = resident() - before
-    if name == "parc":
+    if name in ("parc", "bricked"):
         result["memory_size"] = mapper.GetMemorySize()
     print(json.dumps(result))
 
@@ -373,6 +374,10 @@ def report(outdir, quick, factors=None, images=None):
                     row["growth_outlined_" + name] = child(
                         "--first", outdir, factor, kind, name, row["shade"], images[0],
                         "outlined")["growth"]
+                # The bricked copy's first frame and memory: one fresh process.
+                run = child("--first", outdir, factor, kind, "bricked", row["shade"], images[0])
+                for key in ("first", "growth", "memory_size"):
+                    row[key + "_bricked"] = run[key]
             rows.extend(measured)
             if factor != 1:  # the head's own size is every volume's reference
                 os.remove(volume_path(outdir, factor, kind))
@@ -445,8 +450,9 @@ def tables(rows, images):
     print("| volume | shading | " + " | ".join(
         "warm %d^2: PARC, PARC bricked median (min) (s) | PARC / bricked | FixedPoint / bricked"
         % p for p in images) + " | bricked ns per thread against the head's (x1) in turns "
-          "| bricked GetMemorySize (x volume) |")
-    print("|---|---|" + "---|---|---|" * len(images) + "---|---|")
+          "| bricked GetMemorySize (x volume) | bricked first frame (s) | bricked resident "
+          "growth (x volume) | bricked GetMemorySize / growth |")
+    print("|---|---|" + "---|---|---|" * len(images) + "---|---|---|---|---|")
     for r in bricked:
         cells = []
         for p in images:
@@ -455,9 +461,13 @@ def tables(rows, images):
                       "%.2fx" % (c[1] / b[1]), "%.2fx" % (f[1] / b[1])]
         keys = [k for k in SAMPLE_COSTS if "bricked_against_head_" + k in r]
         against = ", ".join("%.2fx" % r["bricked_against_head_" + k] for k in keys) or "-"
-        print("| %s | %s | %s | %s | %.2f |" % (
+        fresh = "- | - | -"  # not in runs saved before the bricked copy had a fresh process
+        if "growth_bricked" in r:
+            fresh = "%.3f | %.2f | %.2f" % (r["first_bricked"], r["growth_bricked"] / r["bytes"],
+                                          r["memory_size_bricked"] / max(r["growth_bricked"], 1))
+        print("| %s | %s | %s | %s | %.2f | %s |" % (
             label(r), "shaded" if r["shade"] else "unshaded", " | ".join(cells), against,
-            r["bricked_memory_size"] / r["bytes"]))
+            r["bricked_memory_size"] / r["bytes"], fresh))
     print()
 
 
@@ -513,6 +523,11 @@ def plots(outdir, rows, images):
                                and "growth_outlined_parc" in r,
                                lambda r, key=key: r["growth_outlined_" + key] / 2**20, colour,
                                kind != kinds[0]))
+    for kind in kinds:
+        series.append(line("PARC Auto, BrickedCopy unshaded",
+                           lambda r, k=kind: r["kind"] == k and r["shade"] == 0
+                           and "growth_bricked" in r,
+                           lambda r: r["growth_bricked"] / 2**20, PALETTE[6], kind != kinds[0]))
     for kind in kinds:
         series.append(line("PARC GetMemorySize", lambda r, k=kind: r["kind"] == k and r["shade"] == 0,
                            lambda r: r["memory_size_parc"] / 2**20, PALETTE[4], kind != kinds[0]))
