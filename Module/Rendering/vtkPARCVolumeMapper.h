@@ -410,7 +410,7 @@ public:
    * 429 MB; nothing to gain on a 7 MB volume). The copy costs memory: 1.15 times the
    * rendered scalars' bytes where each axis holds a whole number of bricks, up to about 1.5
    * times where it does not (1.41 times at 429 MB). It is made on the first render after
-   * the scalars change (about a second at 429 MB) and freed when this is turned off.
+   * the scalars change (about 0.2 s at 429 MB) and freed when this is turned off.
    * Images are the same bit for bit with and without it. When the memory cannot be had,
    * or the copy would hold more than twice the values (scalars thinner than a brick along
    * some axis), the mapper warns once and samples the input. GetMemorySize counts the copy.

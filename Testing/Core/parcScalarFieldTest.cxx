@@ -119,8 +119,9 @@ TEST(ScalarField, LatticeBlocksAreTheSamplesAtTheirPositions)
 }
 
 // A copy in bricks (ScalarField::SetBricked) gives the same samples, locations and
-// gradients, across the bricks' faces and in the last bricks, which the field fills only
-// in part; Wrap frees it.
+// gradients, across the bricks' faces, in bricks copied a whole row at a time (the middle
+// bricks along x, one component) and voxel by voxel (the first and last bricks, which the
+// field fills only in part; two components); Wrap frees it.
 TEST(ScalarField, BrickedLatticeBlocksAreTheSamplesAtTheirPositions)
 {
   for (int stride : { 1, 2 })

@@ -231,11 +231,20 @@ void ScalarField::MakeBricks()
       const auto clamped = [&](int axis, int l) {
         return std::min(std::max(BrickGrid::First(brick[axis]) + l, 0), dims[axis] - 1);
       };
+      // A brick's rows inside the field along x are runs of contiguous values (one
+      // component): copied whole; the others voxel by voxel, clamped.
+      const int x0 = BrickGrid::First(brick[0]);
+      const bool wholeRows = stride == 1 && x0 >= 0 && x0 + BrickGrid::Side <= dims[0];
       for (int lz = 0; lz < BrickGrid::Side; ++lz)
       {
         for (int ly = 0; ly < BrickGrid::Side; ++ly, v += BrickGrid::Side)
         {
           const T* row = view.Row(clamped(1, ly), clamped(2, lz));
+          if (wholeRows)
+          {
+            std::copy_n(row + x0, BrickGrid::Side, v);
+            continue;
+          }
           for (int lx = 0; lx < BrickGrid::Side; ++lx)
           {
             v[lx] = row[clamped(0, lx) * stride];
