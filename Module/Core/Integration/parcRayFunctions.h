@@ -498,7 +498,7 @@ struct IsoSurfaceFunction
       lanes |= static_cast<unsigned>(differ) << j;
     }
 #endif
-    lanes &= (1u << n) - 1u;
+    lanes &= LatticeBlock::LowLanes(n);
     return follows ? lanes : lanes & ~1u;
   }
   /// Composites the crossings between sample s0 and sample s1 at t1; false once the ray
