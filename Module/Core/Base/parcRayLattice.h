@@ -93,7 +93,7 @@ struct LatticeBlock
   /// The same lanes as bits 1 << j.
   static constexpr unsigned GroupLanes(int count) { return LowLanes(GroupedCount(count)); }
   /// Lanes 0 .. n - 1 (n <= Size) as bits 1 << j.
-  static constexpr unsigned LowLanes(int n) { return n >= Size ? ~0u : (1u << n) - 1u; }
+  static constexpr unsigned LowLanes(int n) { return n >= 32 ? ~0u : (1u << n) - 1u; }
 
 #if defined(__SSE2__)
   /// The cells of lanes j .. j + 3 along axis, in a register.
