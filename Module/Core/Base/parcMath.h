@@ -229,11 +229,21 @@ PARC_HOT_INLINE __m128 Log2OfNormal(__m128 x)
 /// above 2^-24; exactly 1 where x is 1 or e is 0. Four powers for less than the cost of one
 /// call to std::pow, each lane computed alike, so a single value broadcast to the lanes
 /// gets the bits a block's lane gets.
-PARC_HOT_INLINE __m128 PowOfUnitInterval(__m128 x, __m128 e)
+PARC_HOT_INLINE __m128 PowOfUnitInterval(__m128 x, __m128 e);
+/// PowOfUnitInterval's first half, e log2(x) (for several independent powers side by side).
+PARC_HOT_INLINE __m128 PowerLogarithm(__m128 x, __m128 e)
 {
   const __m128 smallest = _mm_set1_ps(std::numeric_limits<float>::min());
-  const __m128 y = _mm_mul_ps(e, Log2OfNormal(_mm_max_ps(x, smallest)));
+  return _mm_mul_ps(e, Log2OfNormal(_mm_max_ps(x, smallest)));
+}
+/// PowOfUnitInterval's second half: 2^y for y from PowerLogarithm.
+PARC_HOT_INLINE __m128 PowerFromLogarithm(__m128 y)
+{
   return Exp2InRange(_mm_min_ps(_mm_max_ps(y, _mm_set1_ps(-126.f)), _mm_set1_ps(126.f)));
+}
+PARC_HOT_INLINE __m128 PowOfUnitInterval(__m128 x, __m128 e)
+{
+  return PowerFromLogarithm(PowerLogarithm(x, e));
 }
 #endif
 /// The number of set bits of x (32 bits).

@@ -422,12 +422,11 @@ struct RayContext
       nonZero |= static_cast<unsigned>(a[j] != 0.f) << j;
     }
 #endif
-    this->CorrectOpacities(a, nonZero);
+    this->CorrectOpacities(a);
     return lanes & nonZero;
   }
-  /// CorrectOpacity for every lane of a (the lanes of a group of four without a bit in
-  /// nonZero are 0 and stay 0: a power leaves them out).
-  PARC_HOT_INLINE void CorrectOpacities(float* a, unsigned nonZero) const
+  /// CorrectOpacity for every lane of a (lanes of 0 stay 0).
+  PARC_HOT_INLINE void CorrectOpacities(float* a) const
   {
     const float exponent = this->K.OpacityExponent;
     if (exponent == 1.f)
@@ -437,18 +436,33 @@ struct RayContext
 #if defined(__SSE2__)
     const int roots = this->K.OpacityRoots;
     const __m128 one = _mm_set1_ps(1.f), e = _mm_set1_ps(exponent);
+    if (roots == 0)
+    {
+      // CorrectedTransparency's power in two passes over the groups, the logarithms, then
+      // the powers: independent chains side by side instead of one group's long chain
+      // after another's (the same operations, so the same bits; a group of zeros gives
+      // zeros).
+      constexpr int groups = LatticeBlock::Size / 4;
+      __m128 y[groups];
+      for (int g = 0; g < groups; ++g)
+      {
+        y[g] = PowerLogarithm(_mm_sub_ps(one, _mm_loadu_ps(a + 4 * g)), e);
+      }
+      for (int g = 0; g < groups; ++g)
+      {
+        const __m128 v = _mm_loadu_ps(a + 4 * g);
+        _mm_storeu_ps(a + 4 * g,
+          Select(_mm_cmpge_ps(v, one), v, _mm_sub_ps(one, PowerFromLogarithm(y[g]))));
+      }
+      return;
+    }
     for (int j = 0; j < LatticeBlock::Size; j += 4)
     {
-      if (roots == 0 && !((nonZero >> j) & 0xFu)) // a power costs more than the branch
-      {
-        continue;
-      }
       const __m128 v = _mm_loadu_ps(a + j);
       _mm_storeu_ps(a + j, Select(_mm_cmpge_ps(v, one), v,
         _mm_sub_ps(one, CorrectedTransparency(_mm_sub_ps(one, v), roots, e))));
     }
 #else
-    (void)nonZero;
     for (int j = 0; j < LatticeBlock::Size; ++j)
     {
       a[j] = this->CorrectOpacity(a[j]);
