@@ -223,17 +223,6 @@ PARC_HOT_INLINE __m128 Log2OfNormal(__m128 x)
   }
   return _mm_add_ps(k, _mm_mul_ps(p, s));
 }
-/// PowOfUnitInterval's first half (below): e log2(x), for independent powers side by side.
-PARC_HOT_INLINE __m128 PowerLogarithm(__m128 x, __m128 e)
-{
-  const __m128 smallest = _mm_set1_ps(std::numeric_limits<float>::min());
-  return _mm_mul_ps(e, Log2OfNormal(_mm_max_ps(x, smallest)));
-}
-/// PowOfUnitInterval's second half: 2^y for y from PowerLogarithm.
-PARC_HOT_INLINE __m128 PowerFromLogarithm(__m128 y)
-{
-  return Exp2InRange(_mm_min_ps(_mm_max_ps(y, _mm_set1_ps(-126.f)), _mm_set1_ps(126.f)));
-}
 /// x^e, lane by lane, for x in (0, 1] (or a little above: a normal's dot product) and
 /// e >= 0, x below 2^-126 taken as 2^-126: 2^(e log2 x). 1 - x^e (a corrected opacity) is
 /// within 1.2e-7 of 1 - std::pow(x, e), and x^e within 2e-6 of it relatively where it is
@@ -242,7 +231,9 @@ PARC_HOT_INLINE __m128 PowerFromLogarithm(__m128 y)
 /// gets the bits a block's lane gets.
 PARC_HOT_INLINE __m128 PowOfUnitInterval(__m128 x, __m128 e)
 {
-  return PowerFromLogarithm(PowerLogarithm(x, e));
+  const __m128 smallest = _mm_set1_ps(std::numeric_limits<float>::min());
+  const __m128 y = _mm_mul_ps(e, Log2OfNormal(_mm_max_ps(x, smallest)));
+  return Exp2InRange(_mm_min_ps(_mm_max_ps(y, _mm_set1_ps(-126.f)), _mm_set1_ps(126.f)));
 }
 #endif
 /// The number of set bits of x (32 bits).

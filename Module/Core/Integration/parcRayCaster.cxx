@@ -178,15 +178,7 @@ bool RayCaster::Prepare(const Volume& volume)
   RenderConstants& k = this->Constants;
   const auto perUnit =
     static_cast<float>(parameters->SampleDistance / parameters->OpacityUnitDistance);
-  k.OpacityExponent = TraitsOf(blend).CorrectsOpacity ? perUnit : 1.f;
-  k.OpacityRoots = 0;
-  for (int m = 1; m <= RenderConstants::MaxOpacityRoots; ++m)
-  {
-    if (k.OpacityExponent == std::ldexp(1.f, -m))
-    {
-      k.OpacityRoots = m;
-    }
-  }
+  k.Correction.SetExponent(TraitsOf(blend).CorrectsOpacity ? perUnit : 1.f);
   k.OpacityScale = TraitsOf(blend).ScalesOpacity ? perUnit : 1.f;
   k.ComponentWeight = static_cast<float>(parameters->ComponentWeight);
   double constant = 1.0;

@@ -78,6 +78,7 @@
 #include "parcCastParameters.h"
 #include "parcCellMap.h"
 #include "parcCompositor.h"
+#include "parcOpacityCorrection.h"
 #include "parcRay.h"
 #include "parcScalarField.h"
 #include "parcSegmentSource.h"
@@ -276,16 +277,10 @@ public:
   /// What Prepare derives from the parameters once per render for every ray.
   struct RenderConstants
   {
-    /// VTK's correction of a sample's opacity a for the sample distance dt, as its GPU
-    /// mapper makes it: 1 - (1 - a)^OpacityExponent, then times OpacityScale. Compositing
-    /// ray functions take the exponent dt / unit distance; additive blending the scale
-    /// dt / unit distance; average intensity neither.
-    float OpacityExponent = 1.f;
-    /// m when OpacityExponent is 2^-m, 1 <= m <= MaxOpacityRoots (sample distances of a
-    /// half, a quarter, ... of the unit distance, as half a voxel of a volume whose spacing
-    /// is a power of two): the correction takes m square roots, not a power; else 0.
-    int OpacityRoots = 0;
-    static constexpr int MaxOpacityRoots = 8;
+    /// The correction of a sample's opacity for the sample distance dt (compositing ray
+    /// functions: the exponent dt / unit distance); additive blending takes the scale
+    /// dt / unit distance instead, average intensity neither.
+    OpacityCorrection Correction;
     float OpacityScale = 1.f;
     float ComponentWeight = 1.f; ///< CastParameters::ComponentWeight
     bool GradientNeeded = false;

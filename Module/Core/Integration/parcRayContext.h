@@ -422,52 +422,8 @@ struct RayContext
       nonZero |= static_cast<unsigned>(a[j] != 0.f) << j;
     }
 #endif
-    this->CorrectOpacities(a);
+    this->K.Correction.CorrectLanes<LatticeBlock::Size>(a);
     return lanes & nonZero;
-  }
-  /// CorrectOpacity for every lane of a (lanes of 0 stay 0).
-  PARC_HOT_INLINE void CorrectOpacities(float* a) const
-  {
-    const float exponent = this->K.OpacityExponent;
-    if (exponent == 1.f)
-    {
-      return;
-    }
-#if defined(__SSE2__)
-    const int roots = this->K.OpacityRoots;
-    const __m128 one = _mm_set1_ps(1.f), e = _mm_set1_ps(exponent);
-    if (roots == 0)
-    {
-      // CorrectedTransparency's power in two passes over the groups, the logarithms, then
-      // the powers: independent chains side by side instead of one group's long chain
-      // after another's (the same operations, so the same bits; a group of zeros gives
-      // zeros).
-      constexpr int groups = LatticeBlock::Size / 4;
-      __m128 y[groups];
-      for (int g = 0; g < groups; ++g)
-      {
-        y[g] = PowerLogarithm(_mm_sub_ps(one, _mm_loadu_ps(a + 4 * g)), e);
-      }
-      for (int g = 0; g < groups; ++g)
-      {
-        const __m128 v = _mm_loadu_ps(a + 4 * g);
-        _mm_storeu_ps(a + 4 * g,
-          Select(_mm_cmpge_ps(v, one), v, _mm_sub_ps(one, PowerFromLogarithm(y[g]))));
-      }
-      return;
-    }
-    for (int j = 0; j < LatticeBlock::Size; j += 4)
-    {
-      const __m128 v = _mm_loadu_ps(a + j);
-      _mm_storeu_ps(a + j, Select(_mm_cmpge_ps(v, one), v,
-        _mm_sub_ps(one, CorrectedTransparency(_mm_sub_ps(one, v), roots, e))));
-    }
-#else
-    for (int j = 0; j < LatticeBlock::Size; ++j)
-    {
-      a[j] = this->CorrectOpacity(a[j]);
-    }
-#endif
   }
   /// The lanes j < n of the block whose opacity may be non-zero, as bits 1 << j: the
   /// others are 0 without evaluating the opacity function.
@@ -580,38 +536,7 @@ struct RayContext
   {
     return (s - this->P.IntensityRange[0]) * this->K.IntensityScale;
   }
-  float CorrectOpacity(float a) const
-  {
-    const float exponent = this->K.OpacityExponent;
-    if (exponent == 1.f || a >= 1.f)
-    {
-      return a;
-    }
-#if defined(__SSE2__)
-    // The lanes' computation, so that a sample gets the bits it gets in a block.
-    const __m128 transparency = _mm_set1_ps(1.f - a), e = _mm_set1_ps(exponent);
-    return 1.f - _mm_cvtss_f32(CorrectedTransparency(transparency, this->K.OpacityRoots, e));
-#else
-    return 1.f - std::pow(1.f - a, exponent);
-#endif
-  }
-#if defined(__SSE2__)
-  /// The corrected transparency t^exponent of transparencies t in (0, 1]: by `roots`
-  /// square roots when the exponent is 2^-roots (see RenderConstants::OpacityRoots), else
-  /// by PowOfUnitInterval.
-  static PARC_HOT_INLINE __m128 CorrectedTransparency(__m128 t, int roots, __m128 exponent)
-  {
-    if (roots == 0)
-    {
-      return PowOfUnitInterval(t, exponent);
-    }
-    for (int r = 0; r < roots; ++r)
-    {
-      t = _mm_sqrt_ps(t);
-    }
-    return t;
-  }
-#endif
+  float CorrectOpacity(float a) const { return this->K.Correction.Correct(a); }
   /// ndh^SpecularPower for 0 < ndh (about 1 at most).
   float SpecularTerm(float ndh) const;
 #if defined(__SSE2__)
