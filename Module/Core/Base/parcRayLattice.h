@@ -81,6 +81,8 @@ struct LatticeBlock
   static constexpr int Size = 32;
   static_assert(Size <= 32, "a block's lanes are the bits of an unsigned number");
   static constexpr int Lanes = 4; ///< lanes computed together (a multiple of 2, dividing Size)
+  /// The lanes of a group of Lanes as bits (of the group's first lane shifted down).
+  static constexpr unsigned GroupBits = (1u << Lanes) - 1u;
   float Values[Size];
   int Cell[3][Size];
   float Fractions[3][Size];

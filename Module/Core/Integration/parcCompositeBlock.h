@@ -141,7 +141,7 @@ PARC_HOT_INLINE bool RayContext<View>::CompositeUnshadedBlock(
   __m128 sum = ColourSums(out);
   for (int first = 0; first < end; first += LatticeBlock::Lanes)
   {
-    if (((composited >> first) & ((1u << LatticeBlock::Lanes) - 1u)) == 0)
+    if (((composited >> first) & LatticeBlock::GroupBits) == 0)
     {
       continue;
     }

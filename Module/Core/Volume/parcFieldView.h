@@ -210,7 +210,7 @@ public:
     }
     for (int j = 0; j < n; j += LatticeBlock::Lanes)
     {
-      if (((lanes >> j) & GroupBits) != 0)
+      if (((lanes >> j) & LatticeBlock::GroupBits) != 0)
       {
         this->SampleGroup(block, j);
       }
@@ -469,8 +469,6 @@ private:
       block.Offset[j] = this->Grid.CellOffset(cell);
     }
   }
-  /// The lanes of a LatticeBlock::Lanes group.
-  static constexpr unsigned GroupBits = (1u << LatticeBlock::Lanes) - 1u;
   /// Interpolates the located lanes of block's group from lane first into its values.
   PARC_HOT_INLINE void SampleGroup(LatticeBlock& block, int first) const
   {
