@@ -105,8 +105,8 @@ TEST(SceneCaster, OneVolumeIsItsOwnImage)
 // stops, colours, shading several lanes at a time); behind a mask (here all ones, hiding
 // nothing) each sample goes the whole way alone. Both give the same bits, events and counts,
 // alone and in a scene, under lights from every side with odd, even and fractional
-// specular powers, with quantized normals, opacity corrections by square roots and by
-// powers, constant and varying gradient opacity, and rays that stop early.
+// specular powers, with quantized normals, opacity corrections by square roots, by series
+// and by powers, constant and varying gradient opacity, and rays that stop early.
 TEST(SceneCaster, StagedCompositingIsPerSampleCompositing)
 {
   const parc::ScalarField field = Blobs();
@@ -143,7 +143,9 @@ TEST(SceneCaster, StagedCompositingIsPerSampleCompositing)
     { "three lights, power 7.5", [&](CastParameters& p) { lights(p); p.SpecularPower = 7.5; } },
     { "no lights", [](CastParameters& p) { p.Lights.clear(); } },
     { "quarter voxel", [](CastParameters& p) { p.SampleDistance = 0.25; } },
-    { "0.7 voxel, power correction", [](CastParameters& p) { p.SampleDistance = 0.7; } },
+    { "0.7 voxel, series and power correction",
+      [](CastParameters& p) { p.SampleDistance = 0.7; } },
+    { "1.5 voxel, power correction", [](CastParameters& p) { p.SampleDistance = 1.5; } },
     { "unit distance", [](CastParameters& p) { p.SampleDistance = 1.0; } },
     { "opaque, rays stop", [](CastParameters& p) {
        p.Opacity.SetNodes({ 0.0, 60.0, 120.0 }, { 0.0, 0.0, 1.0 }, true); } },
