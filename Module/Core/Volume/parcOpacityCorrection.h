@@ -73,26 +73,12 @@ public:
       }
       return;
     }
-    // The series' steps for every group in turn: independent chains side by side, each
-    // lane's the same operations as CorrectFour's.
     constexpr int groups = N / 4;
-    __m128 p[groups];
+    __m128 series[groups];
+    this->Series<groups>(a, series);
     for (int g = 0; g < groups; ++g)
     {
-      p[g] = _mm_set1_ps(this->Coefficients[SeriesDegree - 1]);
-    }
-    for (int k = SeriesDegree - 2; k >= 0; --k)
-    {
-      const __m128 c = _mm_set1_ps(this->Coefficients[k]);
-      for (int g = 0; g < groups; ++g)
-      {
-        p[g] = _mm_add_ps(_mm_mul_ps(p[g], _mm_loadu_ps(a + 4 * g)), c);
-      }
-    }
-    for (int g = 0; g < groups; ++g)
-    {
-      const __m128 v = _mm_loadu_ps(a + 4 * g);
-      _mm_storeu_ps(a + 4 * g, this->Finish(v, _mm_mul_ps(p[g], v)));
+      _mm_storeu_ps(a + 4 * g, this->Finish(_mm_loadu_ps(a + 4 * g), series[g]));
     }
 #else
     for (int j = 0; j < N; ++j)
@@ -109,7 +95,11 @@ private:
   {
     if (this->Roots == 0)
     {
-      return this->Finish(a, this->Series(a));
+      alignas(16) float opacities[4];
+      _mm_store_ps(opacities, a);
+      __m128 series;
+      this->Series<1>(opacities, &series);
+      return this->Finish(a, series);
     }
     const __m128 one = _mm_set1_ps(1.f);
     __m128 t = _mm_sub_ps(one, a);
@@ -133,15 +123,29 @@ private:
     }
     return Select(_mm_cmpge_ps(a, one), a, corrected);
   }
-  /// sum_k b_k a^k, k = 1 .. SeriesDegree, by Horner's rule.
-  PARC_HOT_INLINE __m128 Series(__m128 a) const
+  /// sum_k b_k a^k, k = 1 .. SeriesDegree, by Horner's rule, for the G groups of four
+  /// opacities of a: each step for every group in turn (independent chains side by side;
+  /// the opacities read again at each step rather than held in registers), each lane the
+  /// same operations whatever G.
+  template <int G>
+  PARC_HOT_INLINE void Series(const float* a, __m128 series[G]) const
   {
-    __m128 p = _mm_set1_ps(this->Coefficients[SeriesDegree - 1]);
+    for (int g = 0; g < G; ++g)
+    {
+      series[g] = _mm_set1_ps(this->Coefficients[SeriesDegree - 1]);
+    }
     for (int k = SeriesDegree - 2; k >= 0; --k)
     {
-      p = _mm_add_ps(_mm_mul_ps(p, a), _mm_set1_ps(this->Coefficients[k]));
+      const __m128 c = _mm_set1_ps(this->Coefficients[k]);
+      for (int g = 0; g < G; ++g)
+      {
+        series[g] = _mm_add_ps(_mm_mul_ps(series[g], _mm_loadu_ps(a + 4 * g)), c);
+      }
     }
-    return _mm_mul_ps(p, a);
+    for (int g = 0; g < G; ++g)
+    {
+      series[g] = _mm_mul_ps(series[g], _mm_loadu_ps(a + 4 * g));
+    }
   }
 #endif
 
