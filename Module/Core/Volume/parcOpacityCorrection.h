@@ -65,7 +65,7 @@ public:
       return;
     }
 #if defined(__SSE2__)
-    if (this->Roots > 0)
+    if (this->Roots > 0 || this->SeriesBound == 0.f)
     {
       for (int j = 0; j < N; j += 4)
       {
@@ -93,21 +93,30 @@ private:
   /// Correct for four opacities.
   PARC_HOT_INLINE __m128 CorrectFour(__m128 a) const
   {
-    if (this->Roots == 0)
-    {
-      alignas(16) float opacities[4];
-      _mm_store_ps(opacities, a);
-      __m128 series;
-      this->Series<1>(opacities, &series);
-      return this->Finish(a, series);
-    }
     const __m128 one = _mm_set1_ps(1.f);
-    __m128 t = _mm_sub_ps(one, a);
-    for (int r = 0; r < this->Roots; ++r)
+    if (this->Roots > 0)
     {
-      t = _mm_sqrt_ps(t);
+      __m128 t = _mm_sub_ps(one, a);
+      for (int r = 0; r < this->Roots; ++r)
+      {
+        t = _mm_sqrt_ps(t);
+      }
+      return Select(_mm_cmpge_ps(a, one), a, _mm_sub_ps(one, t));
     }
-    return Select(_mm_cmpge_ps(a, one), a, _mm_sub_ps(one, t));
+    if (this->SeriesBound == 0.f) // no series: Finish's power for every lane
+    {
+      return Select(_mm_cmpge_ps(a, one), a, _mm_sub_ps(one, this->Power(a)));
+    }
+    alignas(16) float opacities[4];
+    _mm_store_ps(opacities, a);
+    __m128 series;
+    this->Series<1>(opacities, &series);
+    return this->Finish(a, series);
+  }
+  /// (1 - a)^e.
+  PARC_HOT_INLINE __m128 Power(__m128 a) const
+  {
+    return PowOfUnitInterval(_mm_sub_ps(_mm_set1_ps(1.f), a), _mm_set1_ps(this->Exponent));
   }
   /// The corrected opacities of a from the series' values: theirs up to SeriesBound, the
   /// power's above it, a itself at 1 or more.
@@ -118,8 +127,7 @@ private:
     const __m128 beyond = _mm_cmpgt_ps(a, _mm_set1_ps(this->SeriesBound));
     if (_mm_movemask_ps(beyond) != 0)
     {
-      const __m128 power = PowOfUnitInterval(_mm_sub_ps(one, a), _mm_set1_ps(this->Exponent));
-      corrected = Select(beyond, _mm_sub_ps(one, power), corrected);
+      corrected = Select(beyond, _mm_sub_ps(one, this->Power(a)), corrected);
     }
     return Select(_mm_cmpge_ps(a, one), a, corrected);
   }
