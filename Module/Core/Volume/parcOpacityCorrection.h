@@ -103,20 +103,15 @@ private:
       }
       return Select(_mm_cmpge_ps(a, one), a, _mm_sub_ps(one, t));
     }
-    if (this->SeriesBound == 0.f) // no series: Finish's power for every lane
+    if (this->SeriesBound == 0.f) // no series: the power for every lane above 0
     {
-      return Select(_mm_cmpge_ps(a, one), a, _mm_sub_ps(one, this->Power(a)));
+      return this->Finish(a, _mm_setzero_ps());
     }
     alignas(16) float opacities[4];
     _mm_store_ps(opacities, a);
     __m128 series;
     this->Series<1>(opacities, &series);
     return this->Finish(a, series);
-  }
-  /// (1 - a)^e.
-  PARC_HOT_INLINE __m128 Power(__m128 a) const
-  {
-    return PowOfUnitInterval(_mm_sub_ps(_mm_set1_ps(1.f), a), _mm_set1_ps(this->Exponent));
   }
   /// The corrected opacities of a from the series' values: theirs up to SeriesBound, the
   /// power's above it, a itself at 1 or more.
@@ -127,7 +122,8 @@ private:
     const __m128 beyond = _mm_cmpgt_ps(a, _mm_set1_ps(this->SeriesBound));
     if (_mm_movemask_ps(beyond) != 0)
     {
-      corrected = Select(beyond, _mm_sub_ps(one, this->Power(a)), corrected);
+      const __m128 power = PowOfUnitInterval(_mm_sub_ps(one, a), _mm_set1_ps(this->Exponent));
+      corrected = Select(beyond, _mm_sub_ps(one, power), corrected);
     }
     return Select(_mm_cmpge_ps(a, one), a, corrected);
   }
