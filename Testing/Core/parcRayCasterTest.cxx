@@ -1,5 +1,6 @@
 // The ray caster: analytic ground truths, each ray function, shading, lattice invariance and
 // thread invariance.
+#include "parcNormalVolume.h"
 #include "parcSegmentOracle.h"
 #include "parcTestUtilities.h"
 
@@ -811,12 +812,11 @@ TEST(RayCaster, LabelMapClassificationGivesBitIdenticalImages)
   EXPECT_EQ(s1.ContributingSamples, s2.ContributingSamples);
 }
 
-// A field's copy in bricks (ScalarField::SetBricked) changes where the samples' voxels are
-// read from, never the image: every ray function, shaded or not, with gradient opacity,
-// across the bricks' faces, bit for bit.
-TEST(RayCaster, BrickedFieldGivesBitIdenticalImages)
+namespace
 {
-  const int n[3] = { 140, 70, 68 }; // 3 x 2 x 2 bricks, the last ones filled in part
+/// A smooth blob with a ripple, of dimensions n (x fastest), as bytes.
+std::vector<std::uint8_t> RippledBlob(const int n[3])
+{
   std::vector<std::uint8_t> values;
   for (int k = 0; k < n[2]; ++k)
   {
@@ -829,42 +829,70 @@ TEST(RayCaster, BrickedFieldGivesBitIdenticalImages)
       }
     }
   }
-  parc::ScalarField linear, bricked;
-  linear.Wrap(values.data(), n);
-  bricked.Wrap(values.data(), n);
-  ASSERT_TRUE(bricked.SetBricked(true));
-  struct Case
-  {
-    BlendMode Blend;
-    bool Shade, GradientOpacity;
-  };
-  for (const Case c : { Case{ BlendMode::Composite, false, false },
-         Case{ BlendMode::Composite, true, false }, Case{ BlendMode::Composite, false, true },
-         Case{ BlendMode::MaximumIntensity, false, false },
-         Case{ BlendMode::IsoSurface, true, false } })
+  return values;
+}
+
+/// A ray function, shaded or not, with gradient opacity or not, for RippledBlob.
+struct BlobCase
+{
+  BlendMode Blend;
+  bool Shade, GradientOpacity;
+  double SampleDistance = 0.41;
+
+  CastParameters Parameters() const
   {
     CastParameters p;
     p.Opacity.SetNodes({ 0.0, 40.0, 120.0, 255.0 }, { 0.0, 0.0, 0.2, 0.9 }, true);
     p.Color.SetTable(0.0, 255.0, { 1.f, 0.f, 0.f, 0.f, 1.f, 0.5f });
-    p.Blend = c.Blend;
-    p.Shade = c.Shade;
+    p.Blend = this->Blend;
+    p.Shade = this->Shade;
     p.IsoValues = { 100.0 };
-    p.UseGradientOpacity = c.GradientOpacity;
+    p.UseGradientOpacity = this->GradientOpacity;
     p.GradientOpacity.SetNodes({ 0.0, 30.0 }, { 0.2, 1.0 }, true);
-    p.SampleDistance = 0.41;
+    p.SampleDistance = this->SampleDistance;
     parc::Light light;
     light.Position = { 0.0, 80.0, 80.0 };
     p.Lights = { light };
-    const parc::Camera view = ParallelView(64, 48, 0.7, 90.0);
-    std::vector<float> images[2];
+    return p;
+  }
+};
+
+/// A cast of field under p with a view from the side, from source.
+std::vector<float> CastBlobImage(const parc::ScalarField& field, const CastParameters& p,
+  const parc::SegmentSource& source, parc::CastStatistics& stats)
+{
+  const parc::Camera view = ParallelView(64, 48, 0.7, 90.0);
+  std::vector<float> image(4 * 64 * 48, 0.f);
+  parc::RayCaster caster;
+  EXPECT_TRUE(caster.Prepare({ &field, &p }));
+  caster.CastImage(view, nullptr, source, image.data(), stats);
+  return image;
+}
+}
+
+// A field's copy in bricks (ScalarField::SetBricked) changes where the samples' voxels are
+// read from, never the image: every ray function, shaded or not, with gradient opacity,
+// across the bricks' faces, bit for bit.
+TEST(RayCaster, BrickedFieldGivesBitIdenticalImages)
+{
+  const int n[3] = { 140, 70, 68 }; // 3 x 2 x 2 bricks, the last ones filled in part
+  const std::vector<std::uint8_t> values = RippledBlob(n);
+  parc::ScalarField linear, bricked;
+  linear.Wrap(values.data(), n);
+  bricked.Wrap(values.data(), n);
+  ASSERT_TRUE(bricked.SetBricked(true));
+  for (const BlobCase c : { BlobCase{ BlendMode::Composite, false, false },
+         BlobCase{ BlendMode::Composite, true, false },
+         BlobCase{ BlendMode::Composite, false, true },
+         BlobCase{ BlendMode::MaximumIntensity, false, false },
+         BlobCase{ BlendMode::IsoSurface, true, false } })
+  {
+    const CastParameters p = c.Parameters();
     parc::CastStatistics stats[2];
-    for (int b = 0; b < 2; ++b)
-    {
-      parc::RayCaster caster;
-      ASSERT_TRUE(caster.Prepare({ b ? &bricked : &linear, &p }));
-      images[b].assign(4 * 64 * 48, 0.f);
-      caster.CastImage(view, nullptr, parc::WholeRaySource(), images[b].data(), stats[b]);
-    }
+    const std::vector<float> images[2] = {
+      CastBlobImage(linear, p, parc::WholeRaySource(), stats[0]),
+      CastBlobImage(bricked, p, parc::WholeRaySource(), stats[1])
+    };
     SCOPED_TRACE(static_cast<int>(c.Blend));
     EXPECT_EQ(0, std::memcmp(images[0].data(), images[1].data(), images[0].size() * sizeof(float)))
       << "shade " << c.Shade << " gradient opacity " << c.GradientOpacity;
@@ -872,5 +900,78 @@ TEST(RayCaster, BrickedFieldGivesBitIdenticalImages)
     EXPECT_GT(*std::max_element(images[0].begin(), images[0].end()), 0.1f);
     EXPECT_EQ(stats[0].GradientEvaluations, stats[1].GradientEvaluations);
     EXPECT_EQ(stats[1].GradientEvaluations > 0, c.Shade || c.GradientOpacity);
+  }
+}
+
+// The rays' loops compiled for wide vectors (CastParameters::WideVectors) give the images
+// of the baseline code, bit for bit: every ray function, shaded or not (exact shading under
+// a directional and a positional light, quantized normals), with gradient opacity, each
+// kind of opacity correction, 8-bit, 16-bit and float values, bricked, and a sparse source.
+TEST(RayCaster, WideVectorsGiveBitIdenticalImages)
+{
+  if (!parc::HasWideVectors())
+  {
+    GTEST_SKIP() << "this processor has no wide vectors (AVX2)";
+  }
+  const int n[3] = { 140, 70, 68 };
+  const std::vector<std::uint8_t> bytes = RippledBlob(n);
+  const std::vector<std::int16_t> shorts(bytes.begin(), bytes.end());
+  const std::vector<float> floats(bytes.begin(), bytes.end());
+  parc::ScalarField fields[4];
+  fields[0].Wrap(bytes.data(), n);
+  fields[1].Wrap(shorts.data(), n);
+  fields[2].Wrap(floats.data(), n);
+  fields[3].Wrap(bytes.data(), n);
+  ASSERT_TRUE(fields[3].SetBricked(true));
+  parc::NormalVolume normals;
+  normals.Build(fields[0]);
+  std::vector<BlobCase> cases;
+  for (const BlendMode blend : { BlendMode::Composite, BlendMode::MaximumIntensity,
+         BlendMode::MinimumIntensity, BlendMode::AverageIntensity, BlendMode::Additive,
+         BlendMode::IsoSurface })
+  {
+    cases.push_back({ blend, false, false });
+    cases.push_back({ blend, true, false });
+  }
+  // A root (half the unit distance), the series and the power, and the power alone.
+  for (const double dt : { 0.5, 0.41, 1.5 })
+  {
+    cases.push_back({ BlendMode::Composite, false, true, dt });
+    cases.push_back({ BlendMode::Composite, true, false, dt });
+  }
+  for (const parc::ScalarField& field : fields)
+  {
+    for (const BlobCase& c : cases)
+    {
+      for (const int lighting : { 0, 1, 2 }) // directional, positional, quantized normals
+      {
+        CastParameters p = c.Parameters();
+        p.Lights[0].Positional = (lighting == 1);
+        if (lighting == 2)
+        {
+          p.Shading = parc::ShadingModel::QuantizedNormals;
+          p.Normals = &normals;
+        }
+        parc::CastStatistics stats[2];
+        const std::vector<float> wide = CastBlobImage(field, p, parc::WholeRaySource(), stats[0]);
+        p.WideVectors = false;
+        // Zero-opacity samples change nothing in these two: they may be left out.
+        const bool sparse = c.Blend == BlendMode::Composite || c.Blend == BlendMode::Additive;
+        parc::RayCaster caster;
+        ASSERT_TRUE(caster.Prepare({ &field, &p }));
+        const SparseSource some(caster, 3);
+        const parc::WholeRaySource whole;
+        const parc::SegmentSource& source = sparse ? static_cast<const parc::SegmentSource&>(some)
+                                                   : whole;
+        const std::vector<float> baseline = CastBlobImage(field, p, source, stats[1]);
+        SCOPED_TRACE(static_cast<int>(c.Blend));
+        EXPECT_EQ(0, std::memcmp(wide.data(), baseline.data(), wide.size() * sizeof(float)))
+          << "type " << static_cast<int>(field.GetScalarType()) << " shade " << c.Shade
+          << " lighting " << lighting << " gradient opacity " << c.GradientOpacity
+          << " dt " << c.SampleDistance;
+        EXPECT_GT(*std::max_element(wide.begin(), wide.end()), 0.f);
+        EXPECT_EQ(stats[0].ContributingSamples, stats[1].ContributingSamples);
+      }
+    }
   }
 }

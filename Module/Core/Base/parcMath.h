@@ -22,8 +22,30 @@
 #define PARC_NOINLINE
 #endif
 
+/// Marks a function compiled for AVX2 (and without FMA: no multiplication and addition is
+/// fused, so every operation rounds as in the baseline code). PARC_WIDE_VECTORS is 1 where
+/// the compiler can do so and the processor can be asked at run time (HasWideVectors).
+#if defined(__GNUC__) && defined(__x86_64__)
+#define PARC_WIDE_VECTORS 1
+#define PARC_TARGET_WIDE_VECTORS __attribute__((target("avx2")))
+#else
+#define PARC_WIDE_VECTORS 0
+#define PARC_TARGET_WIDE_VECTORS
+#endif
+
 namespace parc
 {
+
+/// Whether this processor (and its operating system) runs the functions marked
+/// PARC_TARGET_WIDE_VECTORS.
+inline bool HasWideVectors()
+{
+#if PARC_WIDE_VECTORS
+  return __builtin_cpu_supports("avx2");
+#else
+  return false;
+#endif
+}
 
 /// A 3-vector of doubles: world coordinates, voxel-index coordinates or directions.
 struct Vec3

@@ -185,6 +185,7 @@ bool RayCaster::Prepare(const Volume& volume)
   k.GradientOpacityConstant =
     parameters->UseGradientOpacity && parameters->GradientOpacity.IsConstant(constant);
   k.GradientOpacityValue = static_cast<float>(constant);
+  k.WideVectors = parameters->WideVectors && HasWideVectors();
   k.OpacityByValue = labels.empty() && !parameters->Mask &&
     (!parameters->UseGradientOpacity || k.GradientOpacityConstant);
   const double intensityWidth = parameters->IntensityRange[1] - parameters->IntensityRange[0];

@@ -291,6 +291,9 @@ public:
     bool OpacityByValue = false;
     /// ... and so does its colour: the composite function works in stages over a block.
     bool ColorByValue = false;
+    /// The rays' loops run compiled for wide vectors (CastParameters::WideVectors, where
+    /// the processor has them).
+    bool WideVectors = false;
     /// Shaded samples are shaded several at a time: exact shading, directional lights only
     /// (at most 8, none casting shadows).
     bool ShadeLanesTogether = false;

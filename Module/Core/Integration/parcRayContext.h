@@ -389,7 +389,7 @@ struct RayContext
   PARC_HOT_INLINE void ShadeBatch(long k0);
   /// Shade for the lanes of Batch together (RenderConstants::ShadeLanesTogether): the same
   /// operations in the same order, lane by lane, so the same bits.
-  void ShadeLanes();
+  PARC_HOT_INLINE void ShadeLanes();
   /// The opacities of the given lanes (bits 1 << j) into Opacities, corrected; returns the
   /// lanes whose opacity is not 0 before the correction.
   PARC_HOT_INLINE unsigned LaneOpacities(unsigned lanes)

@@ -38,13 +38,13 @@ struct CompositeFunction
   /// Other volumes' events to composite between the samples (null: none).
   MergedEvents* Merge = nullptr;
 
-  bool operator()(long k0, int n, bool, int& visited)
+  PARC_HOT_INLINE bool operator()(long k0, int n, bool, int& visited)
   {
     return this->Merge ? this->Interleaved(k0, n, visited) : this->Block(k0, n, visited);
   }
   /// The block of samples k0 .. k0 + n - 1 in parts between the events of Merge, each
   /// event composited before the first sample that comes after it; stops at Merge->End.
-  bool Interleaved(long k0, int n, int& visited)
+  PARC_HOT_INLINE bool Interleaved(long k0, int n, int& visited)
   {
     const double termination = this->C.P.TerminationOpacity;
     for (int done = 0; done < n;)
@@ -66,7 +66,7 @@ struct CompositeFunction
     }
     return true;
   }
-  bool Block(long k0, int n, int& visited)
+  PARC_HOT_INLINE bool Block(long k0, int n, int& visited)
   {
     if (this->C.K.ColorByValue)
     {
@@ -96,7 +96,7 @@ struct ExtremeFunction
   bool Found = false;
   double ExtremeAt = 0.0; ///< the first sample with the extreme value
 
-  bool operator()(long k0, int n, bool, int&)
+  PARC_HOT_INLINE bool operator()(long k0, int n, bool, int&)
   {
     this->C.SampleBlock(k0, n);
     this->Scan(this->C, k0, n);
@@ -151,7 +151,7 @@ struct ComponentCompositeFunction
   const ComponentContexts<Context>& Components;
   EventCompositor Out;
 
-  bool operator()(long k0, int n, bool, int& visited)
+  PARC_HOT_INLINE bool operator()(long k0, int n, bool, int& visited)
   {
     unsigned partLanes[MaxComponents];
     unsigned lanes = 0;
@@ -234,7 +234,7 @@ struct ComponentExtremeFunction
     , Extremes{ { { c }, { c }, { c }, { c } } }
   {
   }
-  bool operator()(long k0, int n, bool, int&)
+  PARC_HOT_INLINE bool operator()(long k0, int n, bool, int&)
   {
     for (int c = 0; c < this->Components.Count; ++c)
     {
@@ -301,7 +301,7 @@ struct AverageFunction
   std::uint64_t Count = 0;
   double FirstAt = 0.0; ///< the first averaged sample
 
-  bool operator()(long k0, int n, bool, int&)
+  PARC_HOT_INLINE bool operator()(long k0, int n, bool, int&)
   {
     this->C.SampleBlock(k0, n);
     for (int j = 0; j < n; ++j)
@@ -345,7 +345,7 @@ struct AdditiveFunction
   double Sum = 0.0;
   bool Contributed = false;
 
-  bool operator()(long k0, int n, bool, int& visited)
+  PARC_HOT_INLINE bool operator()(long k0, int n, bool, int& visited)
   {
     return this->C.ContributingSamples(
       k0, n, visited, [this](int j, double, float a, const Vec3f&, bool) {
@@ -432,7 +432,7 @@ struct IsoSurfaceFunction
     return this->Transmittance >= this->ShadowFloor;
   }
 
-  bool operator()(long k0, int n, bool follows, int& visited)
+  PARC_HOT_INLINE bool operator()(long k0, int n, bool follows, int& visited)
   {
     this->C.SampleBlock(k0, n);
     const float* s = this->C.Block.Values;
@@ -541,7 +541,7 @@ struct AbsorptionFunction
   float Floor;
   float Transmittance = 1.f;
 
-  bool operator()(long k0, int n, bool, int& visited)
+  PARC_HOT_INLINE bool operator()(long k0, int n, bool, int& visited)
   {
     return this->C.ContributingSamples(
       k0, n, visited, [this](int, double, float a, const Vec3f&, bool) {
@@ -570,13 +570,37 @@ inline std::uint64_t CellsCrossed(const Vec3& a, const Vec3& b)
 /// What Run returns for a ray its function did not stop.
 constexpr long NotStopped = std::numeric_limits<long>::max();
 
+/// One block of a ray function (its operator()), compiled for the baseline instruction
+/// set ...
+template <class Function>
+PARC_NOINLINE bool VisitBaseline(Function& fn, long k0, int n, bool follows, int& visited)
+{
+  return fn(k0, n, follows, visited);
+}
+
+#if PARC_WIDE_VECTORS
+/// ... and for wide vectors: every ray function's block inlines into it (PARC_HOT_INLINE),
+/// so the whole sampling, compositing and shading of the block is compiled for them.
+template <class Function>
+PARC_NOINLINE PARC_TARGET_WIDE_VECTORS bool VisitWide(
+  Function& fn, long k0, int n, bool follows, int& visited)
+{
+  return fn(k0, n, follows, visited);
+}
+#endif
+
 /// Visits the lattice samples of ranges in order, in blocks, and counts them; returns the
-/// last one visited (stopped: whether the ray function stopped the ray there).
+/// last one visited (stopped: whether the ray function stopped the ray there). Each block
+/// runs with the instructions the caster chose (RenderConstants::WideVectors): the same
+/// operations either way, so the same bits.
 template <class Function>
 long WalkRanges(const std::vector<LatticeRange>& ranges, Function& fn, bool& stopped)
 {
   stopped = false;
   long previous = std::numeric_limits<long>::min();
+#if PARC_WIDE_VECTORS
+  const bool wide = fn.C.K.WideVectors;
+#endif
   for (const LatticeRange& r : ranges)
   {
     for (long k0 = std::max(r.First, previous + 1); k0 <= r.Last;)
@@ -584,7 +608,12 @@ long WalkRanges(const std::vector<LatticeRange>& ranges, Function& fn, bool& sto
       const int n = static_cast<int>(std::min<long>(SampleBlockSize, r.Last - k0 + 1));
       const bool follows = (k0 == previous + 1);
       int visited = n;
-      const bool more = fn(k0, n, follows, visited);
+#if PARC_WIDE_VECTORS
+      const bool more = wide ? VisitWide(fn, k0, n, follows, visited)
+                             : VisitBaseline(fn, k0, n, follows, visited);
+#else
+      const bool more = VisitBaseline(fn, k0, n, follows, visited);
+#endif
       fn.C.Stats.Samples += static_cast<std::uint64_t>(visited);
       previous = k0 + visited - 1;
       if (!more)

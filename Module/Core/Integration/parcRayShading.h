@@ -210,7 +210,7 @@ PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f
 }
 
 template <class View>
-void RayContext<View>::ShadeLanes()
+PARC_HOT_INLINE void RayContext<View>::ShadeLanes()
 {
   LaneBatch& b = this->Batch;
 #if defined(__SSE2__)
