@@ -79,7 +79,8 @@ struct RayContext
   {
     int Count = 0;
     int Lane[LatticeBlock::Size];
-    float Weight[LatticeBlock::Size]; ///< the compositor's weight of each
+    /// The compositor's weight of each (AddBatchColors reads groups of four lanes).
+    alignas(16) float Weight[LatticeBlock::Size] = {};
     /// Colour, channel by channel (BatchColors writes whole groups of four lanes).
     alignas(16) float Rgb[3][LatticeBlock::Size];
     /// World gradient, axis by axis (zeros past Count: ShadeLanes reads groups of four).
@@ -385,6 +386,8 @@ struct RayContext
 #endif
   /// The colours of the lanes of Batch (see CompositeBlock).
   PARC_HOT_INLINE void BatchColors();
+  /// Adds the colours of Batch times their weights to out's colour, lane by lane.
+  PARC_HOT_INLINE void AddBatchColors(EventCompositor& out) const;
   /// Shades the colours of Batch in place (see CompositeBlock).
   PARC_HOT_INLINE void ShadeBatch(long k0);
   /// Shade for the lanes of Batch together (RenderConstants::ShadeLanesTogether): the same
