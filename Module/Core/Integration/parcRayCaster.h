@@ -13,6 +13,9 @@
 // composited before the ray stops (the compositor's own arithmetic), then only their
 // colours, gradients and shading, four lanes at a time where it can, then the compositing.
 // Each lane gets the bits it would get alone, so a stage changes speed, never the image.
+// A block runs in code compiled for the baseline instruction set or, where the processor
+// has it, for AVX2 without fused multiply-add (CastParameters::WideVectors): the same
+// operations rounding alike, so the same bits.
 //
 // Ray functions (one functor each, dispatched in one switch):
 // - Composite: front-to-back "over" with opacity correction
