@@ -79,11 +79,13 @@ struct RayContext
   {
     int Count = 0;
     int Lane[LatticeBlock::Size];
-    /// The compositor's weight of each (AddBatchColors reads groups of four lanes).
+    /// The compositor's weight of each (AddBatchColors reads groups of four: past Count,
+    /// zeros or an earlier batch's, whose products are not added).
     alignas(16) float Weight[LatticeBlock::Size] = {};
     /// Colour, channel by channel (BatchColors writes whole groups of four lanes).
     alignas(16) float Rgb[3][LatticeBlock::Size];
-    /// World gradient, axis by axis (zeros past Count: ShadeLanes reads groups of four).
+    /// World gradient, axis by axis (ShadeLanes reads groups of four: past Count, zeros
+    /// or an earlier batch's, whose results are not used).
     alignas(16) float Gradient[3][LatticeBlock::Size] = {};
   } Batch;
   /// One cell's voxel differences: the cache of a ray whose thread shares none.
