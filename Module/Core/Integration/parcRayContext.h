@@ -163,8 +163,8 @@ struct RayContext
   PARC_HOT_INLINE unsigned SampleBlock(long k0, int n)
   {
     const CellMap* map = this->ReadsMap ? this->Cells : nullptr;
-    const unsigned sampled =
-      this->Field.SampleLattice(this->Lattice, this->Dt, k0, n, this->P.Interp, this->Block, map);
+    const unsigned sampled = this->Field.SampleLattice(
+      this->Lattice, this->Dt, k0, n, this->P.Interp, this->Block, map, this->K.WideVectors);
     if (map)
     {
       this->ReadsMap = sampled != LatticeBlock::GroupLanes(n);

@@ -178,8 +178,12 @@ public:
   /// LatticeBlock::Lanes lanes where some lane's cell may contribute are sampled (the
   /// values of the others are 0). Returns the lanes sampled whose cell may contribute, as
   /// bits 1 << j (all n lanes without cells).
+  /// wide: the caller runs in code compiled for wide vectors (RayCaster's
+  /// RenderConstants::WideVectors); the lanes are then located by a plain loop, which the
+  /// compiler makes eight lanes wide there (SSE2's four are faster in the baseline code).
   PARC_HOT_INLINE unsigned SampleLattice(const RayLattice& lattice, double dt, long k0,
-    int count, Interpolation mode, LatticeBlock& block, const CellMap* cells = nullptr) const
+    int count, Interpolation mode, LatticeBlock& block, const CellMap* cells = nullptr,
+    bool wide = false) const
   {
     const int n = LatticeBlock::GroupedCount(count);
     const unsigned all = LatticeBlock::GroupLanes(count);
@@ -200,7 +204,7 @@ public:
     for (int a = 0; a < 3; ++a)
     {
       LocateLanes(lattice.Origin[a], lattice.Direction[a], u, n, this->Last[a],
-        this->LastCell[a], block.Cell[a], block.Fractions[a]);
+        this->LastCell[a], block.Cell[a], block.Fractions[a], wide);
     }
     this->CellOffsets(block, n);
     unsigned lanes = all;
@@ -333,13 +337,37 @@ private:
 
   /// LocateAxis for the coordinates o + u[j] d (in float) of the lanes. The last cell
   /// holds [lastCell, last], so min(floor(x), lastCell) = floor(min(x, lastCell)).
-  static PARC_HOT_INLINE void LocateLanes(
-    float o, float d, const float* u, int n, double last, int lastCell, int* cell, float* f)
+  /// plain: the plain loop (the same operations) even where there is SSE2.
+  static PARC_HOT_INLINE void LocateLanes(float o, float d, const float* u, int n,
+    double last, int lastCell, int* cell, float* f, bool plain)
   {
     // Coordinates in float are exact in LocateAxis's double (last and lastCell are whole
     // numbers of cells, exact in float): the same cells and fractions.
     const float lastF = static_cast<float>(last), lastCellF = static_cast<float>(lastCell);
 #if defined(__SSE2__)
+    if (!plain)
+    {
+      LocateFourLanes(o, d, u, n, lastF, lastCellF, cell, f);
+      return;
+    }
+#else
+    static_cast<void>(plain);
+#endif
+    for (int j = 0; j < n; ++j)
+    {
+      float x = o + u[j] * d;
+      x = x > 0.f ? x : 0.f; // also NaN
+      x = x < lastF ? x : lastF;
+      const int i = static_cast<int>(x < lastCellF ? x : lastCellF);
+      cell[j] = i;
+      f[j] = x - static_cast<float>(i);
+    }
+  }
+#if defined(__SSE2__)
+  /// LocateLanes' loop four lanes at a time.
+  static PARC_HOT_INLINE void LocateFourLanes(float o, float d, const float* u, int n,
+    float lastF, float lastCellF, int* cell, float* f)
+  {
     const __m128 vo = _mm_set1_ps(o), vd = _mm_set1_ps(d), vlast = _mm_set1_ps(lastF);
     const __m128 vcell = _mm_set1_ps(lastCellF), zero = _mm_setzero_ps();
     for (int j = 0; j < n; j += 4)
@@ -352,18 +380,8 @@ private:
       _mm_storeu_ps(f + j, _mm_sub_ps(x, _mm_cvtepi32_ps(i)));
     }
     static_assert(LatticeBlock::Lanes == 4, "four lanes to an SSE register");
-#else
-    for (int j = 0; j < n; ++j)
-    {
-      float x = o + u[j] * d;
-      x = x > 0.f ? x : 0.f; // also NaN
-      x = x < lastF ? x : lastF;
-      const int i = static_cast<int>(x < lastCellF ? x : lastCellF);
-      cell[j] = i;
-      f[j] = x - static_cast<float>(i);
-    }
-#endif
   }
+#endif
   /// The offsets of the located cells of block's lanes j < n (a multiple of
   /// LatticeBlock::Lanes) from the first voxel of the values SampleGroup reads (the bricks
   /// when there are bricks).
