@@ -214,7 +214,7 @@ struct CastParameters
   Vec3 OwnedHi{ std::numeric_limits<double>::infinity(),
     std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity() };
   /// Whether the rays' loops may run compiled for AVX2 where the processor has it (x86-64
-  /// with GCC or Clang; 4-8% less casting): the same operations, each rounding alike,
+  /// with GCC or Clang; 4-10% less casting): the same operations, each rounding alike,
   /// so the same image as with false, the code of the baseline instruction set.
   bool WideVectors = true;
 };
