@@ -905,7 +905,8 @@ TEST(RayCaster, BrickedFieldGivesBitIdenticalImages)
 
 // The rays' loops compiled for wide vectors (CastParameters::WideVectors) give the images
 // of the baseline code, bit for bit: every ray function, shaded or not (exact shading under
-// a directional and a positional light, quantized normals), with gradient opacity, each
+// a directional light, two of them, one coloured, a positional light, a fractional specular
+// power, quantized normals), with gradient opacity, each
 // kind of opacity correction, 8-bit, 16-bit and float values, bricked, and a sparse source.
 TEST(RayCaster, WideVectorsGiveBitIdenticalImages)
 {
@@ -943,7 +944,9 @@ TEST(RayCaster, WideVectorsGiveBitIdenticalImages)
   {
     for (const BlobCase& c : cases)
     {
-      for (const int lighting : { 0, 1, 2 }) // directional, positional, quantized normals
+      // Directional, positional, quantized normals, a second light of colour (eight lanes
+      // at a time, each channel), a fractional specular power (four lanes at a time).
+      for (const int lighting : { 0, 1, 2, 3, 4 })
       {
         CastParameters p = c.Parameters();
         p.Lights[0].Positional = (lighting == 1);
@@ -952,6 +955,15 @@ TEST(RayCaster, WideVectorsGiveBitIdenticalImages)
           p.Shading = parc::ShadingModel::QuantizedNormals;
           p.Normals = &normals;
         }
+        if (lighting == 3)
+        {
+          parc::Light coloured;
+          coloured.Position = { 60.0, -40.0, 30.0 };
+          coloured.Color = { 0.9, 0.5, 0.2 };
+          coloured.SpecularColor = { 0.3, 0.6, 1.0 };
+          p.Lights.push_back(coloured);
+        }
+        p.SpecularPower = lighting == 4 ? 12.5 : p.SpecularPower;
         parc::CastStatistics stats[2];
         const std::vector<float> wide = CastBlobImage(field, p, parc::WholeRaySource(), stats[0]);
         p.WideVectors = false;

@@ -82,10 +82,11 @@ struct RayContext
     /// The compositor's weight of each (AddBatchColors reads groups of four: past Count,
     /// zeros or an earlier batch's, whose products are not added).
     alignas(16) float Weight[LatticeBlock::Size] = {};
-    /// Colour, channel by channel (BatchColors writes whole groups of four lanes).
-    alignas(16) float Rgb[3][LatticeBlock::Size];
-    /// World gradient, axis by axis (ShadeLanes reads groups of four: past Count, zeros
-    /// or an earlier batch's, whose results are not used).
+    /// Colour, channel by channel (BatchColors writes whole groups of four lanes; ShadeLanes
+    /// reads and writes groups of four or eight: past Count, zeros or an earlier batch's).
+    alignas(16) float Rgb[3][LatticeBlock::Size] = {};
+    /// World gradient, axis by axis (ShadeLanes reads groups of four or eight: past Count,
+    /// zeros or an earlier batch's, whose results are not used).
     alignas(16) float Gradient[3][LatticeBlock::Size] = {};
   } Batch;
   /// One cell's voxel differences: the cache of a ray whose thread shares none.
@@ -395,6 +396,11 @@ struct RayContext
   /// Shade for the lanes of Batch together (RenderConstants::ShadeLanesTogether): the same
   /// operations in the same order, lane by lane, so the same bits.
   PARC_HOT_INLINE void ShadeLanes();
+#if PARC_WIDE_VECTORS
+  /// ShadeLanes eight lanes at a time, for a whole specular power (the same bits). A
+  /// function of its own, compiled for wide vectors whichever copy of the block calls it.
+  PARC_NOINLINE PARC_TARGET_WIDE_VECTORS void ShadeEightLanes();
+#endif
   /// The opacities of the given lanes (bits 1 << j) into Opacities, corrected; returns the
   /// lanes whose opacity is not 0 before the correction.
   PARC_HOT_INLINE unsigned LaneOpacities(unsigned lanes)

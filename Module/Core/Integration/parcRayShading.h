@@ -1,5 +1,5 @@
 // The ray context's shading (parcRayContext.h): Blinn-Phong for one sample and for the
-// lanes of a block, shading by quantized normals, positional lights and shadow visibility,
+// lanes of a block (four or, with wide vectors, eight at a time), shading by quantized normals, positional lights and shadow visibility,
 // over the arithmetic they share (sign flips, whole powers, the interpolation of
 // quantized-normal shading factors, colour sums in registers). Internal to the casters.
 #ifndef parc_RayShading_h
@@ -12,6 +12,9 @@
 #include <cstdint>
 #include <cstring>
 #include <vector>
+#if PARC_WIDE_VECTORS
+#include <immintrin.h>
+#endif
 
 namespace parc::casting
 {
@@ -209,10 +212,94 @@ PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f
   }
 }
 
+#if PARC_WIDE_VECTORS
+/// v.X ax + v.Y ay + v.Z az, eight lanes (ShadeLanes' order).
+PARC_TARGET_WIDE_VECTORS PARC_HOT_INLINE __m256 DotEight(
+  __m256 ax, __m256 ay, __m256 az, const Vec3f& v)
+{
+  const __m256 x = _mm256_mul_ps(ax, _mm256_set1_ps(v.X));
+  const __m256 y = _mm256_mul_ps(ay, _mm256_set1_ps(v.Y));
+  return _mm256_add_ps(_mm256_add_ps(x, y), _mm256_mul_ps(az, _mm256_set1_ps(v.Z)));
+}
+
+template <class View>
+void RayContext<View>::ShadeEightLanes()
+{
+  LaneBatch& b = this->Batch;
+  const __m256 zero = _mm256_setzero_ps(), one = _mm256_set1_ps(1.f);
+  const __m256 signBit = _mm256_set1_ps(-0.f);
+  const RayCaster::DirectionalLight* lights = this->K.DirectionalLights.data();
+  const std::size_t count = this->K.DirectionalLights.size();
+  const int channels = this->K.GreyLights ? 1 : 3;
+  static_assert(LatticeBlock::Size % 8 == 0, "whole groups of eight lanes in a batch");
+  for (int i = 0; i < b.Count; i += 8)
+  {
+    const __m256 gx = _mm256_loadu_ps(b.Gradient[0] + i);
+    const __m256 gy = _mm256_loadu_ps(b.Gradient[1] + i);
+    const __m256 gz = _mm256_loadu_ps(b.Gradient[2] + i);
+    const __m256 length = _mm256_sqrt_ps(_mm256_add_ps(
+      _mm256_add_ps(_mm256_mul_ps(gx, gx), _mm256_mul_ps(gy, gy)), _mm256_mul_ps(gz, gz)));
+    const __m256 valid = _mm256_cmp_ps(length, zero, _CMP_GT_OQ);
+    const __m256 back = _mm256_cmp_ps(DotEight(gx, gy, gz, this->ToEye), zero, _CMP_NGT_UQ);
+    const __m256 scale =
+      _mm256_xor_ps(_mm256_div_ps(one, length), _mm256_and_ps(back, signBit));
+    const __m256 nx = _mm256_mul_ps(scale, gx), ny = _mm256_mul_ps(scale, gy);
+    const __m256 nz = _mm256_mul_ps(scale, gz);
+    __m256 diffuse[3] = { zero, zero, zero }, specular[3] = { zero, zero, zero };
+    for (std::size_t l = 0; l < count; ++l)
+    {
+      const RayCaster::DirectionalLight& light = lights[l];
+      const __m256 ndl = DotEight(nx, ny, nz, light.ToLight);
+      const __m256 lit = _mm256_and_ps(valid, _mm256_cmp_ps(ndl, zero, _CMP_GT_OQ));
+      const __m256 ndh = DotEight(nx, ny, nz, this->HalfVectors[l]);
+      __m256 power = one, x = ndh; // SpecularLanes' repeated squaring
+      for (int e = this->K.IntegerSpecularPower; e > 0; e >>= 1)
+      {
+        if (e & 1)
+        {
+          power = _mm256_mul_ps(power, x);
+        }
+        x = _mm256_mul_ps(x, x);
+      }
+      const __m256 spec = _mm256_and_ps(_mm256_cmp_ps(ndh, zero, _CMP_GT_OQ), power);
+      for (int c = 0; c < channels; ++c)
+      {
+        const __m256 d = _mm256_mul_ps(ndl, _mm256_set1_ps((&light.Diffuse.X)[c]));
+        const __m256 sc = _mm256_mul_ps(spec, _mm256_set1_ps((&light.Specular.X)[c]));
+        diffuse[c] = _mm256_blendv_ps(diffuse[c], _mm256_add_ps(diffuse[c], d), lit);
+        specular[c] = _mm256_blendv_ps(specular[c], _mm256_add_ps(specular[c], sc), lit);
+      }
+    }
+    for (int c = channels; c < 3; ++c) // white lights: the same as red
+    {
+      diffuse[c] = diffuse[0];
+      specular[c] = specular[0];
+    }
+    for (int c = 0; c < 3; ++c)
+    {
+      const __m256 rgb = _mm256_loadu_ps(b.Rgb[c] + i);
+      const __m256 ambient = _mm256_set1_ps(this->K.Ambient[c]);
+      const __m256 shaded =
+        _mm256_add_ps(_mm256_mul_ps(rgb, _mm256_add_ps(ambient, diffuse[c])), specular[c]);
+      _mm256_storeu_ps(b.Rgb[c] + i, _mm256_min_ps(one, shaded));
+    }
+  }
+}
+#endif
+
 template <class View>
 PARC_HOT_INLINE void RayContext<View>::ShadeLanes()
 {
   LaneBatch& b = this->Batch;
+#if PARC_WIDE_VECTORS
+  // Eight lanes at a time where the caster runs wide vectors; a fractional power keeps
+  // PowOfUnitInterval's four.
+  if (this->K.WideVectors && this->K.IntegerSpecularPower >= 0)
+  {
+    this->ShadeEightLanes();
+    return;
+  }
+#endif
 #if defined(__SSE2__)
   const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.f);
   const __m128 signBit = _mm_set1_ps(-0.f);
