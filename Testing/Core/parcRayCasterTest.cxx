@@ -906,8 +906,8 @@ TEST(RayCaster, BrickedFieldGivesBitIdenticalImages)
 // The rays' loops compiled for wide vectors (CastParameters::WideVectors) give the images
 // of the baseline code, bit for bit: every ray function, shaded or not (exact shading under
 // a directional light, two of them, one coloured, a positional light, a fractional specular
-// power, quantized normals), with gradient opacity, each
-// kind of opacity correction, 8-bit, 16-bit and float values, bricked, and a sparse source.
+// power, quantized normals), with gradient opacity, each kind of opacity correction, 8-bit,
+// 16-bit and float values, bricked, and a sparse source.
 TEST(RayCaster, WideVectorsGiveBitIdenticalImages)
 {
   if (!parc::HasWideVectors())

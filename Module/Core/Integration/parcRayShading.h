@@ -1,7 +1,8 @@
 // The ray context's shading (parcRayContext.h): Blinn-Phong for one sample and for the
-// lanes of a block (four or, with wide vectors, eight at a time), shading by quantized normals, positional lights and shadow visibility,
-// over the arithmetic they share (sign flips, whole powers, the interpolation of
-// quantized-normal shading factors, colour sums in registers). Internal to the casters.
+// lanes of a block (four or, with wide vectors, eight at a time), shading by quantized
+// normals, positional lights and shadow visibility, over the arithmetic they share (sign
+// flips, whole powers, the interpolation of quantized-normal shading factors, colour sums
+// in registers). Internal to the casters.
 #ifndef parc_RayShading_h
 #define parc_RayShading_h
 
