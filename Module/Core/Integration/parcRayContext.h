@@ -554,7 +554,10 @@ struct RayContext
   /// SpecularTerm lane by lane (any value for lanes whose ndh is not above 0).
   PARC_HOT_INLINE __m128 SpecularLanes(__m128 ndh) const;
 #endif
-  Vec3 WorldPosition(double t) const { return this->WorldRay.Origin + t * this->WorldRay.Direction; }
+  Vec3 WorldPosition(double t) const
+  {
+    return this->WorldRay.Origin + t * this->WorldRay.Direction;
+  }
   /// The factor of the terms of light `index` at world point x, for a light whose shadow
   /// attenuation is attenuation: 1 - attenuation (1 - T), T the transmittance from x
   /// towards the light along direction toLight, up to tLight. 1 without occluders.

@@ -184,7 +184,8 @@ PARC_HOT_INLINE void RayContext<View>::Shade(float rgb[3], double t, const Vec3f
       const RayCaster::DirectionalLight& light = lights[i];
       float ndl, spec;
       const auto halfDot = [&] {
-        return Dot(n, i < MaxHoistedLights ? this->HalfVectors[i] : this->HalfVector(light.ToLight));
+        return Dot(
+          n, i < MaxHoistedLights ? this->HalfVectors[i] : this->HalfVector(light.ToLight));
       };
       if (BlinnPhongWeights(Dot(n, light.ToLight), halfDot, power, ndl, spec))
       {
