@@ -51,20 +51,21 @@ inline bool BlinnPhongWeights(T ndl, HalfDot halfDot, Power power, T& diffuse, T
   return true;
 }
 
-/// x^n for a whole n >= 0 by repeated squaring.
-inline float IntegerPower(float x, int n)
+/// power = base^n for a whole n >= 0 by repeated squaring, power holding 1 on entry. T is
+/// float or a register of lanes (each lane its own power: the same products lane by lane;
+/// passed by reference, so that no function without wide vectors takes or returns one).
+template <class T>
+PARC_HOT_INLINE void IntegerPower(const T& base, int n, T& power)
 {
-  float result = 1.f;
-  while (n > 0)
+  T x = base;
+  for (; n > 0; n >>= 1)
   {
     if (n & 1)
     {
-      result *= x;
+      power *= x;
     }
     x *= x;
-    n >>= 1;
   }
-  return result;
 }
 
 /// The trilinear interpolation at fractions f of the shading factors of 8 corner normals
@@ -140,16 +141,8 @@ PARC_HOT_INLINE __m128 RayContext<View>::SpecularLanes(__m128 ndh) const
   {
     return PowOfUnitInterval(ndh, _mm_set1_ps(this->K.SpecularPower));
   }
-  // IntegerPower, lane by lane.
-  __m128 power = _mm_set1_ps(1.f), x = ndh;
-  for (int e = this->K.IntegerSpecularPower; e > 0; e >>= 1)
-  {
-    if (e & 1)
-    {
-      power = _mm_mul_ps(power, x);
-    }
-    x = _mm_mul_ps(x, x);
-  }
+  __m128 power = _mm_set1_ps(1.f);
+  IntegerPower(ndh, this->K.IntegerSpecularPower, power);
   return power;
 }
 #endif
@@ -161,8 +154,13 @@ inline float RayContext<View>::SpecularTerm(float ndh) const
   // SpecularLanes on one lane, so that a sample gets the bits it gets in a batch.
   return _mm_cvtss_f32(this->SpecularLanes(_mm_set1_ps(ndh)));
 #else
-  return this->K.IntegerSpecularPower >= 0 ? IntegerPower(ndh, this->K.IntegerSpecularPower)
-                                           : std::pow(ndh, this->K.SpecularPower);
+  if (this->K.IntegerSpecularPower < 0)
+  {
+    return std::pow(ndh, this->K.SpecularPower);
+  }
+  float power = 1.f;
+  IntegerPower(ndh, this->K.IntegerSpecularPower, power);
+  return power;
 #endif
 }
 
@@ -254,15 +252,8 @@ void RayContext<View>::ShadeEightLanes()
       const __m256 ndl = DotEight(nx, ny, nz, light.ToLight);
       const __m256 lit = _mm256_and_ps(valid, _mm256_cmp_ps(ndl, zero, _CMP_GT_OQ));
       const __m256 ndh = DotEight(nx, ny, nz, this->HalfVectors[l]);
-      __m256 power = one, x = ndh; // SpecularLanes' repeated squaring
-      for (int e = this->K.IntegerSpecularPower; e > 0; e >>= 1)
-      {
-        if (e & 1)
-        {
-          power = _mm256_mul_ps(power, x);
-        }
-        x = _mm256_mul_ps(x, x);
-      }
+      __m256 power = one;
+      IntegerPower(ndh, this->K.IntegerSpecularPower, power);
       const __m256 spec = _mm256_and_ps(_mm256_cmp_ps(ndh, zero, _CMP_GT_OQ), power);
       for (int c = 0; c < channels; ++c)
       {
