@@ -918,16 +918,30 @@ struct ClassifiedCells
     EXPECT_TRUE(this->Map.Covers(field.GetDimensions()));
   }
 };
+
+/// Calls visit(ci, cj, ck) for every cell of the map's node of cell (i, j, k), those past
+/// the field's end included.
+template <typename Visit>
+void ForNodeCells(int i, int j, int k, Visit&& visit)
+{
+  constexpr int n = parc::CellMap::NodeCells;
+  const int first[3] = { i - i % n, j - j % n, k - k % n };
+  for (int ck = first[2]; ck < first[2] + n; ++ck)
+    for (int cj = first[1]; cj < first[1] + n; ++cj)
+      for (int ci = first[0]; ci < first[0] + n; ++ci)
+        visit(ci, cj, ck);
+}
 }
 
 // Every PC cell (brute force, from the cell ranges) is in the map, read cell by cell and
-// lane by lane (a block's located samples); the cells of nodes of 2x2x2 cells without a
-// PC one rarely are (only where the pyramid's coded range of the node is wider than its
-// cells' ranges). Odd dimensions leave partial nodes.
+// lane by lane (a block's located samples); the cells of nodes (CellMap::NodeCells cells
+// along each axis) without a PC one rarely are (only where the pyramid's coded range of the
+// node is wider than its cells' ranges). Dimensions that are not whole nodes leave partial
+// nodes.
 TEST(ContributingCells, EveryPossiblyContributingCellIsInTheMap)
 {
   std::mt19937 rng(31);
-  const int dims[3] = { 13, 10, 17 };
+  const int dims[3] = { 23, 14, 31 };
   int mixed = 0;
   std::size_t spurious = 0, outside = 0;
   for (int trial = 0; trial < 24; ++trial)
@@ -950,10 +964,7 @@ TEST(ContributingCells, EveryPossiblyContributingCellIsInTheMap)
           {
             const bool may = cells.Map.MayContribute(i, j, k);
             bool nodePC = false;
-            for (int n = 0; n < 8; ++n)
-            {
-              nodePC |= pc((i & ~1) + (n & 1), (j & ~1) + ((n >> 1) & 1), (k & ~1) + (n >> 2));
-            }
+            ForNodeCells(i, j, k, [&](int ci, int cj, int ck) { nodePC |= pc(ci, cj, ck); });
             ASSERT_TRUE(!pc(i, j, k) || may) << i << " " << j << " " << k;
             outside += !nodePC;
             spurious += may && !nodePC;
@@ -1002,23 +1013,24 @@ TEST(ContributingCells, NodesBeyond32BitIndicesLeaveTheMapEmpty)
   const int beyond[3] = { 2048, 2048, 512 }; // 2^31 nodes
   map.SetNodes(&code, beyond);
   EXPECT_TRUE(map.IsEmpty());
-  const int field[3] = { 2 * beyond[0], 2 * beyond[1], 2 * beyond[2] };
+  constexpr int n = parc::CellMap::NodeCells;
+  const int field[3] = { n * beyond[0] + 1, n * beyond[1] + 1, n * beyond[2] + 1 };
   EXPECT_FALSE(map.Covers(field));
   const int largest[3] = { 2048, 2048, 511 }; // 2^31 - 2^22 nodes
   map.SetNodes(&code, largest);
   EXPECT_FALSE(map.IsEmpty());
-  const int fits[3] = { 2 * largest[0] + 1, 2 * largest[1], 2 * largest[2] + 1 };
+  const int fits[3] = { n * largest[0] + 1, n * (largest[1] - 1) + 2, n * largest[2] };
   EXPECT_TRUE(map.Covers(fits));
 }
 
 // With exact codes (8-bit values) a cell is in the map exactly when the range of its node
-// of level 1 (its 2x2x2 cells) widened to whole sixteenths of the codes (level 1 is packed)
+// (the pyramid's lowest level) widened to whole sixteenths of the codes (the map is packed)
 // meets the rule: so is every cell of a node with a PC cell. Rules of one interval or
 // threshold and of several intervals.
 TEST(ContributingCells, ExactCodesGiveTheNodesWhosePackedRangeMeetsTheRule)
 {
   std::mt19937 rng(32);
-  const int dims[3] = { 14, 11, 17 };
+  const int dims[3] = { 26, 19, 30 };
   constexpr int Sixteenth = 16;
   int several = 0, widened = 0;
   for (int trial = 0; trial < 12; ++trial)
@@ -1038,10 +1050,7 @@ TEST(ContributingCells, ExactCodesGiveTheNodesWhosePackedRangeMeetsTheRule)
           {
             bool nodePC = false;
             float lo = std::numeric_limits<float>::max(), hi = -lo;
-            for (int n = 0; n < 8; ++n)
-            {
-              const int ci = (i & ~1) + (n & 1), cj = (j & ~1) + ((n >> 1) & 1);
-              const int ck = (k & ~1) + (n >> 2);
+            ForNodeCells(i, j, k, [&](int ci, int cj, int ck) {
               if (ci < c[0] && cj < c[1] && ck < c[2])
               {
                 nodePC |= pcCells[ci + c[0] * (cj + c[1] * ck)] != 0;
@@ -1050,7 +1059,7 @@ TEST(ContributingCells, ExactCodesGiveTheNodesWhosePackedRangeMeetsTheRule)
                 lo = std::min(lo, cellLo);
                 hi = std::max(hi, cellHi);
               }
-            }
+            });
             const int loCode = static_cast<int>(lo - bottom), hiCode = static_cast<int>(hi - bottom);
             const double wideLo = bottom + (loCode & ~(Sixteenth - 1));
             const double wideHi = std::min(bottom + (hiCode | (Sixteenth - 1)), top);

@@ -234,7 +234,7 @@ void RangePyramid::Build(const ScalarField& field)
   {
     return;
   }
-  this->Levels.push_back(this->FirstLevel());
+  this->Levels.push_back(this->LowestNodes());
   int levelDims[3] = { this->Levels[0].Dims[0], this->Levels[0].Dims[1], this->Levels[0].Dims[2] };
   while (levelDims[0] > 1 || levelDims[1] > 1 || levelDims[2] > 1) // each level from the last
   {
@@ -253,7 +253,7 @@ void RangePyramid::Build(const ScalarField& field)
       {
         for (int i = 0; i < next.Dims[0]; ++i, ++out)
         {
-          // The children: cells (level 1) or nodes of the level below.
+          // The children: the nodes of the level below.
           for (int ck = 2 * k; ck < std::min(2 * k + 2, levelDims[2]); ++ck)
           {
             for (int cj = 2 * j; cj < std::min(2 * j + 2, levelDims[1]); ++cj)
@@ -278,38 +278,51 @@ void RangePyramid::Build(const ScalarField& field)
       levelDims[a] = this->Levels.back().Dims[a];
     }
   }
-  this->Levels[0].Pack(); // level 2 is made from its full codes
+  this->Levels[0].Pack();
 }
 
 void RangePyramid::Level::Pack()
 {
-  // In place of the minima (each node's byte read before it is written): no new memory.
-  Code* min = this->Min.data();
+  this->Packed.resize(this->Min.size());
+  Code* packed = this->Packed.data();
+  const Code* min = this->Min.data();
   const Code* max = this->Max.data();
   vtkSMPTools::For(0, static_cast<vtkIdType>(this->Min.size()), [=](vtkIdType b, vtkIdType e) {
     for (vtkIdType n = b; n < e; ++n)
     {
-      min[n] = static_cast<Code>((min[n] >> PackedShift) | ((max[n] >> PackedShift) << PackedShift));
+      packed[n] = static_cast<Code>((min[n] >> PackedShift) | ((max[n] >> PackedShift) << PackedShift));
     }
   });
-  this->Packed = std::move(this->Min);
-  this->Min = std::vector<Code>();
-  std::vector<Code>().swap(this->Max);
 }
 
-RangePyramid::Level RangePyramid::FirstLevel() const
+void RangePyramid::NodeRange(int level, const int node[3], double& lo, double& hi) const
 {
-  // Node (i, j, k) holds cells 2i, 2i + 1 (where they exist) along x, and so on: the
-  // voxels 2i to 2i + 2. In parallel over slices of nodes, each row of nodes takes the
-  // range of every voxel column x over its 3 x 3 voxels in y and z (whole rows in the
-  // values' own type), then of each node's 3 columns, and codes it once. Float rounding is
-  // monotonic, so the range in the values' type converted to float is the range of the
-  // values converted to float.
-  Level first;
+  const Level& l = this->LevelAt(level);
+  const std::size_t n = static_cast<std::size_t>(node[0]) +
+    static_cast<std::size_t>(l.Dims[0]) * (node[1] + static_cast<std::size_t>(l.Dims[1]) * node[2]);
+  lo = this->CodeValues[l.Min[n]];
+  hi = this->CodeValues[l.Max[n]];
+}
+
+void RangePyramid::LevelDims(int level, int dims[3]) const
+{
   for (int a = 0; a < 3; ++a)
   {
-    first.Dims[a] = (this->CellDims[a] + 1) / 2;
+    dims[a] = (this->CellDims[a] + (1 << level) - 1) >> level;
   }
+}
+
+RangePyramid::Level RangePyramid::LowestNodes() const
+{
+  // Node (i, j, k) holds cells n i to n i + n - 1 (n = 2^LowestLevel, where they exist)
+  // along x, and so on: the voxels n i to n i + n. In parallel over slices of nodes, each
+  // row of nodes takes the range of every voxel column x over its (n + 1) x (n + 1) voxels
+  // in y and z (whole rows in the values' own type), then of each node's n + 1 columns,
+  // and codes it once. Float rounding is monotonic, so the range in the values' type
+  // converted to float is the range of the values converted to float.
+  constexpr int span = 1 << LowestLevel;
+  Level first;
+  this->LevelDims(LowestLevel, first.Dims);
   const std::size_t n = static_cast<std::size_t>(first.Dims[0]) * first.Dims[1] * first.Dims[2];
   first.Min.resize(n);
   first.Max.resize(n);
@@ -327,14 +340,14 @@ RangePyramid::Level RangePyramid::FirstLevel() const
       {
         for (int j = 0; j < first.Dims[1]; ++j)
         {
-          const T* start = field.Row(2 * j, 2 * k);
+          const T* start = field.Row(span * j, span * k);
           for (int x = 0; x < dims[0]; ++x)
           {
             columnMin[x] = columnMax[x] = start[x * step];
           }
-          for (int z = 2 * k; z <= std::min(2 * k + 2, dims[2] - 1); ++z)
+          for (int z = span * k; z <= std::min(span * (k + 1), dims[2] - 1); ++z)
           {
-            for (int y = 2 * j; y <= std::min(2 * j + 2, dims[1] - 1); ++y)
+            for (int y = span * j; y <= std::min(span * (j + 1), dims[1] - 1); ++y)
             {
               if (step == 1)
               {
@@ -350,8 +363,8 @@ RangePyramid::Level RangePyramid::FirstLevel() const
             (j + static_cast<std::size_t>(first.Dims[1]) * k);
           for (int i = 0; i < first.Dims[0]; ++i)
           {
-            T lo = columnMin[2 * i], hi = columnMax[2 * i];
-            for (int x = 2 * i + 1; x <= std::min(2 * i + 2, dims[0] - 1); ++x)
+            T lo = columnMin[span * i], hi = columnMax[span * i];
+            for (int x = span * i + 1; x <= std::min(span * (i + 1), dims[0] - 1); ++x)
             {
               lo = std::min(lo, columnMin[x]);
               hi = std::max(hi, columnMax[x]);
@@ -399,17 +412,18 @@ bool RangePyramid::Query(int level, const int node[3], const int c0[3], const in
     this->CellRange(node[0], node[1], node[2], lo, hi);
     return rule.IsPossiblyContributing(lo, hi);
   }
-  const Level& l = this->Levels[level - 1];
-  const std::size_t n = static_cast<std::size_t>(node[0]) +
-    static_cast<std::size_t>(l.Dims[0]) * (node[1] + static_cast<std::size_t>(l.Dims[1]) * node[2]);
-  const double lo = this->CodeValues[l.MinCode(n)], hi = this->CodeValues[l.MaxCode(n)];
-  if (!rule.IsPossiblyContributing(lo, hi))
+  if (level >= LowestLevel) // a level below it is not kept: its children decide
   {
-    return false;
-  }
-  if (rule.AllContributing(lo, hi))
-  {
-    return true; // the node meets the box in at least one cell, and every cell is PC
+    double lo, hi;
+    this->NodeRange(level, node, lo, hi);
+    if (!rule.IsPossiblyContributing(lo, hi))
+    {
+      return false;
+    }
+    if (rule.AllContributing(lo, hi))
+    {
+      return true; // the node meets the box in at least one cell, and every cell is PC
+    }
   }
   for (int c = 0; c < 8; ++c)
   {
@@ -434,7 +448,7 @@ bool RangePyramid::AnyContributing(const int c0[3], const int c1[3],
     extent = std::max(extent, c1[a] - c0[a] + 1);
   }
   int level = 0;
-  while ((1 << level) < extent && level < static_cast<int>(this->Levels.size()))
+  while ((1 << level) < extent && level < this->GetNumberOfLevels())
   {
     ++level;
   }
@@ -481,7 +495,7 @@ bool RangePyramid::CodeBounds(const ContributionRule& rule, Code& high, Code& lo
 void RangePyramid::SettleFromCodes(
   int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const
 {
-  const Level& target = this->Levels[level - 1];
+  const Level& target = this->LevelAt(level);
   flags.assign(target.Size(), 0);
   Code high, low;
   if (!this->CodeBounds(rule, high, low))
@@ -513,12 +527,14 @@ void RangePyramid::Settle(int level, const ContributionRule& rule,
     this->SettleFromCodes(level, rule, flags);
     return;
   }
-  const Level& target = this->Levels[level - 1];
-  flags.assign(target.Size(), 0);
-  // Start a few levels up (enough nodes to share among threads, each settling many).
+  int dims[3];
+  this->LevelDims(level, dims);
+  flags.assign(static_cast<std::size_t>(dims[0]) * dims[1] * dims[2], 0);
+  // Start a few levels up (enough nodes to share among threads, each settling many), at a
+  // kept one.
   constexpr int LevelsAbove = 3;
-  const int top = std::min(level + LevelsAbove, static_cast<int>(this->Levels.size()));
-  const Level& start = this->Levels[top - 1];
+  const int top = std::max(std::min(level + LevelsAbove, this->GetNumberOfLevels()), LowestLevel);
+  const Level& start = this->LevelAt(top);
   vtkSMPTools::For(0, start.Dims[2], [&](vtkIdType k0, vtkIdType k1) {
     int node[3];
     for (node[2] = static_cast<int>(k0); node[2] < k1; ++node[2])
@@ -541,44 +557,49 @@ bool RangePyramid::MapCells(const ContributionRule& rule, CellMap& map) const
   {
     return false;
   }
-  const Level& first = this->Levels[0];
+  const Level& lowest = this->Levels[0];
   for (int p = 0; p < CellMap::CodeCount; ++p)
   {
     const Code packed = static_cast<Code>(p);
     map.Contributes[p] = rule.IsPossiblyContributing(
       this->CodeValues[Level::PackedMin(packed)], this->CodeValues[Level::PackedMax(packed)]);
   }
-  map.SetNodes(first.Packed.data(), first.Dims);
+  map.SetNodes(lowest.Packed.data(), lowest.Dims);
   return true;
 }
 
 void RangePyramid::Descend(int m, const int node[3], int level, const ContributionRule& rule,
   std::vector<std::uint8_t>& flags, bool exact) const
 {
-  const Level& l = this->Levels[m - 1];
-  if (node[0] >= l.Dims[0] || node[1] >= l.Dims[1] || node[2] >= l.Dims[2])
+  int dims[3];
+  this->LevelDims(m, dims);
+  if (node[0] >= dims[0] || node[1] >= dims[1] || node[2] >= dims[2])
   {
     return; // a child past the volume's end
   }
-  const std::size_t n = static_cast<std::size_t>(node[0]) +
-    static_cast<std::size_t>(l.Dims[0]) * (node[1] + static_cast<std::size_t>(l.Dims[1]) * node[2]);
-  const double lo = this->CodeValues[l.MinCode(n)], hi = this->CodeValues[l.MaxCode(n)];
-  if (!rule.IsPossiblyContributing(lo, hi))
+  // Only level itself can be below the lowest level kept (m > level >= 1 is kept); its
+  // nodes are then queried (exact is true there).
+  double lo = 0.0, hi = 0.0;
+  if (m >= LowestLevel)
   {
-    return; // no cell below contributes: the flags stay 0
+    this->NodeRange(m, node, lo, hi);
+    if (!rule.IsPossiblyContributing(lo, hi))
+    {
+      return; // no cell below contributes: the flags stay 0
+    }
   }
-  const Level& target = this->Levels[level - 1];
+  int target[3];
+  this->LevelDims(level, target);
   const int shift = m - level;
   int first[3], last[3];
   for (int a = 0; a < 3; ++a)
   {
     first[a] = node[a] << shift;
-    last[a] = std::min(((node[a] + 1) << shift) - 1, target.Dims[a] - 1);
+    last[a] = std::min(((node[a] + 1) << shift) - 1, target[a] - 1);
   }
   auto flag = [&](int i, int j, int k) -> std::uint8_t& {
     return flags[static_cast<std::size_t>(i) +
-      static_cast<std::size_t>(target.Dims[0]) *
-        (j + static_cast<std::size_t>(target.Dims[1]) * k)];
+      static_cast<std::size_t>(target[0]) * (j + static_cast<std::size_t>(target[1]) * k)];
   };
   if (m == level && !exact)
   {

@@ -107,17 +107,21 @@ private:
   double Margin = 0.0;
 };
 
-/// Min/max of the cells of a field, as a pyramid: level 1 holds the range of 2x2x2 cells,
-/// level L of 2^L x 2^L x 2^L cells. Cell ranges (level 0) are read from the field. Levels
-/// keep one-byte codes of 256 values evenly spread over the field's range, the minimum
-/// rounded down and the maximum rounded up: a node's coded range holds its true range, so
-/// a query descends wherever it would with exact ranges and decides on the exact cell
-/// ranges (for 8- and 16-bit data of at most 256 values the codes are the values
-/// themselves: see ExactCodes). Level 1, the largest, keeps only the codes' high halves
-/// (Level::Packed).
+/// Min/max of the cells of a field, as a pyramid: level L holds the range of 2^L x 2^L x 2^L
+/// cells. Levels from LowestLevel up are kept (level 0 is the cells, read from the field;
+/// the levels between are not kept: a query that reaches one reads its cells). Levels keep
+/// one-byte codes of 256 values evenly spread over the field's range, the minimum rounded
+/// down and the maximum rounded up: a node's coded range holds its true range, so a query
+/// descends wherever it would with exact ranges and decides on the exact cell ranges (for 8-
+/// and 16-bit data of at most 256 values the codes are the values themselves: see
+/// ExactCodes). The lowest level also keeps its codes' high halves in a byte a node, the
+/// cells' map (Level::Packed, MapCells).
 class RangePyramid
 {
 public:
+  /// The lowest level kept: nodes of CellMap::NodeCells cells along each axis.
+  static constexpr int LowestLevel = CellMap::NodeShift;
+
   /// Keeps a pointer to field (it must outlive the pyramid's use).
   void Build(const ScalarField& field);
 
@@ -131,25 +135,29 @@ public:
   /// Whether some cell of the inclusive cell-index box [c0, c1] is PC under rule.
   bool AnyContributing(const int c0[3], const int c1[3], const ContributionRule& rule) const;
 
-  /// For every node of level (1 to the number of levels, see GetNumberOfLevels), whether
+  /// For every node of level (1 to the top level, see GetNumberOfLevels), whether
   /// one of its cells is PC under rule, into flags (x fastest, ceil(cells / 2^level) per
   /// axis): what AnyContributing says of each node's cells, found top-down so that a node
   /// whose whole range decides (nothing or everything contributes) settles all its
   /// descendants at once.
-  /// With exact codes the nodes' ranges alone give that answer (see ExactCodes) above
-  /// level 1.
+  /// With exact codes the nodes' ranges of a kept level alone give that answer (see
+  /// ExactCodes).
   void ClassifyLevel(
     int level, const ContributionRule& rule, std::vector<std::uint8_t>& flags) const
   {
     this->Settle(level, rule, flags, !this->IsExact(level));
   }
-  int GetNumberOfLevels() const { return static_cast<int>(this->Levels.size()); }
+  /// The top level (0 for a field without cells): levels 1 to it can be classified.
+  int GetNumberOfLevels() const
+  {
+    return this->Levels.empty() ? 0 : LowestLevel - 1 + static_cast<int>(this->Levels.size());
+  }
   /// Which cells may be PC under rule, as the caster reads them (RayCaster::
-  /// SetContributingCells): a cell may when the packed range of its node of level 1 meets
-  /// the rule. Every PC cell may, and so may the other cells of its node (finer cells would
-  /// cost memory and a transfer-function edit more than they save a frame). The map points
-  /// to the pyramid's level 1: it holds until the pyramid is built again. False, map empty,
-  /// for a field without cells.
+  /// SetContributingCells): a cell may when the packed range of its node of the lowest
+  /// level meets the rule. Every PC cell may, and so may the other cells of its node (finer
+  /// nodes would cost memory more than they save a frame). The map points to the pyramid's
+  /// lowest level: it holds until the pyramid is built again. False, map empty, for a field
+  /// without cells.
   bool MapCells(const ContributionRule& rule, CellMap& map) const;
 
   /// Memory held by the pyramid, in bytes.
@@ -158,44 +166,37 @@ public:
 private:
   using Code = std::uint8_t;
   static constexpr int CodeCount = 256;
-  /// Level 1 keeps a byte a node, its codes' high halves (PackedShift): a quarter of a
-  /// byte a cell instead of half. Its ranges are wider, still holding the true ones (so
-  /// conservative), and the levels above are made from its full codes.
+  /// The cells' map keeps a byte a node, its codes' high halves (PackedShift): a wider
+  /// range, still holding the true one (so conservative), read through a table of 256.
   static constexpr int PackedShift = 4;
   struct Level
   {
     int Dims[3];
-    std::vector<Code> Min, Max; ///< the codes, or empty when Packed
-    /// The minimum's code >> PackedShift in the low bits, the maximum's in the high bits.
+    std::vector<Code> Min, Max; ///< the codes
+    /// The lowest level's map: the minimum's code >> PackedShift in the low bits, the
+    /// maximum's in the high bits (empty above it).
     std::vector<Code> Packed;
     std::size_t Size() const { return static_cast<std::size_t>(Dims[0]) * Dims[1] * Dims[2]; }
-    /// Node n's codes: its range, or a wider one when packed.
-    Code MinCode(std::size_t n) const
-    {
-      return this->Packed.empty() ? this->Min[n] : PackedMin(this->Packed[n]);
-    }
-    Code MaxCode(std::size_t n) const
-    {
-      return this->Packed.empty() ? this->Max[n] : PackedMax(this->Packed[n]);
-    }
     /// The codes of a packed byte's range.
     static Code PackedMin(Code packed) { return static_cast<Code>((packed & LowBits) << PackedShift); }
     static Code PackedMax(Code packed)
     {
       return static_cast<Code>(((packed >> PackedShift) << PackedShift) | LowBits);
     }
-    /// Replaces the codes by their packed form.
+    /// Makes Packed from the codes.
     void Pack();
     static constexpr unsigned LowBits = (1u << PackedShift) - 1u;
   };
-  /// Whether a node's range of level is exactly the range of its voxels (ExactCodes, and
-  /// not packed).
-  bool IsExact(int level) const
-  {
-    return this->ExactCodes && this->Levels[level - 1].Packed.empty();
-  }
-  /// Level 1, from the field's voxels.
-  Level FirstLevel() const;
+  /// Level level (at least LowestLevel).
+  const Level& LevelAt(int level) const { return this->Levels[level - LowestLevel]; }
+  /// Whether level is kept and its nodes' ranges are exactly the ranges of their voxels.
+  bool IsExact(int level) const { return this->ExactCodes && level >= LowestLevel; }
+  /// The coded range of node of level (kept).
+  void NodeRange(int level, const int node[3], double& lo, double& hi) const;
+  /// The nodes of level along each axis (ceil(cells / 2^level)), kept or not.
+  void LevelDims(int level, int dims[3]) const;
+  /// The lowest level, from the field's voxels.
+  Level LowestNodes() const;
   bool Query(int level, const int node[3], const int c0[3], const int c1[3],
     const ContributionRule& rule) const;
   /// ClassifyLevel (exact: whether one of a node's cells is PC) or, without exact, whether
@@ -219,7 +220,7 @@ private:
 
   const ScalarField* Field = nullptr;
   int CellDims[3] = { 0, 0, 0 };
-  std::vector<Level> Levels; ///< Levels[L - 1] is level L
+  std::vector<Level> Levels; ///< Levels[L - LowestLevel] is level L
   /// Non-decreasing, from the field's minimum to its maximum.
   double CodeValues[CodeCount];
   /// Whether every value of the field is a code value (8- or 16-bit integers over a range

@@ -1,5 +1,5 @@
 // PARC for VTK: CellMap, which cells of a field may contribute, as the caster reads it
-// for each sample: a byte a node of 2x2x2 cells (the range pyramid's packed level 1,
+// for each sample: a byte a node of 4x4x4 cells (the range pyramid's lowest level, packed:
 // RangePyramid::MapCells) and, for each of the 256 bytes, whether its range meets the ray
 // function's rule. A transfer-function edit changes only the table.
 #ifndef parcCellMap_h
@@ -23,11 +23,14 @@ class CellMap
 {
 public:
   static constexpr int CodeCount = 256;
+  /// A node's cells along each axis: 1 << NodeShift.
+  static constexpr int NodeShift = 2;
+  static constexpr int NodeCells = 1 << NodeShift;
   /// 1 for the codes whose cells may contribute, 0 for the others.
   std::uint8_t Contributes[CodeCount] = {};
 
-  /// Maps the nodes to codes (node (i, j, k), cells 2i .. 2i + 1, 2j .. 2j + 1, 2k .. 2k + 1,
-  /// at i + nodeDims[0] (j + nodeDims[1] k)). Nodes beyond 32-bit indices leave the map
+  /// Maps the nodes to codes (node (i, j, k), cells NodeCells i to NodeCells (i + 1) - 1
+  /// along x and so on, at i + nodeDims[0] (j + nodeDims[1] k)). Nodes beyond 32-bit indices leave the map
   /// empty: the caster then samples every cell.
   void SetNodes(const std::uint8_t* codes, const int nodeDims[3])
   {
@@ -52,7 +55,7 @@ public:
     bool covers = !this->IsEmpty();
     for (int a = 0; a < 3; ++a)
     {
-      covers &= this->NodeDims[a] == dims[a] / 2; // ceil((dims[a] - 1) / 2)
+      covers &= this->NodeDims[a] == (dims[a] - 1 + NodeCells - 1) >> NodeShift; // ceil
     }
     return covers;
   }
@@ -76,9 +79,9 @@ public:
     const __m128i row = _mm_set1_epi32(this->RowStep), plane = _mm_set1_epi32(this->PlaneStep);
     for (int j = 0; j < n; j += 4)
     {
-      const __m128i x = _mm_srai_epi32(block.CellLanes(0, j), 1);
-      const __m128i y = _mm_srai_epi32(block.CellLanes(1, j), 1);
-      const __m128i z = _mm_srai_epi32(block.CellLanes(2, j), 1);
+      const __m128i x = _mm_srai_epi32(block.CellLanes(0, j), NodeShift);
+      const __m128i y = _mm_srai_epi32(block.CellLanes(1, j), NodeShift);
+      const __m128i z = _mm_srai_epi32(block.CellLanes(2, j), NodeShift);
       _mm_store_si128(reinterpret_cast<__m128i*>(node + j),
         _mm_add_epi32(x, _mm_add_epi32(MultiplyLow(y, row), MultiplyLow(z, plane))));
     }
@@ -99,7 +102,8 @@ public:
 private:
   std::int32_t Node(int i, int j, int k) const
   {
-    return (i >> 1) + (j >> 1) * this->RowStep + (k >> 1) * this->PlaneStep;
+    return (i >> NodeShift) + (j >> NodeShift) * this->RowStep +
+      (k >> NodeShift) * this->PlaneStep;
   }
 #if defined(__SSE2__)
   /// The low 32 bits of the products of a's and b's lanes (SSE2 multiplies two at a time).
