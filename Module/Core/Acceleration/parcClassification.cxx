@@ -290,7 +290,8 @@ void RangePyramid::Level::Pack()
   vtkSMPTools::For(0, static_cast<vtkIdType>(this->Min.size()), [=](vtkIdType b, vtkIdType e) {
     for (vtkIdType n = b; n < e; ++n)
     {
-      packed[n] = static_cast<Code>((min[n] >> PackedShift) | ((max[n] >> PackedShift) << PackedShift));
+      packed[n] =
+        static_cast<Code>((min[n] >> PackedShift) | ((max[n] >> PackedShift) << PackedShift));
     }
   });
 }

@@ -30,8 +30,8 @@ public:
   std::uint8_t Contributes[CodeCount] = {};
 
   /// Maps the nodes to codes (node (i, j, k), cells NodeCells i to NodeCells (i + 1) - 1
-  /// along x and so on, at i + nodeDims[0] (j + nodeDims[1] k)). Nodes beyond 32-bit indices leave the map
-  /// empty: the caster then samples every cell.
+  /// along x and so on, at i + nodeDims[0] (j + nodeDims[1] k)). Nodes beyond 32-bit
+  /// indices leave the map empty: the caster then samples every cell.
   void SetNodes(const std::uint8_t* codes, const int nodeDims[3])
   {
     this->NodeCodes = nullptr;
