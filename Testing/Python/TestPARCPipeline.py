@@ -54,8 +54,8 @@ class TestPARCPipeline(unittest.TestCase):
         """Composite rays leave out the samples of cells that cannot contribute, in every
         acceleration mode; the cells are classified again only when the ray function
         changes, and not at all for a ray function that does not use them. (Transparent
-        below 160: nodes of 4x4x4 cells wholly transparent, which values up to 100 leave
-        almost none of.)"""
+        below 160, so that some nodes of 4x4x4 cells are wholly transparent: below 100
+        none is.)"""
         mapper, window = make_scene(transparent_below=160)
         volume = window.GetRenderers().GetFirstRenderer().GetVolumes().GetItemAsObject(0)
         volume.GetProperty().SetInterpolationTypeToNearest()

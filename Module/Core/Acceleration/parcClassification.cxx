@@ -578,10 +578,11 @@ void RangePyramid::Descend(int m, const int node[3], int level, const Contributi
   {
     return; // a child past the volume's end
   }
-  // Only level itself can be below the lowest level kept (m > level >= 1 is kept); its
-  // nodes are then queried (exact is true there).
+  // A level below the lowest kept has no ranges: its nodes are descended through, and
+  // queried at level (exact is true there).
+  const bool kept = m >= LowestLevel;
   double lo = 0.0, hi = 0.0;
-  if (m >= LowestLevel)
+  if (kept)
   {
     this->NodeRange(m, node, lo, hi);
     if (!rule.IsPossiblyContributing(lo, hi))
@@ -618,7 +619,7 @@ void RangePyramid::Descend(int m, const int node[3], int level, const Contributi
     flag(node[0], node[1], node[2]) = this->Query(level, node, c0, c1, rule) ? 1 : 0;
     return;
   }
-  if (rule.AllContributing(lo, hi))
+  if (kept && rule.AllContributing(lo, hi))
   {
     for (int k = first[2]; k <= last[2]; ++k)
     {
