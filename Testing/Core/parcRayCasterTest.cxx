@@ -903,6 +903,70 @@ TEST(RayCaster, BrickedFieldGivesBitIdenticalImages)
   }
 }
 
+// Prefetching the voxels ahead of the rays (CastParameters::PrefetchMinBytes) is chosen
+// only where it was measured to pay (unshaded, no gradient, values read in place, large
+// fields), and never changes an image: every ray function, 8-bit, 16-bit and float values,
+// prefetching forced on a small field against none, bit for bit.
+TEST(RayCaster, PrefetchChosenWhereItPaysAndGivesBitIdenticalImages)
+{
+  const int n[3] = { 140, 70, 68 };
+  const std::vector<std::uint8_t> bytes = RippledBlob(n);
+  const std::vector<std::int16_t> shorts(bytes.begin(), bytes.end());
+  const std::vector<float> floats(bytes.begin(), bytes.end());
+  parc::ScalarField fields[3];
+  fields[0].Wrap(bytes.data(), n);
+  fields[1].Wrap(shorts.data(), n);
+  fields[2].Wrap(floats.data(), n);
+  const auto prefetches = [](const parc::ScalarField& field, const CastParameters& p) {
+    parc::RayCaster caster;
+    EXPECT_TRUE(caster.Prepare({ &field, &p }));
+    return caster.PrefetchesVoxels();
+  };
+  CastParameters forced = BlobCase{ BlendMode::Composite, false, false }.Parameters();
+  EXPECT_FALSE(prefetches(fields[0], forced)); // 666 KB: below the default size
+  forced.PrefetchMinBytes = bytes.size();
+  EXPECT_TRUE(prefetches(fields[0], forced));
+  EXPECT_FALSE(prefetches(fields[0], BlobCase{ BlendMode::Composite, true, false }.Parameters()));
+  forced.PrefetchMinBytes = bytes.size() + 1;
+  EXPECT_FALSE(prefetches(fields[0], forced));
+  EXPECT_TRUE(prefetches(fields[1], forced)); // two bytes a value
+  forced.PrefetchMinBytes = 0;
+  forced.Shade = true;
+  EXPECT_FALSE(prefetches(fields[0], forced)); // shaded: none
+  forced.Shade = false;
+  forced.UseGradientOpacity = true;
+  EXPECT_FALSE(prefetches(fields[0], forced)); // gradients: none
+  forced.UseGradientOpacity = false;
+  forced.Interp = parc::Interpolation::Nearest;
+  EXPECT_FALSE(prefetches(fields[0], forced));
+  parc::ScalarField bricked;
+  bricked.Wrap(bytes.data(), n);
+  ASSERT_TRUE(bricked.SetBricked(true));
+  EXPECT_FALSE(prefetches(bricked, BlobCase{ BlendMode::Composite, false, false }.Parameters()));
+
+  for (const parc::ScalarField& field : fields)
+  {
+    for (const BlendMode blend : { BlendMode::Composite, BlendMode::MaximumIntensity,
+           BlendMode::MinimumIntensity, BlendMode::AverageIntensity, BlendMode::Additive,
+           BlendMode::IsoSurface })
+    {
+      CastParameters p = BlobCase{ blend, false, false }.Parameters();
+      p.PrefetchMinBytes = 0;
+      ASSERT_TRUE(prefetches(field, p));
+      parc::CastStatistics stats[2];
+      const std::vector<float> ahead = CastBlobImage(field, p, parc::WholeRaySource(), stats[0]);
+      p.PrefetchMinBytes = std::numeric_limits<std::size_t>::max();
+      ASSERT_FALSE(prefetches(field, p));
+      const std::vector<float> none = CastBlobImage(field, p, parc::WholeRaySource(), stats[1]);
+      EXPECT_EQ(0, std::memcmp(ahead.data(), none.data(), ahead.size() * sizeof(float)))
+        << "type " << static_cast<int>(field.GetScalarType()) << " blend "
+        << static_cast<int>(blend);
+      EXPECT_GT(*std::max_element(ahead.begin(), ahead.end()), 0.f);
+      EXPECT_EQ(stats[0].Samples, stats[1].Samples);
+    }
+  }
+}
+
 // The rays' loops compiled for wide vectors (CastParameters::WideVectors) give the images
 // of the baseline code, bit for bit: every ray function, shaded or not (exact shading under
 // a directional light, two of them, one coloured, a positional light, a fractional specular

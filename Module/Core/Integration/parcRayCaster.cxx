@@ -46,6 +46,24 @@ bool QuantizedNormalsApply(const ScalarField& field, const CastParameters& p)
     LightsAllowQuantizedNormals(p);
 }
 
+/// Lattice samples ahead of a block whose voxels its ray prefetches (a block and a half of
+/// 32 lanes, 24 voxels at half a voxel; 32 and 64 samples ahead gained as much at 429 MB,
+/// 16 half as much).
+constexpr int PrefetchAheadSamples = 48;
+
+/// Whether the rays prefetch voxels (CastParameters::PrefetchMinBytes): unshaded, no
+/// gradient, linear interpolation of values read in place, and cells in both y and z (a
+/// cell's corners lie one row and one slice on).
+bool PrefetchApplies(
+  const ScalarField& field, const CastParameters& p, const RayCaster::RenderConstants& k)
+{
+  const int* dims = field.GetDimensions();
+  const std::size_t bytes =
+    field.GetNumberOfValues() * field.ValueSize() * static_cast<std::size_t>(field.GetStride());
+  return !p.Shade && !k.GradientNeeded && p.Interp == Interpolation::Linear &&
+    !field.IsBricked() && dims[1] > 1 && dims[2] > 1 && bytes >= p.PrefetchMinBytes;
+}
+
 /// The shading factors of every normal code: Blinn-Phong of the directional lights, as
 /// RayContext::Shade computes it, for the world direction of the code's voxel-index
 /// normal, turned towards the eye and seen from p.ShadingViewDirection.
@@ -255,6 +273,7 @@ bool RayCaster::Prepare(const Volume& volume)
   k.GradientNeeded = (parameters->Shade && !k.QuantizedNormals) ||
     (parameters->UseGradientOpacity && !k.GradientOpacityConstant) || labelGradients;
   k.ColorByValue = k.OpacityByValue && parameters->ColorShiftCount == 0;
+  k.PrefetchSamples = PrefetchApplies(*field, *parameters, k) ? PrefetchAheadSamples : 0;
   for (int c = 0; c < 3; ++c)
   {
     k.Ambient[c] = static_cast<float>(parameters->Ambient * parameters->AmbientLight[c]);

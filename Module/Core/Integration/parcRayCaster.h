@@ -244,6 +244,9 @@ public:
   bool NeedsGradient() const { return this->Constants.GradientNeeded; }
   /// Whether shaded samples use the quantized normals (see CastParameters::Shading).
   bool UsesQuantizedNormals() const { return this->Constants.QuantizedNormals; }
+  /// Whether the rays prefetch the voxels ahead of their samples (see
+  /// CastParameters::PrefetchMinBytes).
+  bool PrefetchesVoxels() const { return this->Constants.PrefetchSamples > 0; }
   /// Bytes of the quantized normals' shading table (0 for exact shading).
   std::size_t GetShadingTableMemorySize() const
   {
@@ -297,6 +300,9 @@ public:
     /// The rays' loops run compiled for wide vectors (CastParameters::WideVectors, where
     /// the processor has them).
     bool WideVectors = false;
+    /// Lattice samples ahead of a block whose voxels it prefetches
+    /// (CastParameters::PrefetchMinBytes; 0: none).
+    int PrefetchSamples = 0;
     /// Shaded samples are shaded several at a time: exact shading, directional lights only
     /// (at most 8, none casting shadows).
     bool ShadeLanesTogether = false;

@@ -165,7 +165,8 @@ struct RayContext
   {
     const CellMap* map = this->ReadsMap ? this->Cells : nullptr;
     const unsigned sampled = this->Field.SampleLattice(
-      this->Lattice, this->Dt, k0, n, this->P.Interp, this->Block, map, this->K.WideVectors);
+      this->Lattice, this->Dt, k0, n, this->P.Interp, this->Block, map, this->K.WideVectors,
+      this->K.PrefetchSamples);
     if (map)
     {
       this->ReadsMap = sampled != LatticeBlock::GroupLanes(n);

@@ -21,6 +21,13 @@ namespace parc
 /// The isosurface ray function uses at most this many iso values (the smallest ones).
 constexpr std::size_t MaxIsoValues = 64;
 
+/// Fields of at least this many bytes have their voxels prefetched ahead of unshaded rays
+/// (CastParameters::PrefetchMinBytes). Measured on a processor with a 32 MB last-level
+/// cache (unshaded, the head resized, frames alternating with and without in one process):
+/// 429 MB 7% and 1.4 GB 14% less casting, 181 MB about 2%, shaded 429 MB none; the 7 MB
+/// head, whose voxels stay in the cache, 6% more.
+constexpr std::size_t DefaultPrefetchMinBytes = std::size_t(256) << 20;
+
 enum class BlendMode
 {
   Composite,
@@ -217,6 +224,11 @@ struct CastParameters
   /// with GCC or Clang; 4-10% less casting): the same operations, each rounding alike,
   /// so the same image as with false, the code of the baseline instruction set.
   bool WideVectors = true;
+  /// Unshaded rays (no gradient) through a field of at least this many bytes, read in
+  /// place (not bricked) with linear interpolation, prefetch the cache lines their samples
+  /// will read a few blocks ahead (FieldView::SampleLattice): a hint to the processor, so
+  /// the same samples and bits either way.
+  std::size_t PrefetchMinBytes = DefaultPrefetchMinBytes;
 };
 
 /// Whether every light of p can shade from quantized normals: directional, casting no

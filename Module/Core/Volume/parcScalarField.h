@@ -156,17 +156,18 @@ public:
     return this->Dispatch([&](const auto& v) { return v.Gradient(p, mode); });
   }
 
+  /// Bytes of a value.
+  std::size_t ValueSize() const
+  {
+    return this->Dispatch([](const auto& v) { return sizeof(*v.Row(0, 0)); });
+  }
+
 private:
   template <typename T>
   FieldView<T> View() const
   {
     return FieldView<T>(static_cast<const T*>(this->Data), this->Dims, this->Stride,
       reinterpret_cast<const T*>(this->Bricks.get()));
-  }
-  /// Bytes of a value.
-  std::size_t ValueSize() const
-  {
-    return this->Dispatch([](const auto& v) { return sizeof(*v.Row(0, 0)); });
   }
   template <typename T>
   void MakeBricks();
