@@ -868,6 +868,27 @@ std::vector<float> CastBlobImage(const parc::ScalarField& field, const CastParam
   caster.CastImage(view, nullptr, source, image.data(), stats);
   return image;
 }
+
+/// RippledBlob(n) as 8-bit, 16-bit and float values, each wrapped in a field.
+struct TypedBlobs
+{
+  explicit TypedBlobs(const int n[3])
+    : Bytes(RippledBlob(n))
+    , Shorts(Bytes.begin(), Bytes.end())
+    , Floats(Bytes.begin(), Bytes.end())
+  {
+    this->Fields[0].Wrap(this->Bytes.data(), n);
+    this->Fields[1].Wrap(this->Shorts.data(), n);
+    this->Fields[2].Wrap(this->Floats.data(), n);
+  }
+  TypedBlobs(const TypedBlobs&) = delete;
+  TypedBlobs& operator=(const TypedBlobs&) = delete;
+
+  const std::vector<std::uint8_t> Bytes;
+  const std::vector<std::int16_t> Shorts;
+  const std::vector<float> Floats;
+  parc::ScalarField Fields[3];
+};
 }
 
 // A field's copy in bricks (ScalarField::SetBricked) changes where the samples' voxels are
@@ -910,13 +931,8 @@ TEST(RayCaster, BrickedFieldGivesBitIdenticalImages)
 TEST(RayCaster, PrefetchChosenWhereItPaysAndGivesBitIdenticalImages)
 {
   const int n[3] = { 140, 70, 68 };
-  const std::vector<std::uint8_t> bytes = RippledBlob(n);
-  const std::vector<std::int16_t> shorts(bytes.begin(), bytes.end());
-  const std::vector<float> floats(bytes.begin(), bytes.end());
-  parc::ScalarField fields[3];
-  fields[0].Wrap(bytes.data(), n);
-  fields[1].Wrap(shorts.data(), n);
-  fields[2].Wrap(floats.data(), n);
+  const TypedBlobs blobs(n);
+  const parc::ScalarField* fields = blobs.Fields;
   const auto prefetches = [](const parc::ScalarField& field, const CastParameters& p) {
     parc::RayCaster caster;
     EXPECT_TRUE(caster.Prepare({ &field, &p }));
@@ -924,15 +940,19 @@ TEST(RayCaster, PrefetchChosenWhereItPaysAndGivesBitIdenticalImages)
   };
   CastParameters forced = BlobCase{ BlendMode::Composite, false, false }.Parameters();
   EXPECT_FALSE(prefetches(fields[0], forced)); // 666 KB: below the default size
-  forced.PrefetchMinBytes = bytes.size();
+  forced.PrefetchMinBytes = blobs.Bytes.size();
   EXPECT_TRUE(prefetches(fields[0], forced));
-  EXPECT_FALSE(prefetches(fields[0], BlobCase{ BlendMode::Composite, true, false }.Parameters()));
-  forced.PrefetchMinBytes = bytes.size() + 1;
+  forced.PrefetchMinBytes = blobs.Bytes.size() + 1;
   EXPECT_FALSE(prefetches(fields[0], forced));
   EXPECT_TRUE(prefetches(fields[1], forced)); // two bytes a value
   forced.PrefetchMinBytes = 0;
   forced.Shade = true;
   EXPECT_FALSE(prefetches(fields[0], forced)); // shaded: none
+  parc::NormalVolume normals;
+  normals.Build(fields[0]);
+  forced.Shading = parc::ShadingModel::QuantizedNormals; // shaded without gradients
+  forced.Normals = &normals;
+  EXPECT_FALSE(prefetches(fields[0], forced));
   forced.Shade = false;
   forced.UseGradientOpacity = true;
   EXPECT_FALSE(prefetches(fields[0], forced)); // gradients: none
@@ -940,11 +960,11 @@ TEST(RayCaster, PrefetchChosenWhereItPaysAndGivesBitIdenticalImages)
   forced.Interp = parc::Interpolation::Nearest;
   EXPECT_FALSE(prefetches(fields[0], forced));
   parc::ScalarField bricked;
-  bricked.Wrap(bytes.data(), n);
+  bricked.Wrap(blobs.Bytes.data(), n);
   ASSERT_TRUE(bricked.SetBricked(true));
   EXPECT_FALSE(prefetches(bricked, BlobCase{ BlendMode::Composite, false, false }.Parameters()));
 
-  for (const parc::ScalarField& field : fields)
+  for (const parc::ScalarField& field : blobs.Fields)
   {
     for (const BlendMode blend : { BlendMode::Composite, BlendMode::MaximumIntensity,
            BlendMode::MinimumIntensity, BlendMode::AverageIntensity, BlendMode::Additive,
@@ -979,17 +999,12 @@ TEST(RayCaster, WideVectorsGiveBitIdenticalImages)
     GTEST_SKIP() << "this processor has no wide vectors (AVX2)";
   }
   const int n[3] = { 140, 70, 68 };
-  const std::vector<std::uint8_t> bytes = RippledBlob(n);
-  const std::vector<std::int16_t> shorts(bytes.begin(), bytes.end());
-  const std::vector<float> floats(bytes.begin(), bytes.end());
-  parc::ScalarField fields[4];
-  fields[0].Wrap(bytes.data(), n);
-  fields[1].Wrap(shorts.data(), n);
-  fields[2].Wrap(floats.data(), n);
-  fields[3].Wrap(bytes.data(), n);
-  ASSERT_TRUE(fields[3].SetBricked(true));
+  const TypedBlobs blobs(n);
+  parc::ScalarField bricked;
+  bricked.Wrap(blobs.Bytes.data(), n);
+  ASSERT_TRUE(bricked.SetBricked(true));
   parc::NormalVolume normals;
-  normals.Build(fields[0]);
+  normals.Build(blobs.Fields[0]);
   std::vector<BlobCase> cases;
   for (const BlendMode blend : { BlendMode::Composite, BlendMode::MaximumIntensity,
          BlendMode::MinimumIntensity, BlendMode::AverageIntensity, BlendMode::Additive,
@@ -1004,8 +1019,11 @@ TEST(RayCaster, WideVectorsGiveBitIdenticalImages)
     cases.push_back({ BlendMode::Composite, false, true, dt });
     cases.push_back({ BlendMode::Composite, true, false, dt });
   }
-  for (const parc::ScalarField& field : fields)
+  const parc::ScalarField* const fields[] = { &blobs.Fields[0], &blobs.Fields[1],
+    &blobs.Fields[2], &bricked };
+  for (const parc::ScalarField* each : fields)
   {
+    const parc::ScalarField& field = *each;
     for (const BlobCase& c : cases)
     {
       // Directional, positional, quantized normals, a second light of colour (eight lanes
