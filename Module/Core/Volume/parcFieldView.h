@@ -259,8 +259,11 @@ public:
     std::ptrdiff_t delta = 0, last = 0;
     for (int a = 0; a < 3; ++a)
     {
+      // At most the field's width (no overflow, whatever the spacing or sample distance).
+      const double width = this->Dims[a];
       const double cells = std::nearbyint(ahead * lattice.Direction[a]);
-      delta += static_cast<std::ptrdiff_t>(cells) * this->Step[a];
+      const double moved = cells > width ? width : (cells > -width ? cells : -width);
+      delta += static_cast<std::ptrdiff_t>(moved) * this->Step[a];
       last += this->LastCell[a] * this->Step[a];
     }
     const std::ptrdiff_t row = this->Step[1], slice = this->Step[2];
