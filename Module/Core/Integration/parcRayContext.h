@@ -103,6 +103,9 @@ struct RayContext
   /// shadow rays.
   const Occluders* Shadows = nullptr;
   ShadowScratch* ShadowSpace = nullptr;
+  /// How far the ray's cells move over RenderConstants::PrefetchSamples samples, in
+  /// values (FieldView::OffsetAhead; when it prefetches).
+  std::ptrdiff_t PrefetchOffset = 0;
 
   /// shading: whether the ray's contributions are shaded (a shadow ray's are not).
   RayContext(const View& field, const CastParameters& p, const RayCaster::RenderConstants& k,
@@ -117,6 +120,10 @@ struct RayContext
     , Stats(stats)
     , ToEye(-ray.Direction)
   {
+    if (k.PrefetchSamples > 0)
+    {
+      this->PrefetchOffset = field.OffsetAhead(this->Lattice, this->Dt * k.PrefetchSamples);
+    }
     const std::size_t n = std::min(k.DirectionalLights.size(), MaxHoistedLights);
     for (std::size_t i = 0; shading && p.Shade && i < n; ++i)
     {
@@ -166,7 +173,7 @@ struct RayContext
     const CellMap* map = this->ReadsMap ? this->Cells : nullptr;
     const unsigned sampled = this->Field.SampleLattice(
       this->Lattice, this->Dt, k0, n, this->P.Interp, this->Block, map, this->K.WideVectors,
-      this->K.PrefetchSamples);
+      this->K.PrefetchSamples > 0 ? &this->PrefetchOffset : nullptr);
     if (map)
     {
       this->ReadsMap = sampled != LatticeBlock::GroupLanes(n);

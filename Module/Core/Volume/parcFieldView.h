@@ -140,6 +140,11 @@ public:
       this->StepsFitIn32Bits &= step >= 0 && step <= std::numeric_limits<std::uint32_t>::max();
     }
     SetCorners(this->Step, this->Corner);
+    this->LastCellOffset = 0;
+    for (int a = 0; a < 3; ++a)
+    {
+      this->LastCellOffset += std::max(this->LastCell[a], 0) * this->Step[a];
+    }
     this->BrickStepsFitIn32Bits = this->Grid.Step[2] <= std::numeric_limits<std::uint32_t>::max();
     this->SetRead();
   }
@@ -196,11 +201,11 @@ public:
   /// wide: the caller runs in code compiled for wide vectors (RayCaster's
   /// RenderConstants::WideVectors); the lanes are then located by a plain loop, which the
   /// compiler makes eight lanes wide there (SSE2's four are faster in the baseline code).
-  /// prefetch > 0: the voxels of the samples that many lattice samples ahead are
-  /// prefetched (PrefetchAhead; values read in place only).
+  /// ahead (optional): the voxels the lanes' cells moved by this offset read are
+  /// prefetched (OffsetAhead, PrefetchAhead; values read in place only).
   PARC_HOT_INLINE unsigned SampleLattice(const RayLattice& lattice, double dt, long k0,
     int count, Interpolation mode, LatticeBlock& block, const CellMap* cells = nullptr,
-    bool wide = false, int prefetch = 0) const
+    bool wide = false, const std::ptrdiff_t* ahead = nullptr) const
   {
     const int n = LatticeBlock::GroupedCount(count);
     const unsigned all = LatticeBlock::GroupLanes(count);
@@ -224,9 +229,9 @@ public:
         this->LastCell[a], block.Cell[a], block.Fractions[a], wide);
     }
     this->CellOffsets(block, n);
-    if (prefetch > 0 && !this->Bricks)
+    if (ahead && !this->Bricks)
     {
-      this->PrefetchAhead(lattice, dt * prefetch, block, n);
+      this->PrefetchAhead(block, n, *ahead);
     }
     unsigned lanes = all;
     if (cells)
@@ -246,30 +251,37 @@ public:
     }
     return lanes;
   }
-  /// Prefetches the cache lines that the samples a ray parameter `ahead` beyond every
-  /// PrefetchLaneStep-th lane of block (located, n lanes) will read: the cell each lane's
-  /// moves to by the ray's whole steps over that distance (clamped to the field), its row
-  /// and slice and the next ones. Approximate (a cell may be one off), and only a hint: a
-  /// ray through a field many times the processor's cache waits on its cache lines, which
-  /// its steps of a row or a slice leave the processor no pattern to fetch early by. Every
-  /// lane's corners lie in the field's values (y and z have two voxels or more).
-  PARC_HOT_INLINE void PrefetchAhead(
-    const RayLattice& lattice, double ahead, const LatticeBlock& block, int n) const
+  /// The offset, in values, by which a ray's cells move over the ray parameter `ahead`:
+  /// its whole steps along each axis over that distance, each at most the field's width
+  /// (no overflow, whatever the spacing or sample distance). Computed once a ray, for
+  /// PrefetchAhead.
+  std::ptrdiff_t OffsetAhead(const RayLattice& lattice, double ahead) const
   {
-    std::ptrdiff_t delta = 0, last = 0;
+    std::ptrdiff_t offset = 0;
     for (int a = 0; a < 3; ++a)
     {
-      // At most the field's width (no overflow, whatever the spacing or sample distance).
       const double width = this->Dims[a];
       const double cells = std::nearbyint(ahead * lattice.Direction[a]);
       const double moved = cells > width ? width : (cells > -width ? cells : -width);
-      delta += static_cast<std::ptrdiff_t>(moved) * this->Step[a];
-      last += this->LastCell[a] * this->Step[a];
+      offset += static_cast<std::ptrdiff_t>(moved) * this->Step[a];
     }
+    return offset;
+  }
+  /// Prefetches the cache lines that the samples ahead of every PrefetchLaneStep-th lane of
+  /// block (located, n lanes) will read: the cell each lane's moves to by the offset ahead
+  /// (OffsetAhead; clamped to the field), its row and slice and the next ones. Approximate
+  /// (a cell may be one off), and only a hint: a ray through a field many times the
+  /// processor's cache waits on its cache lines, which its steps of a row or a slice leave
+  /// the processor no pattern to fetch early by. Every lane's corners lie in the field's
+  /// values (y and z have two voxels or more).
+  PARC_HOT_INLINE void PrefetchAhead(
+    const LatticeBlock& block, int n, std::ptrdiff_t ahead) const
+  {
     const std::ptrdiff_t row = this->Step[1], slice = this->Step[2];
     for (int j = 0; j < n; j += PrefetchLaneStep)
     {
-      const std::ptrdiff_t offset = std::clamp<std::ptrdiff_t>(block.Offset[j] + delta, 0, last);
+      const std::ptrdiff_t offset =
+        std::clamp<std::ptrdiff_t>(block.Offset[j] + ahead, 0, this->LastCellOffset);
       const T* v = this->Data + offset;
       PrefetchLine(v);
       PrefetchLine(v + row);
@@ -833,6 +845,7 @@ private:
   int Dims[3];
   double Last[3]; ///< the last index coordinate along x, y, z
   int LastCell[3]; ///< the last cell index along x, y, z
+  std::ptrdiff_t LastCellOffset; ///< the last cell's first voxel (each index at least 0)
 };
 
 } // namespace parc
