@@ -666,6 +666,47 @@ TEST(RayCaster, NeighbouringRaysShareCellDifferences)
   EXPECT_LT(stats.DifferenceLoads, aloneStats.DifferenceLoads / 2);
 }
 
+// Rays closer than a voxel cross the cells of the rows of rays before them in their tile:
+// the thread's cache holds a whole row's cells, deep as the field is, so that a cell's
+// differences are loaded about once per tile.
+TEST(RayCaster, CloseRaysShareTheCellsOfTheRowBefore)
+{
+  const int n[3] = { 12, 12, 200 };
+  const parc::ScalarField field = parctest::MakeField(n, [](int i, int j, int k) {
+    return static_cast<float>(
+      128.0 + 100.0 * std::sin(0.7 * i) * std::cos(0.5 * j) * std::sin(0.3 * k));
+  });
+  CastParameters p;
+  parctest::SetOpacity(p, { 0.0, 255.0 }, { 0.005, 0.005 });
+  p.Shade = true;
+  p.SampleDistance = 0.5;
+  parc::RayCaster caster;
+  ASSERT_TRUE(caster.Prepare({ &field, &p }));
+  // Rays 0.3 voxel apart along -z, through the whole depth.
+  const parc::Camera view =
+    ParallelView(40, 40, 0.0, 6.0, parc::Vec3{ 5.5, 5.5, 99.5 }, 120.0);
+  std::vector<float> image(4 * 40 * 40);
+  parc::CastStatistics stats;
+  vtkSMPTools::Initialize(1);
+  caster.CastImage(view, nullptr, parc::WholeRaySource(), image.data(), stats);
+  // Each cell loaded less than once on average (a cache of one row's cells reloads each
+  // about twice); the image is the one of the rays cast alone.
+  const std::uint64_t cells = 11 * 11 * 199;
+  EXPECT_GT(stats.GradientEvaluations, 10 * cells);
+  EXPECT_LT(stats.DifferenceLoads, cells);
+  std::vector<parc::Segment> segments;
+  std::vector<parc::LatticeRange> ranges;
+  parc::CastStatistics alone;
+  for (const int pixel : { 0, 17, 40 * 20 + 21, 40 * 40 - 1 })
+  {
+    float rgba[4];
+    const int px = pixel % 40, py = pixel / 40;
+    caster.CastRay(parc::RayQuery::AtPixel(view.MakeRay(px, py), px, py),
+      parc::WholeRaySource(), segments, ranges, rgba, alone);
+    EXPECT_EQ(0, std::memcmp(rgba, &image[4 * pixel], sizeof(rgba))) << pixel;
+  }
+}
+
 TEST(RayCaster, ProgressCanAbortTheImage)
 {
   const parc::ScalarField field = Blobs();

@@ -265,6 +265,48 @@ TEST(Camera, MayMeetBoxRejectsOnlyBoxesNoRayMeetsPerspective)
   EXPECT_TRUE(cameras[0].MayMeetBox(identity, corners[0], corners[7]));
 }
 
+// PixelStepAt leads from a point on a pixel's ray to the point at the same depth on the
+// ray of the pixel to its right.
+TEST(Camera, PixelStepAtReachesTheNeighbouringRay)
+{
+  parc::Light light;
+  light.Positional = true;
+  light.Position = Vec3{ 0, 0, 0 };
+  light.FocalPoint = Vec3{ 40, 0, 5 };
+  std::vector<Vec3> corners;
+  for (int c = 0; c < 8; ++c)
+  {
+    corners.push_back(Vec3{ c & 1 ? 50.0 : 30.0, c & 2 ? 10.0 : -10.0, c & 4 ? 20.0 : -10.0 });
+  }
+  const std::vector<parc::Camera> perspective = parc::LightCameras(light, corners, 24);
+  ASSERT_EQ(perspective.size(), 1u);
+  for (const parc::Camera& view : { parctest::ParallelView(24, 20, 0.4, 10.0), perspective[0] })
+  {
+    const parc::Ray ray = view.MakeRay(7, 5), right = view.MakeRay(8, 5);
+    std::vector<double> lengths;
+    for (const double f : { 0.25, 0.5 })
+    {
+      const Vec3 x = ray.Origin + (ray.TMin + f * (ray.TMax - ray.TMin)) * ray.Direction;
+      const Vec3 step = view.PixelStepAt(x);
+      const Vec3 y = x + step;
+      const Vec3 fromRight = y - right.Origin;
+      const Vec3 offRay = fromRight - Dot(fromRight, right.Direction) * right.Direction;
+      EXPECT_LT(Length(offRay), 1e-9 * Length(x)) << (view.Parallel ? "parallel" : "perspective");
+      EXPECT_NEAR(Dot(step, view.Direction), 0.0, 1e-9 * Length(step));
+      lengths.push_back(Length(step));
+    }
+    if (view.Parallel)
+    {
+      EXPECT_NEAR(lengths[0], 20.0 / 24, 1e-12); // 2 halfWidth / width
+      EXPECT_NEAR(lengths[1], 20.0 / 24, 1e-12);
+    }
+    else
+    {
+      EXPECT_GT(lengths[1], lengths[0]); // farther from the eye, farther apart
+    }
+  }
+}
+
 TEST(Ray, LatticeSampleCountCountsTheSamplesOfAnInterval)
 {
   EXPECT_EQ(parc::LatticeSampleCount(0.3, 2.0, 0.5), 4); // 0.5, 1, 1.5, 2

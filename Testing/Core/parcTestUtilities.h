@@ -54,8 +54,10 @@ inline void SetOpacity(parc::CastParameters& p, std::vector<double> x, std::vect
 }
 
 /// Parallel rays along (sin a, 0, -cos a) over a window of 2 halfWidth x 2 halfWidth
-/// around (16, 16, 16): NDC (x, y, z) -> centre + halfWidth (x right + y up) + 60 z forward.
-inline parc::Camera ParallelView(int w, int h, double angle, double halfWidth = 20.0)
+/// around centre: NDC (x, y, z) -> centre + halfWidth (x right + y up) + halfDepth z
+/// forward.
+inline parc::Camera ParallelView(int w, int h, double angle, double halfWidth = 20.0,
+  const parc::Vec3& centre = parc::Vec3{ 16, 16, 16 }, double halfDepth = 60.0)
 {
   parc::Camera v;
   v.Width = w;
@@ -68,12 +70,12 @@ inline parc::Camera ParallelView(int w, int h, double angle, double halfWidth = 
   {
     ndcToWorld(r, 0) = halfWidth * right[r];
     ndcToWorld(r, 1) = halfWidth * up[r];
-    ndcToWorld(r, 2) = 60.0 * forward[r];
-    ndcToWorld(r, 3) = 16.0;
+    ndcToWorld(r, 2) = halfDepth * forward[r];
+    ndcToWorld(r, 3) = centre[r];
   }
   parc::Invert(ndcToWorld, worldToNDC);
   v.SetProjection(worldToNDC);
-  v.Eye = parc::Vec3{ 16, 16, 16 } - 80.0 * forward;
+  v.Eye = centre - (halfDepth + 20.0) * forward;
   v.Direction = forward;
   return v;
 }

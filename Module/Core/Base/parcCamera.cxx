@@ -80,6 +80,13 @@ bool Camera::Project(const Vec3& x, double& u, double& v) const
   return std::isfinite(u) && std::isfinite(v);
 }
 
+Vec3 Camera::PixelStepAt(const Vec3& x) const
+{
+  const Vec3 ndc = this->WorldToNDC.TransformHomogeneous(x);
+  const Vec3 right = { ndc.X + 2.0 / this->Width, ndc.Y, ndc.Z };
+  return this->NDCToWorld.TransformHomogeneous(right) - x;
+}
+
 bool Camera::IsAlongRays(const Ray& ray) const
 {
   if (this->Parallel)

@@ -42,6 +42,10 @@ public:
   /// The continuous pixel coordinates of world point x (pixel (px, py) has its centre at
   /// (px + 0.5, py + 0.5)); false when x projects nowhere (on the eye plane in perspective).
   bool Project(const Vec3& x, double& u, double& v) const;
+  /// The world vector from the ray of a pixel to the ray of its right-hand neighbour, at
+  /// the view depth of world point x (the rays' spacing there); not finite when x projects
+  /// nowhere.
+  Vec3 PixelStepAt(const Vec3& x) const;
   /// Whether ray lies on one of the camera's rays (through the eye in perspective, along
   /// the view direction in parallel), within a relative tolerance: all its points then
   /// project to one image point.

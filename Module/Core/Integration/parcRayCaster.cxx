@@ -687,15 +687,32 @@ bool RayCaster::CastImage(const Camera& view, const float* depth,
   });
 }
 
+std::size_t RayCaster::DifferenceCacheCellsFor(const Camera& view) const
+{
+  // The rays' spacing in voxels at the field's centre.
+  Matrix4 indexToWorld;
+  if (!Invert(this->WorldToIndex, indexToWorld))
+  {
+    return DifferenceCacheCells;
+  }
+  const int* dims = this->Field->GetDimensions();
+  const Vec3 centre = indexToWorld.TransformPoint(
+    { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
+  const double spacing = Length(this->WorldToIndex.TransformVector(view.PixelStepAt(centre)));
+  return spacing < DenseRaySpacing ? DenseDifferenceCacheCells : DifferenceCacheCells;
+}
+
 template <class View>
 bool RayCaster::CastImageIn(const View& field, const Camera& view, const float* depth,
   const SegmentSource& source, float* rgba, CastStatistics& stats,
   const std::function<bool(double)>& progress) const
 {
+  const std::size_t cacheCells =
+    this->Constants.GradientNeeded ? this->DifferenceCacheCellsFor(view) : 0;
   auto castOne = [&](const RayQuery& query, RayScratch& scratch, float* pixel) {
-    if (this->Constants.GradientNeeded && scratch.Differences.empty())
+    if (scratch.Differences.size() != cacheCells)
     {
-      scratch.Differences.resize(DifferenceCacheCells);
+      scratch.Differences.resize(cacheCells);
     }
     if (!RayCostFit::TimesColumn(query.Pixel[0]))
     {

@@ -374,6 +374,8 @@ private:
   bool CastImageIn(const View& field, const Camera& view, const float* depth,
     const SegmentSource& source, float* rgba, CastStatistics& stats,
     const std::function<bool(double)>& progress) const;
+  /// The cells of each thread's cache of cell differences for the rays of view.
+  std::size_t DifferenceCacheCellsFor(const Camera& view) const;
 
   const ScalarField* Field = nullptr;
   const CastParameters* Params = nullptr;

@@ -30,10 +30,18 @@ constexpr int SampleBlockSize = LatticeBlock::Size;
 constexpr int RegulaFalsiSteps = 2; ///< isosurface refinement steps
 /// Specular powers up to this whole number are computed by repeated squaring.
 constexpr double MaxIntegerSpecularPower = 1024.0;
-/// Cells whose voxel differences a thread keeps for gradients (a power of two): the rays
-/// of a tile cross mostly the same cells.
+/// Cells whose voxel differences a thread keeps for gradients (a power of two): neighbouring
+/// rays of a tile cross mostly the same cells.
 constexpr std::size_t DifferenceCacheCells = 512;
+/// ... when the rays are closer than DenseRaySpacing voxels: then a ray also crosses the
+/// cells of the tile's row of rays before it, which the cache holds too (at 1000^2 on a
+/// 7 MB volume, half the loads and 6% less time shaded; a volume's cells crossed by one
+/// ray each gain nothing from the larger cache and lose a little to its misses).
+constexpr std::size_t DenseDifferenceCacheCells = 4096;
+constexpr double DenseRaySpacing = 0.6;
 static_assert((DifferenceCacheCells & (DifferenceCacheCells - 1)) == 0, "a power of two");
+static_assert(
+  (DenseDifferenceCacheCells & (DenseDifferenceCacheCells - 1)) == 0, "a power of two");
 /// The block lane of a gradient at a point that is not a lattice sample (an isosurface
 /// crossing).
 constexpr int NotALatticeSample = -1;
