@@ -623,6 +623,11 @@ public:
   vtkIdType GetLastEmptyCellSampleCount();
   vtkIdType GetLastRayCount();
   vtkIdType GetLastGradientCount();
+  /**
+   * Bytes of the threads' caches of cell differences that the last render's gradients
+   * used (larger where rays are closer than a voxel; in GetMemorySize).
+   */
+  vtkIdType GetLastGradientCacheSize();
   double GetLastCastingTime();
   double GetLastProjectionTime();
   double GetLastRenderTime();

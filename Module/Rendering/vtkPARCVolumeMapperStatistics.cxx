@@ -41,6 +41,10 @@ vtkIdType vtkPARCVolumeMapper::GetLastGradientCount()
 {
   return static_cast<vtkIdType>(this->Internals->Stats.GradientEvaluations);
 }
+vtkIdType vtkPARCVolumeMapper::GetLastGradientCacheSize()
+{
+  return static_cast<vtkIdType>(this->Internals->Stats.DifferenceCacheBytes);
+}
 vtkIdType vtkPARCVolumeMapper::GetLastShadowRayCount()
 {
   return static_cast<vtkIdType>(this->Internals->Stats.ShadowRays);
@@ -231,7 +235,8 @@ vtkPARCVolumeMapper::vtkVolumeState::Memory() const
     { "bit-plane buffer", this->Plan.GetPlaneBufferMemorySize() },
     { "OpenGL models and targets", this->Passes.GetMemorySize() },
     { "OpenGL implementation, beyond them (measured)", this->Passes.GetDriverMemorySize() },
-    { "light buffers", this->Plan.GetLightPassesMemorySize() } };
+    { "light buffers", this->Plan.GetLightPassesMemorySize() },
+    { "gradients' cell caches (while casting)", this->Stats.DifferenceCacheBytes } };
 }
 
 std::vector<std::pair<const char*, std::size_t>> vtkPARCVolumeMapper::vtkInternals::Memory() const

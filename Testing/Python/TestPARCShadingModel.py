@@ -60,13 +60,16 @@ class TestPARCShadingModel(unittest.TestCase):
         exact = self.render(mapper, window)
         self.assertGreater(mapper.GetLastGradientCount(), 0)
         exact_memory = mapper.GetMemorySize()
+        caches = mapper.GetLastGradientCacheSize()  # the gradients' cell caches
+        self.assertGreater(caches, 0)
 
         mapper.SetShadingModelToQuantizedNormals()
         quantized = self.render(mapper, window)
         self.assertEqual(mapper.GetLastShadingModel(),
                          vtkPARCVolumeMapper.SHADING_QUANTIZED_NORMALS)
         self.assertEqual(mapper.GetLastGradientCount(), 0)
-        self.assertEqual(mapper.GetMemorySize() - exact_memory, NORMALS_BYTES)
+        self.assertEqual(mapper.GetLastGradientCacheSize(), 0)
+        self.assertEqual(mapper.GetMemorySize() - exact_memory, NORMALS_BYTES - caches)
         difference = np.abs(quantized - exact)
         self.assertGreater(difference.max(), 0.0, "the quantized model is in use")
         self.assertLess(difference.mean(), 0.005)
@@ -87,7 +90,8 @@ class TestPARCShadingModel(unittest.TestCase):
         mapper.SetShadingModelToExact()
         self.assertTrue(np.array_equal(self.render(mapper, window), exact))
         self.assertEqual(mapper.GetLastShadingModel(), vtkPARCVolumeMapper.SHADING_EXACT)
-        self.assertEqual(quantized_memory - mapper.GetMemorySize(), NORMALS_BYTES,
+        self.assertEqual(mapper.GetLastGradientCacheSize(), caches)
+        self.assertEqual(quantized_memory - mapper.GetMemorySize(), NORMALS_BYTES - caches,
                          "the normals are freed")
 
     def test_coloured_lights_take_a_table_per_channel(self):

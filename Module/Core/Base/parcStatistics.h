@@ -89,6 +89,9 @@ struct CastStatistics
   std::uint64_t GradientEvaluations = 0;
   /// Cells whose voxel differences were loaded for gradients (the rest were cached).
   std::uint64_t DifferenceLoads = 0;
+  /// Bytes of the caches of cell differences of the threads that may cast an image
+  /// (RayCaster::CastImage; freed when the image is done).
+  std::uint64_t DifferenceCacheBytes = 0;
   std::uint64_t Cells = 0; ///< cells crossed by the cast lattice ranges (paper, Table 2)
   /// Shadow rays: one per shaded contribution and shadow-casting light that lights it.
   std::uint64_t ShadowRays = 0;
@@ -109,6 +112,7 @@ struct CastStatistics
     this->EmptyCellSamples += o.EmptyCellSamples;
     this->GradientEvaluations += o.GradientEvaluations;
     this->DifferenceLoads += o.DifferenceLoads;
+    this->DifferenceCacheBytes += o.DifferenceCacheBytes;
     this->Cells += o.Cells;
     this->ShadowRays += o.ShadowRays;
     this->ShadowSamples += o.ShadowSamples;

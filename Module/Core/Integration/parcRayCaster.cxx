@@ -742,6 +742,9 @@ bool RayCaster::CastImageIn(const View& field, const Camera& view, const float* 
     }
   };
   auto reduce = [&stats](const RayScratch& scratch) { stats += scratch.Stats; };
+  // The caches of every thread that may cast (the allocator keeps what any one took).
+  stats.DifferenceCacheBytes += cacheCells * sizeof(CellDifferences) *
+    static_cast<std::size_t>(vtkSMPTools::GetEstimatedNumberOfThreads());
   return CastTiles(view, depth, castOne, mayHave, skipOne, rgba, reduce, progress);
 }
 
