@@ -235,6 +235,23 @@ PARC_HOT_INLINE void RayContext<View>::ShadeBatch(long k0)
     }
     return;
   }
+#if defined(__SSE2__)
+  if (b.Count > 0 && this->LanesInInteriorCells(b.Lane[0], b.Lane[b.Count - 1]))
+  {
+    // Every lane in an interior cell (most batches): no cell to check lane by lane.
+    for (int i = 0; i < b.Count; ++i)
+    {
+      alignas(16) float world[4];
+      this->InteriorWorldGradientAt(this->Block.Location(b.Lane[i]), world);
+      for (int a = 0; a < 3; ++a)
+      {
+        b.Gradient[a][i] = world[a];
+      }
+    }
+    this->ShadeLanes();
+    return;
+  }
+#endif
   for (int i = 0; i < b.Count; ++i)
   {
 #if defined(__SSE2__)

@@ -233,6 +233,24 @@ struct RayContext
     {
       return false;
     }
+    this->InteriorWorldGradientAt(w, world);
+    return true;
+  }
+  /// Whether the block's lanes i to k (i <= k) all lie in interior cells, with linear
+  /// interpolation: the cells of a ray's samples run monotonically along each axis, so
+  /// the first and last lanes bound them in the box of interior cells.
+  PARC_HOT_INLINE bool LanesInInteriorCells(int i, int k) const
+  {
+    const auto interior = [this](int j) {
+      const int cell[3] = { this->Block.Cell[0][j], this->Block.Cell[1][j],
+        this->Block.Cell[2][j] };
+      return this->Field.IsInteriorCell(cell);
+    };
+    return this->P.Interp == Interpolation::Linear && interior(i) && interior(k);
+  }
+  /// InteriorWorldGradient at w, a sample of linear interpolation in an interior cell.
+  PARC_HOT_INLINE void InteriorWorldGradientAt(const SampleLocation& w, float world[4])
+  {
     ++this->Stats.GradientEvaluations;
     CellDifferences& slot = this->DifferencesOf(w.Offset);
     this->Stats.DifferenceLoads += (slot.Offset != w.Offset);
@@ -243,7 +261,6 @@ struct RayContext
     const __m128 y = _mm_mul_ps(column(1), _mm_shuffle_ps(g, g, 0x55));
     const __m128 z = _mm_mul_ps(column(2), _mm_shuffle_ps(g, g, 0xAA));
     _mm_store_ps(world, _mm_add_ps(_mm_add_ps(x, y), z));
-    return true;
   }
 #endif
   /// The voxel-index gradient at ray parameter t, sample j of the block (or
