@@ -141,9 +141,12 @@ def scene(image, kind, shade, pixels):
 def new_mapper(name, image):
     from vtkmodules.vtkRenderingVolume import vtkFixedPointVolumeRayCastMapper
     from parc import vtkPARCVolumeMapper
-    if name in ("parc", "bricked"):
+    if name in ("parc", "bricked", "none"):
         mapper = vtkPARCVolumeMapper()
-        mapper.SetAccelerationModeToAuto()
+        if name == "none":  # no acceleration structure at all: the memory's floor
+            mapper.SetAccelerationModeToNone()
+        else:
+            mapper.SetAccelerationModeToAuto()
         mapper.SetBrickedCopy(name == "bricked")
     else:
         mapper = vtkFixedPointVolumeRayCastMapper()
@@ -304,7 +307,7 @@ def first(outdir, factor, kind, name, shade, pixels, outlined=False):
     for _ in range(MEMORY_FRAMES - 1):
         window.Render()
     result["growth"] = resident() - before
-    if name in ("parc", "bricked"):
+    if name in ("parc", "bricked", "none"):
         result["memory_size"] = mapper.GetMemorySize()
     print(json.dumps(result))
 
@@ -371,6 +374,7 @@ def report(outdir, quick, factors=None, images=None):
                     if name == "parc":
                         row["memory_size_" + name] = min_median(
                             [run["memory_size"] for run in runs])[1]
+                for name in ("fixed", "parc", "none"):
                     row["growth_outlined_" + name] = child(
                         "--first", outdir, factor, kind, name, row["shade"], images[0],
                         "outlined")["growth"]
@@ -418,7 +422,8 @@ def tables(rows, images):
           "sample taken, a contributing sample | the same against the head's (x1) in turns "
           "(* the smallest volume's, another process) "
           "| edit frame / warm frame | resident growth: FixedPoint, PARC (x volume) "
-          "| the same after a drawn outline: FixedPoint, PARC (x volume) "
+          "| the same after a drawn outline: FixedPoint, PARC, PARC without acceleration "
+          "(x volume) "
           "| PARC GetMemorySize (x volume) | GetMemorySize / growth |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     smallest = {}  # the first row of each type and shading (the volumes in growing order)
@@ -426,8 +431,10 @@ def tables(rows, images):
         smallest.setdefault((r["kind"], r["shade"]), r)
     for r in rows:
         v = r["bytes"]
-        outlined = ("%.2f, %.2f" % (r["growth_outlined_fixed"] / v, r["growth_outlined_parc"] / v)
-                    if "growth_outlined_parc" in r else "-")  # not in runs saved before it
+        # Not in runs saved before them: the outlined growth, then acceleration None's.
+        outlined = ", ".join("%.2f" % (r["growth_outlined_" + name] / v)
+                             for name in ("fixed", "parc", "none")
+                             if "growth_outlined_" + name in r) or "-"
         keys = [k for k in SAMPLE_COSTS if k in r]  # runs saved before had one cost
         base = smallest[(r["kind"], r["shade"])]
         if "against_head_" + keys[0] in r:
@@ -523,6 +530,12 @@ def plots(outdir, rows, images):
                                and "growth_outlined_parc" in r,
                                lambda r, key=key: r["growth_outlined_" + key] / 2**20, colour,
                                kind != kinds[0]))
+    for kind in kinds:
+        series.append(line("PARC without acceleration unshaded, after a drawn outline",
+                           lambda r, k=kind: r["kind"] == k and r["shade"] == 0
+                           and "growth_outlined_none" in r,
+                           lambda r: r["growth_outlined_none"] / 2**20, PALETTE[9],
+                           kind != kinds[0]))
     for kind in kinds:
         series.append(line("PARC Auto, BrickedCopy unshaded",
                            lambda r, k=kind: r["kind"] == k and r["shade"] == 0
