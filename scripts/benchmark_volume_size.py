@@ -307,7 +307,7 @@ def first(outdir, factor, kind, name, shade, pixels, outlined=False):
     for _ in range(MEMORY_FRAMES - 1):
         window.Render()
     result["growth"] = resident() - before
-    if name in ("parc", "bricked", "none"):
+    if name in ("parc", "bricked"):
         result["memory_size"] = mapper.GetMemorySize()
     print(json.dumps(result))
 
