@@ -25,7 +25,9 @@ off) at half a voxel, in a perspective view. For each volume and shading:
   over the rounds); and once more in a process whose window has drawn the volume's outline
   first, as a program showing anything else has: the GL implementation's start-up (its
   first compiled program, about 25 MiB on llvmpipe, whichever drawing comes first) is then
-  paid before the mapper, and the growth is what the mapper's render adds.
+  paid before the mapper, and the growth is what the mapper's render adds; beside it, in
+  the same way, this mapper without acceleration (no acceleration structure at all) and a
+  picture of the window's size shown alone by a vtkImageActor: the floor under any mapper.
 
 Prints markdown; writes CSV data and PNG plots into OUTDIR. The resized volumes are kept in
 OUTDIR/volumes while the section runs and removed after.
@@ -56,6 +58,9 @@ SMALL_VOLUME_BYTES, SMALL_VOLUME_ROUNDS = 2**27, 7
 SAMPLE_COSTS = ("ns_per_sample", "ns_per_sample_taken", "ns_per_contributing_sample")
 WARM_UP_FRAMES = 20  # enough for Auto's trials and its supercell search
 MEMORY_FRAMES = 5
+# The renders measured after a drawn outline: the mappers (new_mapper) and, as the floor
+# under them all, a picture of the window's size alone (show_picture).
+OUTLINED = ("fixed", "parc", "none", "picture")
 CT_SCALE, CT_OFFSET = 12, -1024  # int16 = 12 * uint8 - 1024: a CT-like range
 
 
@@ -143,7 +148,7 @@ def new_mapper(name, image):
     from parc import vtkPARCVolumeMapper
     if name in ("parc", "bricked", "none"):
         mapper = vtkPARCVolumeMapper()
-        if name == "none":  # no acceleration structure at all: the memory's floor
+        if name == "none":  # no acceleration structure at all: its memory floor
             mapper.SetAccelerationModeToNone()
         else:
             mapper.SetAccelerationModeToAuto()
@@ -292,6 +297,27 @@ def draw_outline(window, image):
     window.Render()
 
 
+def show_picture(window, pixels):
+    """What any program showing a picture the window's size in it adds (the floor under
+    every mapper's memory): the resident size MEMORY_FRAMES frames with a vtkImageActor of
+    random RGBA bytes add, the bytes made before (JSON on stdout)."""
+    from vtkmodules.vtkCommonDataModel import vtkImageData
+    from vtkmodules.vtkRenderingCore import vtkImageActor
+    from vtkmodules.util.numpy_support import numpy_to_vtk
+    picture = vtkImageData()
+    picture.SetDimensions(pixels, pixels, 1)
+    rgba = np.random.default_rng(1).integers(0, 256, (pixels * pixels, 4), dtype=np.uint8)
+    picture.GetPointData().SetScalars(numpy_to_vtk(rgba, deep=1))
+    gc.collect()
+    before = resident()
+    actor = vtkImageActor()
+    actor.GetMapper().SetInputData(picture)
+    window.GetRenderers().GetFirstRenderer().AddActor(actor)
+    for _ in range(MEMORY_FRAMES):
+        window.Render()
+    print(json.dumps({"growth": resident() - before}))
+
+
 def first(outdir, factor, kind, name, shade, pixels, outlined=False):
     """A new mapper in a new process: its first frame and the resident size MEMORY_FRAMES
     frames add (JSON on stdout); outlined: after the window has drawn the volume's outline."""
@@ -299,6 +325,9 @@ def first(outdir, factor, kind, name, shade, pixels, outlined=False):
     window, volume, _ = scene(image, kind, shade, pixels)
     if outlined:
         draw_outline(window, image)
+    if name == "picture":
+        show_picture(window, pixels)
+        return
     gc.collect()
     before = resident()
     mapper = new_mapper(name, image)
@@ -374,7 +403,7 @@ def report(outdir, quick, factors=None, images=None):
                     if name == "parc":
                         row["memory_size_" + name] = min_median(
                             [run["memory_size"] for run in runs])[1]
-                for name in ("fixed", "parc", "none"):
+                for name in OUTLINED:
                     row["growth_outlined_" + name] = child(
                         "--first", outdir, factor, kind, name, row["shade"], images[0],
                         "outlined")["growth"]
@@ -422,8 +451,8 @@ def tables(rows, images):
           "sample taken, a contributing sample | the same against the head's (x1) in turns "
           "(* the smallest volume's, another process) "
           "| edit frame / warm frame | resident growth: FixedPoint, PARC (x volume) "
-          "| the same after a drawn outline: FixedPoint, PARC, PARC without acceleration "
-          "(x volume) "
+          "| the same after a drawn outline: FixedPoint, PARC, PARC without acceleration, "
+          "a picture of the window's size alone (x volume) "
           "| PARC GetMemorySize (x volume) | GetMemorySize / growth |")
     print("|---|---|---|---|---|---|---|---|---|---|")
     smallest = {}  # the first row of each type and shading (the volumes in growing order)
@@ -433,7 +462,7 @@ def tables(rows, images):
         v = r["bytes"]
         # Not in runs saved before them: the outlined growth, then acceleration None's.
         outlined = ", ".join("%.2f" % (r["growth_outlined_" + name] / v)
-                             for name in ("fixed", "parc", "none")
+                             for name in OUTLINED
                              if "growth_outlined_" + name in r) or "-"
         keys = [k for k in SAMPLE_COSTS if k in r]  # runs saved before had one cost
         base = smallest[(r["kind"], r["shade"])]
@@ -535,6 +564,12 @@ def plots(outdir, rows, images):
                            lambda r, k=kind: r["kind"] == k and r["shade"] == 0
                            and "growth_outlined_none" in r,
                            lambda r: r["growth_outlined_none"] / 2**20, PALETTE[9],
+                           kind != kinds[0]))
+    for kind in kinds:
+        series.append(line("a picture of the window's size alone, after a drawn outline",
+                           lambda r, k=kind: r["kind"] == k and r["shade"] == 0
+                           and "growth_outlined_picture" in r,
+                           lambda r: r["growth_outlined_picture"] / 2**20, (0, 0, 0),
                            kind != kinds[0]))
     for kind in kinds:
         series.append(line("PARC Auto, BrickedCopy unshaded",
