@@ -47,7 +47,9 @@ TEST(PiecewiseLinear, ZeroAtATouchingNodeIsNotNonZero)
 
 // Lane by lane, EvaluateLanes gives Evaluate's bits, on random functions of 1 to 20 nodes
 // (steps, nodes between floats) at floats around the nodes, outside them, infinite and NaN,
-// and leaves the lanes it is not asked for alone.
+// and leaves the lanes it is not asked for alone; so does EvaluateEightLanes on the
+// functions of 2 to 7 nodes, where the processor has wide vectors (lanes asked for in
+// whole groups of eight too, which it stores without keeping any).
 TEST(PiecewiseLinear, LanesGiveEvaluatesBits)
 {
   std::mt19937 rng(77);
@@ -55,10 +57,11 @@ TEST(PiecewiseLinear, LanesGiveEvaluatesBits)
   constexpr int Lanes = 32;
   constexpr float Untouched = -123.f;
   const float inf = std::numeric_limits<float>::infinity();
-  for (int trial = 0; trial < 3000; ++trial)
+  int eightLaneTrials = 0;
+  for (int trial = 0; trial < 4000; ++trial)
   {
     std::vector<double> x, y;
-    const int n = 1 + static_cast<int>(u(rng) * 20);
+    const int n = 1 + static_cast<int>(u(rng) * (trial % 2 == 0 ? 20 : 8));
     double pos = -3.0 + u(rng);
     for (int i = 0; i < n; ++i)
     {
@@ -80,16 +83,34 @@ TEST(PiecewiseLinear, LanesGiveEvaluatesBits)
         : pick < 0.95 ? (u(rng) < 0.5 ? inf : -inf)
                       : std::numeric_limits<float>::quiet_NaN();
     }
-    const unsigned lanes = static_cast<unsigned>(rng());
+    const unsigned random = static_cast<unsigned>(rng());
+    const unsigned lanes = trial % 3 == 0 ? random : trial % 3 == 1 ? ~0u : random | 0x00FF00FFu;
+    const auto expectEvaluates = [&](const char* how) {
+      for (int j = 0; j < Lanes; ++j)
+      {
+        const float expected = (lanes >> j) & 1u ? f.Evaluate(s[j]) : Untouched;
+        EXPECT_EQ(std::memcmp(&expected, &out[j], sizeof(float)), 0)
+          << how << ", trial " << trial << ", lane " << j << ", s " << s[j] << ": " << out[j]
+          << " instead of " << expected;
+      }
+    };
     std::fill_n(out, Lanes, Untouched);
     f.EvaluateLanes(s, lanes, out);
-    for (int j = 0; j < Lanes; ++j)
+    expectEvaluates("EvaluateLanes");
+#if PARC_WIDE_VECTORS
+    EXPECT_EQ(f.PermutesPieces(), n >= 2 && n <= static_cast<int>(parc::MaxPermutedNodes));
+    if (f.PermutesPieces() && parc::HasWideVectors())
     {
-      const float expected = (lanes >> j) & 1u ? f.Evaluate(s[j]) : Untouched;
-      EXPECT_EQ(std::memcmp(&expected, &out[j], sizeof(float)), 0)
-        << "trial " << trial << ", lane " << j << ", s " << s[j] << ": " << out[j]
-        << " instead of " << expected;
+      std::fill_n(out, Lanes, Untouched);
+      f.EvaluateEightLanes(s, lanes, out);
+      expectEvaluates("EvaluateEightLanes");
+      ++eightLaneTrials;
     }
+#endif
+  }
+  if (parc::HasWideVectors())
+  {
+    EXPECT_GT(eightLaneTrials, 1000);
   }
 }
 

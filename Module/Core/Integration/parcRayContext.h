@@ -444,7 +444,16 @@ struct RayContext
     }
     float* a = this->Opacities;
     std::fill_n(a, LatticeBlock::Size, 0.f);
-    this->P.Opacity.EvaluateLanes(this->Block.Values, lanes, a);
+#if PARC_WIDE_VECTORS
+    if (this->K.WideVectors && this->P.Opacity.PermutesPieces())
+    {
+      this->P.Opacity.EvaluateEightLanes(this->Block.Values, lanes, a);
+    }
+    else
+#endif
+    {
+      this->P.Opacity.EvaluateLanes(this->Block.Values, lanes, a);
+    }
     if (this->K.GradientOpacityConstant)
     {
       for (int j = 0; j < LatticeBlock::Size; ++j)

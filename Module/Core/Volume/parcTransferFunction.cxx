@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <cmath>
 
+#if PARC_WIDE_VECTORS
+#include <immintrin.h>
+#endif
+
 namespace parc
 {
 
@@ -35,6 +39,19 @@ void PiecewiseLinearFunction::SetNodes(std::vector<double> x, std::vector<double
     this->Pieces[4 * c + 1] = static_cast<float>(this->Y[c - 1]);
     this->Pieces[4 * c + 2] = static_cast<float>(this->Slope[c - 1]);
   }
+  this->PieceX.clear();
+  this->PieceY.clear();
+  this->PieceSlope.clear();
+  if (n >= 2 && n <= MaxPermutedNodes)
+  {
+    for (std::size_t c = 0; c < 8; ++c)
+    {
+      const bool entry = c <= n;
+      this->PieceX.push_back(entry ? this->Pieces[4 * c] : 0.f);
+      this->PieceY.push_back(entry ? this->Pieces[4 * c + 1] : 0.f);
+      this->PieceSlope.push_back(entry ? this->Pieces[4 * c + 2] : 0.f);
+    }
+  }
   this->X0 = n > 0 ? this->X.front() : 0.0;
   this->XN = n > 0 ? this->X.back() : 0.0;
   const std::size_t buckets = std::min<std::size_t>(std::max<std::size_t>(4 * n, 1024), 4096);
@@ -61,9 +78,64 @@ void PiecewiseLinearFunction::SetConstant(double value)
   this->Y.clear();
   this->Slope.clear();
   this->Pieces.clear();
+  this->PieceX.clear();
+  this->PieceY.clear();
+  this->PieceSlope.clear();
   this->NodeThresholds.clear();
   this->Constant = value;
 }
+
+#if PARC_WIDE_VECTORS
+void PiecewiseLinearFunction::EvaluateEightLanes(const float* s, unsigned lanes, float* out) const
+{
+  // EvaluateLanes' steps, on eight lanes: the count c of nodes at or before each lane's s,
+  // its piece's entry c picked out of the registers, OnPiece, the value left of the nodes
+  // for c = 0, Evaluate for c = n.
+  const __m256i end = _mm256_set1_epi32(static_cast<std::int32_t>(this->NodeThresholds.size()));
+  const __m256i laneBit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
+  const __m256 left = _mm256_set1_ps(static_cast<float>(this->LeftValue()));
+  const __m256 xs = _mm256_loadu_ps(this->PieceX.data());
+  const __m256 ys = _mm256_loadu_ps(this->PieceY.data());
+  const __m256 slopes = _mm256_loadu_ps(this->PieceSlope.data());
+  while (lanes != 0)
+  {
+    const int first = CountTrailingZeros(lanes) & ~7;
+    const __m256 v = _mm256_loadu_ps(s + first);
+    __m256i c = _mm256_setzero_si256();
+    for (const float x : this->NodeThresholds)
+    {
+      c = _mm256_sub_epi32(c, _mm256_castps_si256(_mm256_cmp_ps(v, _mm256_set1_ps(x), _CMP_GE_OQ)));
+    }
+    const __m256 x = _mm256_permutevar8x32_ps(xs, c);
+    const __m256 y = _mm256_permutevar8x32_ps(ys, c);
+    const __m256 slope = _mm256_permutevar8x32_ps(slopes, c);
+    const __m256 f = _mm256_add_ps(y, _mm256_mul_ps(_mm256_sub_ps(v, x), slope));
+    const __m256 below = _mm256_castsi256_ps(_mm256_cmpeq_epi32(c, _mm256_setzero_si256()));
+    // max(f, 0) is 0 for a NaN f, like OnPiece.
+    const __m256 value = _mm256_blendv_ps(_mm256_max_ps(f, _mm256_setzero_ps()), left, below);
+    const unsigned group = (lanes >> first) & 0xFFu;
+    lanes &= ~(0xFFu << first);
+    if (group == 0xFFu)
+    {
+      _mm256_storeu_ps(out + first, value);
+    }
+    else // the group's lanes asked for take their values, the others keep theirs
+    {
+      const __m256i asked = _mm256_and_si256(_mm256_set1_epi32(static_cast<int>(group)), laneBit);
+      const __m256 write = _mm256_castsi256_ps(_mm256_cmpeq_epi32(asked, laneBit));
+      _mm256_storeu_ps(out + first, _mm256_blendv_ps(_mm256_loadu_ps(out + first), value, write));
+    }
+    // At or after the last node (rare): Evaluate's end values.
+    unsigned ends =
+      group & static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(c, end))));
+    for (; ends != 0; ends &= ends - 1)
+    {
+      const int j = first + CountTrailingZeros(ends);
+      out[j] = this->Evaluate(s[j]);
+    }
+  }
+}
+#endif
 
 float PiecewiseLinearFunction::EvaluateOutside(double s) const
 {

@@ -25,6 +25,9 @@ namespace parc
 /// Nodes up to which PiecewiseLinearFunction::EvaluateLanes finds each lane's piece by
 /// counting, four lanes at once, the nodes at or before it.
 constexpr std::size_t MaxCountedNodes = 16;
+/// Nodes up to which PiecewiseLinearFunction::EvaluateEightLanes picks each lane's piece
+/// out of eight-lane registers: entries 0 to n of its pieces fit in eight lanes.
+constexpr std::size_t MaxPermutedNodes = 7;
 
 class PiecewiseLinearFunction
 {
@@ -114,6 +117,14 @@ public:
       out[j] = this->Evaluate(s[j]);
     }
   }
+#if PARC_WIDE_VECTORS
+  /// Whether EvaluateEightLanes applies: 2 to MaxPermutedNodes nodes.
+  bool PermutesPieces() const { return !this->PieceX.empty(); }
+  /// EvaluateLanes in wide vectors, eight lanes at once (PermutesPieces; s and out hold
+  /// whole groups of eight lanes): the same operations on each lane, so the same bits.
+  PARC_NOINLINE PARC_TARGET_WIDE_VECTORS void EvaluateEightLanes(
+    const float* s, unsigned lanes, float* out) const;
+#endif
   /// True when f is the same value c >= 0 everywhere (then Evaluate returns float(c)).
   bool IsConstant(double& c) const;
 
@@ -148,6 +159,9 @@ private:
   /// Entry c (four floats: x, y and slope of the piece c - 1, then 0) for 0 < c < n nodes;
   /// entries 0 and n are zeros (so that four lanes load theirs whatever their counts).
   std::vector<float> Pieces;
+  /// The x, y and slope of Pieces' entries 0 to 7, each as eight lanes, for 2 to
+  /// MaxPermutedNodes nodes (the entries after n zeros); else empty.
+  std::vector<float> PieceX, PieceY, PieceSlope;
   /// FloatAtLeast of each node's x (a float s is at or after a node exactly when it is at
   /// or after its threshold), for 2 to MaxCountedNodes nodes; else empty.
   std::vector<float> NodeThresholds;
