@@ -1032,7 +1032,8 @@ TEST(RayCaster, PrefetchChosenWhereItPaysAndGivesBitIdenticalImages)
 // of the baseline code, bit for bit: every ray function, shaded or not (exact shading under
 // a directional light, two of them, one coloured, a positional light, a fractional specular
 // power, quantized normals), with gradient opacity, each kind of opacity correction, 8-bit,
-// 16-bit and float values, bricked, and a sparse source.
+// 16-bit and float values, bricked, and a sparse source. The opacity function has four
+// nodes: in wide vectors it is evaluated eight lanes at once (EvaluateEightLanes).
 TEST(RayCaster, WideVectorsGiveBitIdenticalImages)
 {
   if (!parc::HasWideVectors())
