@@ -126,8 +126,8 @@ void PiecewiseLinearFunction::EvaluateEightLanes(const float* s, unsigned lanes,
       _mm256_storeu_ps(out + first, _mm256_blendv_ps(_mm256_loadu_ps(out + first), value, write));
     }
     // At or after the last node (rare): Evaluate's end values.
-    unsigned ends =
-      group & static_cast<unsigned>(_mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(c, end))));
+    const __m256 atEnd = _mm256_castsi256_ps(_mm256_cmpeq_epi32(c, end));
+    unsigned ends = group & static_cast<unsigned>(_mm256_movemask_ps(atEnd));
     for (; ends != 0; ends &= ends - 1)
     {
       const int j = first + CountTrailingZeros(ends);
