@@ -320,7 +320,8 @@ def show_picture(window, pixels):
 
 def first(outdir, factor, kind, name, shade, pixels, outlined=False):
     """A new mapper in a new process: its first frame and the resident size MEMORY_FRAMES
-    frames add (JSON on stdout); outlined: after the window has drawn the volume's outline."""
+    frames add (JSON on stdout); outlined: after the window has drawn the volume's outline.
+    The name "picture" shows a picture of the window's size instead (show_picture)."""
     image, values = load_image(outdir, factor, kind)
     window, volume, _ = scene(image, kind, shade, pixels)
     if outlined:
