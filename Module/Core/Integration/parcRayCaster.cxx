@@ -162,6 +162,7 @@ bool RayCaster::Prepare(const Volume& volume)
   {
     return false;
   }
+  this->FieldCentre = volume.Centre();
   const int* dims = field->GetDimensions();
   const int shifts = parameters->ColorShiftCount;
   if (dims[0] < 2 || dims[1] < 2 || dims[2] < 2 || !(shifts == 0 || shifts == 1 || shifts == 3))
@@ -690,15 +691,8 @@ bool RayCaster::CastImage(const Camera& view, const float* depth,
 std::size_t RayCaster::DifferenceCacheCellsFor(const Camera& view) const
 {
   // The rays' spacing in voxels at the field's centre.
-  Matrix4 indexToWorld;
-  if (!Invert(this->WorldToIndex, indexToWorld))
-  {
-    return DifferenceCacheCells;
-  }
-  const int* dims = this->Field->GetDimensions();
-  const Vec3 centre = indexToWorld.TransformPoint(
-    { 0.5 * (dims[0] - 1), 0.5 * (dims[1] - 1), 0.5 * (dims[2] - 1) });
-  const double spacing = Length(this->WorldToIndex.TransformVector(view.PixelStepAt(centre)));
+  const double spacing =
+    Length(this->WorldToIndex.TransformVector(view.PixelStepAt(this->FieldCentre)));
   return spacing < DenseRaySpacing ? DenseDifferenceCacheCells : DifferenceCacheCells;
 }
 

@@ -380,6 +380,8 @@ private:
   const ScalarField* Field = nullptr;
   const CastParameters* Params = nullptr;
   Matrix4 WorldToIndex;
+  /// The centre of the field's box, in world coordinates (Volume::Centre).
+  Vec3 FieldCentre;
   RenderConstants Constants;
   /// The map of SetContributingCells when it applies to this caster's rays, or null.
   const CellMap* ContributingCells() const;
